@@ -1,0 +1,1 @@
+"""Numpy geometric kernels (float64); twins of ``web/src/core``."""
