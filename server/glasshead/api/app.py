@@ -1,0 +1,78 @@
+"""The FastAPI application: the JSON API under /api/v1, the GLB assets and the web app."""
+
+import importlib
+from contextlib import asynccontextmanager
+
+from fastapi import FastAPI, HTTPException, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+from glasshead import __version__
+from glasshead.api.static import mount_static
+from glasshead.settings import get_settings
+
+API_PREFIX = "/api/v1"
+
+#: Route modules under glasshead.api.routes, each exposing ``router``; included under API_PREFIX.
+ROUTE_MODULES = ["health", "anatomy"]
+
+#: Functions run once at start-up (e.g. database migrations), as "module:function".
+STARTUP_HOOKS: list[str] = []
+
+
+@asynccontextmanager
+async def lifespan(app: FastAPI):
+    for hook in STARTUP_HOOKS:
+        module_name, function_name = hook.split(":")
+        getattr(importlib.import_module(module_name), function_name)()
+    yield
+
+
+def create_app() -> FastAPI:
+    settings = get_settings()
+    app = FastAPI(
+        title="Glasshead",
+        version=__version__,
+        summary="A talking head with transparent skin, a parametric tongue and synthetic EPG.",
+        openapi_url=f"{API_PREFIX}/openapi.json",
+        docs_url=f"{API_PREFIX}/docs",
+        redoc_url=f"{API_PREFIX}/redoc",
+        lifespan=lifespan,
+    )
+    for name in ROUTE_MODULES:
+        module = importlib.import_module(f"glasshead.api.routes.{name}")
+        app.include_router(module.router, prefix=API_PREFIX)
+
+    @app.api_route(
+        API_PREFIX + "/{rest:path}",
+        methods=["GET", "POST", "PUT", "PATCH", "DELETE"],
+        include_in_schema=False,
+    )
+    async def unknown_api_path(rest: str):
+        raise HTTPException(status_code=404, detail=f"no API resource at {API_PREFIX}/{rest}")
+
+    @app.exception_handler(StarletteHTTPException)
+    async def json_http_error(request: Request, exc: StarletteHTTPException):
+        return JSONResponse({"detail": exc.detail}, status_code=exc.status_code,
+                            headers=getattr(exc, "headers", None))
+
+    @app.exception_handler(RequestValidationError)
+    async def json_validation_error(request: Request, exc: RequestValidationError):
+        return JSONResponse({"detail": _describe_validation_errors(exc.errors())},
+                            status_code=422)
+
+    mount_static(app, settings)
+    return app
+
+
+def _describe_validation_errors(errors) -> str | list:
+    """One readable sentence per error, e.g. "body.params.tip_height: value is not a number"."""
+    messages = []
+    for error in errors:
+        location = ".".join(str(part) for part in error.get("loc", ()))
+        messages.append(f"{location}: {error.get('msg', 'invalid')}" if location else error["msg"])
+    return "; ".join(messages)
+
+
+app = create_app()

@@ -1,0 +1,33 @@
+"""Settings read from the environment; the defaults work out of the box from a clone."""
+
+from functools import lru_cache
+from pathlib import Path
+
+from pydantic import AliasChoices, Field
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+#: The repository root (server/glasshead/settings.py -> ../../..).
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+class Settings(BaseSettings):
+    """Glasshead settings. Each field may be set by the environment variable named beside it."""
+
+    model_config = SettingsConfigDict(env_prefix="GLASSHEAD_", extra="ignore")
+
+    host: str = Field("127.0.0.1", validation_alias=AliasChoices("HOST", "GLASSHEAD_HOST"))
+    port: int = Field(8000, ge=1, le=65535, validation_alias=AliasChoices("PORT", "GLASSHEAD_PORT"))
+    #: Reference data (meshes, EPG, ultrasound); read-only.
+    data_dir: Path = REPO_ROOT.parent / "shared" / "data"
+    #: Output of `glasshead build`.
+    assets_dir: Path = REPO_ROOT / "assets" / "build"
+    #: The built web app (`vite build web`).
+    web_dist_dir: Path = REPO_ROOT / "web" / "dist"
+    #: SQLAlchemy URL; SQLite by default, PostgreSQL in docker-compose.
+    database_url: str = f"sqlite:///{REPO_ROOT / 'var' / 'glasshead.sqlite3'}"
+
+
+@lru_cache
+def get_settings() -> Settings:
+    """The process-wide settings (cached; tests clear the cache after changing the environment)."""
+    return Settings()
