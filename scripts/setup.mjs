@@ -1,0 +1,79 @@
+// Brings a checkout up to date for `npm start` and `npm test`: installs what is missing and
+// rebuilds what is stale. Every step keeps a stamp (a hash of its inputs), so a second run with
+// nothing changed takes seconds.
+//
+//   node scripts/setup.mjs [start|test]
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { hashInputs, REPO, run, step } from './lib.mjs';
+
+const mode = process.argv[ 2 ] ?? 'start';
+const STAMPS = join( REPO, '.setup-stamps' );
+mkdirSync( STAMPS, { recursive: true } );
+
+function stale( name, digest ) {
+	const file = join( STAMPS, name );
+	return ! existsSync( file ) || readFileSync( file, 'utf8' ) !== digest;
+}
+
+function stamp( name, digest ) {
+	writeFileSync( join( STAMPS, name ), digest );
+}
+
+function ensurePython() {
+	const venvPython = join( REPO, '.venv', 'bin', 'python' );
+	const digest = hashInputs( [ 'pyproject.toml' ] );
+	if ( existsSync( venvPython ) && ! stale( 'venv', digest ) ) return;
+	step( 'Python environment (.venv)', () => {
+		if ( ! existsSync( venvPython ) ) {
+			const python = process.env.PYTHON ?? 'python3';
+			run( python, [ '-c', 'import sys; sys.exit(sys.version_info < (3, 11))' ], {
+				hint: `${python} 3.11 or newer is required (set PYTHON to another interpreter)`,
+			} );
+			run( python, [ '-m', 'venv', '.venv' ] );
+			run( venvPython, [ '-m', 'pip', 'install', '--quiet', '--upgrade', 'pip' ] );
+		}
+		run( venvPython, [ '-m', 'pip', 'install', '--quiet', '-e', '.[dev]' ] );
+	} );
+	stamp( 'venv', digest );
+}
+
+function ensureNodeModules() {
+	const digest = hashInputs( [ 'package.json', 'package-lock.json' ] );
+	if ( existsSync( join( REPO, 'node_modules' ) ) && ! stale( 'node_modules', digest ) ) return;
+	step( 'Node modules', () => run( 'npm', [ 'ci', '--no-audit', '--no-fund', '--loglevel=error' ] ) );
+	stamp( 'node_modules', digest );
+}
+
+function ensureChromium() {
+	if ( existsSync( '/usr/bin/chromium' ) ) return;
+	const isRoot = process.getuid?.() === 0;
+	if ( ! isRoot ) {
+		console.error( 'The end-to-end tests need Debian\'s Chromium at /usr/bin/chromium.\n' +
+			'Install it with:  sudo apt-get install chromium' );
+		process.exit( 1 );
+	}
+	step( 'Debian chromium (apt-get)', () => {
+		run( 'apt-get', [ 'update', '-qq' ] );
+		run( 'apt-get', [ 'install', '-y', '-qq', 'chromium' ], { env: { DEBIAN_FRONTEND: 'noninteractive' } } );
+	} );
+}
+
+function buildAssets() {
+	// `glasshead build` hashes its own inputs and returns at once when nothing changed.
+	run( join( REPO, '.venv', 'bin', 'glasshead' ), [ 'build' ] );
+}
+
+function buildWeb() {
+	const digest = hashInputs( [ 'web', 'package-lock.json' ], { exclude: [ 'web/dist' ] } );
+	if ( existsSync( join( REPO, 'web', 'dist', 'index.html' ) ) && ! stale( 'web', digest ) ) return;
+	step( 'Web bundle (vite build)', () =>
+		run( join( REPO, 'node_modules', '.bin', 'vite' ), [ 'build', 'web', '--logLevel', 'warn' ] ) );
+	stamp( 'web', digest );
+}
+
+ensurePython();
+ensureNodeModules();
+if ( mode === 'test' ) ensureChromium();
+buildAssets();
+buildWeb();
