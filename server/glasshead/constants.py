@@ -31,3 +31,19 @@ BADIN_TO_PROJECT_AXES = np.array(
 
 #: Metres to millimetres.
 M_TO_MM = 1000.0
+
+# --- Electropalatography (the Reading 62-electrode palate) -------------------------------------
+# A frame is an 8 x 8 grid of contacts: row 0 = R1 (front, alveolar) ... row 7 = R8 (back, velar);
+# column 0 = electrode column 1 ... column 7 = column 8. R1 has no electrode in columns 1 and 8.
+
+#: Rows and columns of the EPG grid.
+EPG_ROWS = 8
+EPG_COLUMNS = 8
+#: Cells per frame in the flat layout (row-major, R1 first): 8 * 8.
+EPG_CELLS = EPG_ROWS * EPG_COLUMNS
+#: Electrodes on the palate: 8 * 8 minus the two missing corners of R1.
+EPG_ELECTRODES = EPG_CELLS - 2
+#: Flat cell indices (row * 8 + column) that have no electrode: R1 columns 1 and 8.
+EPG_MISSING_CELLS = (0, 7)
+#: Zones as half-open row ranges: alveolar R1-R2, palatal R3-R5, velar R6-R8.
+EPG_ZONES = {"alveolar": (0, 2), "palatal": (2, 5), "velar": (5, 8)}

@@ -1,0 +1,414 @@
+"""Read and write EPG recordings in three formats.
+
+``emur-json``: the JSON form of the emuR reference data (``../shared/data/epg/emur-engassim.json``):
+    ``{"segments": [{"label", "utt", "word", "start_ms", "end_ms", "frames": [{"t_ms", "raw",
+    "rows"}]}]}``; ``rows`` are 8 strings of '0'/'1', R1 first, character c = column c + 1;
+    ``raw`` is the same frame as 8 bytes in emuR's compressed layout (see ``sequence``). A frame
+    needs ``rows`` or ``raw``; when it has both they must agree. One recording per segment.
+
+``csv``: Glasshead's documented CSV (``docs/epg-recordings.md``), one recording per file::
+
+    # glasshead-epg-csv 1
+    # name: sp1bescan s->k          optional "# key: value" lines (name, frame_rate_hz, others)
+    t_s,R1C2,R1C3,...,R1C7,R2C1,...,R8C8
+    155.965,0,0,...
+
+    A header row of ``t_s`` and the 62 electrodes (row-major, R1 first, R1's columns 2-7 only),
+    then one row per frame: the time in seconds and 62 values 0 or 1.
+
+``ssff``: the Simple Signal File Format of the EMU speech database system, which stores EPG as
+    an ``epg`` column of 8 BYTEs per frame in emuR's compressed layout. Specification: The EMU-SDMS
+    Manual (Winkelmann et al., IPS-LMU), appendix "File formats", section "The SSFF file format";
+    reader and writer in libassp ``headers.c`` (getSSFFhdr/putSSFFhdr, keyword ``epg`` = DT_EPG).
+    A plain text header (``SSFF -- (c) SHLRC``, ``Machine IBM-PC``, ``Record_Freq``,
+    ``Start_Time``, ``Column name TYPE count`` lines, optional ``name TYPE value`` lines, ended by
+    ``-----------------``) followed by interleaved binary records. Frames are evenly spaced:
+    t = Start_Time + i / Record_Freq.
+
+Every reader raises ``EpgFormatError`` naming the frame (0-based) and the field at fault.
+"""
+
+import csv
+import io
+import json
+import math
+
+import numpy as np
+
+from glasshead.epg.sequence import (
+    MAX_FRAMES,
+    EpgFormatError,
+    EpgSequence,
+    frames_to_raw,
+    make_sequence,
+    raw_to_frames,
+    rows_to_strings,
+)
+
+FORMATS = ("emur-json", "csv", "ssff")
+MEDIA_TYPES = {"emur-json": "application/json", "csv": "text/csv",
+               "ssff": "application/octet-stream"}
+EXTENSIONS = {"emur-json": ".json", "csv": ".csv", "ssff": ".epg"}
+
+CSV_MAGIC = "# glasshead-epg-csv 1"
+#: CSV electrode columns, row-major, R1 first; R1 has only columns 2-7.
+CSV_ELECTRODES = [f"R{r}C{c}" for r in range(1, 9) for c in range(1, 9)
+                  if not (r == 1 and c in (1, 8))]
+#: Flat (row * 8 + column) cell of each CSV electrode column.
+_CSV_CELLS = np.array([(int(n[1]) - 1) * 8 + int(n[3]) - 1 for n in CSV_ELECTRODES])
+
+SSFF_MAGIC = "SSFF -- (c) SHLRC"
+SSFF_END = "-----------------"
+SSFF_TYPE_SIZES = {"CHAR": 1, "BYTE": 1, "SHORT": 2, "LONG": 4, "FLOAT": 4, "DOUBLE": 8}
+#: Metadata written to SSFF as ``key CHAR text`` and ``key DOUBLE number`` lines and read back.
+SSFF_META_KEYS = ("name", "label", "utterance", "word")
+SSFF_META_NUMBERS = ("start_s", "end_s")
+
+
+def detect_format(content: bytes, filename: str | None = None) -> str:
+    """Guess the format from the file name's extension, else from the first bytes."""
+    suffix = (filename or "").lower().rsplit(".", 1)[-1] if filename and "." in filename else ""
+    by_suffix = {"json": "emur-json", "csv": "csv", "ssff": "ssff", "epg": "ssff"}
+    if suffix in by_suffix:
+        return by_suffix[suffix]
+    head = content[:32].lstrip()
+    if head.startswith(SSFF_MAGIC.encode()):
+        return "ssff"
+    if head[:1] in (b"{", b"["):
+        return "emur-json"
+    if head.startswith(b"#") or head.lower().startswith(b"t_s"):
+        return "csv"
+    raise EpgFormatError("cannot tell the format; give format=emur-json, csv or ssff",
+                         field="format")
+
+
+def parse(content: bytes, fmt: str, name: str | None = None) -> list[EpgSequence]:
+    """Read recordings from a file's bytes in format ``fmt``; ``name`` overrides their names."""
+    readers = {"emur-json": parse_emur_json, "csv": parse_csv, "ssff": parse_ssff}
+    if fmt not in readers:
+        raise EpgFormatError(f"unknown format {fmt!r}; use one of {', '.join(FORMATS)}",
+                             field="format")
+    sequences = readers[fmt](content)
+    if name:
+        for i, sequence in enumerate(sequences):
+            sequence.name = name if len(sequences) == 1 else f"{name} {i + 1}"
+    return sequences
+
+
+def serialise(sequences: list[EpgSequence], fmt: str) -> bytes:
+    """Write recordings in format ``fmt`` (csv and ssff hold exactly one recording)."""
+    if fmt == "emur-json":
+        return write_emur_json(sequences)
+    if len(sequences) != 1:
+        raise ValueError(f"{fmt} holds one recording; got {len(sequences)}")
+    if fmt == "csv":
+        return write_csv(sequences[0])
+    if fmt == "ssff":
+        return write_ssff(sequences[0])
+    raise ValueError(f"unknown format {fmt!r}")
+
+
+# --- emuR JSON ---------------------------------------------------------------------------------
+
+def parse_emur_json(content: bytes) -> list[EpgSequence]:
+    try:
+        document = json.loads(content)
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise EpgFormatError(f"not valid JSON ({error})", field="body") from None
+    if isinstance(document, dict) and "segments" in document:
+        segments = document["segments"]
+    elif isinstance(document, dict) and "frames" in document:
+        segments = [document]
+    else:
+        segments = document
+    if not isinstance(segments, list) or not segments:
+        raise EpgFormatError("expected a non-empty list of segments with frames",
+                             field="segments")
+    total = sum(len(s.get("frames", [])) for s in segments if isinstance(s, dict))
+    if total > MAX_FRAMES:
+        raise EpgFormatError(f"{total} frames is more than the limit of {MAX_FRAMES}",
+                             field="frames")
+    sequences = []
+    for index, segment in enumerate(segments):
+        try:
+            sequences.append(_emur_segment(segment))
+        except EpgFormatError as error:
+            raise (error.in_segment(index) if len(segments) > 1 else error) from None
+    return sequences
+
+
+def _emur_segment(segment) -> EpgSequence:
+    if not isinstance(segment, dict) or not isinstance(segment.get("frames"), list):
+        raise EpgFormatError("a segment is an object with a list of frames", field="frames")
+    frames = np.zeros((len(segment["frames"]), 8, 8), dtype=np.uint8)
+    t_s = np.zeros(len(frames))
+    for i, frame in enumerate(segment["frames"]):
+        if not isinstance(frame, dict):
+            raise EpgFormatError("a frame is an object with t_ms and rows or raw",
+                                 field="frames", frame=i)
+        t_s[i] = _number(frame.get("t_ms"), "t_ms", i) / 1000.0
+        from_rows = _emur_rows(frame["rows"], i) if "rows" in frame else None
+        from_raw = _emur_raw(frame["raw"], i) if "raw" in frame else None
+        if from_rows is None and from_raw is None:
+            raise EpgFormatError("the frame has neither rows nor raw", field="rows", frame=i)
+        if from_rows is not None and from_raw is not None and (from_rows != from_raw).any():
+            raise EpgFormatError("rows and raw describe different contacts", field="raw",
+                                 frame=i)
+        frames[i] = from_rows if from_rows is not None else from_raw
+    meta = {key: segment[key] for key in ("label", "word") if isinstance(segment.get(key), str)}
+    if isinstance(segment.get("utt"), str):
+        meta["utterance"] = segment["utt"]
+    for key in ("start_ms", "end_ms"):
+        if segment.get(key) is not None:
+            meta[key.replace("_ms", "_s")] = _number(segment[key], key, None) / 1000.0
+    name = " ".join(meta[k] for k in ("utterance", "label") if k in meta) or "emuR segment"
+    return make_sequence(frames, t_s, segment.get("name") or name, meta=meta)
+
+
+def _emur_rows(rows, frame: int) -> np.ndarray:
+    if not isinstance(rows, list) or len(rows) != 8:
+        count = len(rows) if isinstance(rows, list) else "not a list"
+        raise EpgFormatError(f"expected 8 rows of 8 contacts, got {count}", field="rows",
+                             frame=frame)
+    grid = np.zeros((8, 8), dtype=np.uint8)
+    for r, row in enumerate(rows):
+        if not isinstance(row, str) or len(row) != 8:
+            size = len(row) if isinstance(row, str) else type(row).__name__
+            raise EpgFormatError(f"expected 8 contacts, got {size}", field=f"rows[{r}]",
+                                 frame=frame)
+        for c, char in enumerate(row):
+            if char not in "01":
+                raise EpgFormatError(f"contact {char!r} at column {c + 1} is not 0 or 1",
+                                     field=f"rows[{r}]", frame=frame)
+            grid[r, c] = char == "1"
+    if grid[0, 0] or grid[0, 7]:
+        column = 1 if grid[0, 0] else 8
+        raise EpgFormatError(f"R1 has no electrode in column {column}; it must be 0",
+                             field="rows[0]", frame=frame)
+    return grid
+
+
+def _emur_raw(raw, frame: int) -> np.ndarray:
+    if not isinstance(raw, list) or len(raw) != 8:
+        raise EpgFormatError("expected 8 bytes, R8 first", field="raw", frame=frame)
+    for b, value in enumerate(raw):
+        if not isinstance(value, int) or isinstance(value, bool) or not 0 <= value <= 255:
+            raise EpgFormatError(f"{value!r} is not a byte 0-255", field=f"raw[{b}]",
+                                 frame=frame)
+    if raw[7] & 0b10000001:
+        raise EpgFormatError("R1 has no electrode in columns 1 and 8; bits 0 and 7 must be 0",
+                             field="raw[7]", frame=frame)
+    return raw_to_frames(np.array([raw], dtype=np.uint8))[0]
+
+
+def _number(value, field: str, frame: int | None) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise EpgFormatError(f"{value!r} is not a number", field=field, frame=frame)
+    return float(value)
+
+
+def write_emur_json(sequences: list[EpgSequence]) -> bytes:
+    segments = []
+    for seq in sequences:
+        raw = frames_to_raw(seq.frames)
+        segment = {"name": seq.name}
+        for key, out in (("label", "label"), ("utterance", "utt"), ("word", "word")):
+            if key in seq.meta:
+                segment[out] = seq.meta[key]
+        for key in ("start_s", "end_s"):
+            if key in seq.meta:
+                segment[key.replace("_s", "_ms")] = _ms(seq.meta[key])
+        segment["frames"] = [
+            {"t_ms": _ms(t), "raw": [int(b) for b in raw[i]], "rows": rows_to_strings(frame)}
+            for i, (t, frame) in enumerate(zip(seq.t_s, seq.frames))
+        ]
+        segments.append(segment)
+    return json.dumps({"source": "Glasshead EPG export", "segments": segments}).encode()
+
+
+def _ms(seconds: float) -> float:
+    """Seconds -> milliseconds, rounded to 1 ns so that ms -> s -> ms gives the same number."""
+    return round(float(seconds) * 1000.0, 6)
+
+
+# --- CSV ---------------------------------------------------------------------------------------
+
+def parse_csv(content: bytes) -> list[EpgSequence]:
+    try:
+        text = content.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise EpgFormatError(f"not UTF-8 text ({error.reason})", field="body") from None
+    lines = text.splitlines()
+    meta, frame_rate, header_at = {}, None, None
+    for number, line in enumerate(lines, start=1):
+        stripped = line.strip()
+        if not stripped or stripped == CSV_MAGIC:
+            continue
+        if stripped.startswith("#"):
+            key, sep, value = stripped.lstrip("#").partition(":")
+            if sep:
+                meta[key.strip()] = value.strip()
+            continue
+        header_at = number
+        break
+    if header_at is None:
+        raise EpgFormatError("no header row (t_s and the 62 electrodes)", field="header")
+    header = [h.strip() for h in next(csv.reader([lines[header_at - 1]]))]
+    expected = ["t_s", *CSV_ELECTRODES]
+    if len(header) != len(expected):
+        raise EpgFormatError(f"line {header_at}: expected {len(expected)} columns (t_s and 62 "
+                             f"electrodes), got {len(header)}", field="header")
+    for got, want in zip(header, expected):
+        if got.upper() != want.upper():
+            raise EpgFormatError(f"line {header_at}: column {got!r} where {want!r} belongs",
+                                 field="header")
+    rows = [(n, r) for n, r in enumerate(csv.reader(lines[header_at:]), start=header_at + 1)
+            if r and any(cell.strip() for cell in r)]
+    if len(rows) > MAX_FRAMES:
+        raise EpgFormatError(f"{len(rows)} frames is more than the limit of {MAX_FRAMES}",
+                             field="frames")
+    frames = np.zeros((len(rows), 64), dtype=np.uint8)
+    t_s = np.zeros(len(rows))
+    for i, (number, row) in enumerate(rows):
+        if len(row) != len(expected):
+            raise EpgFormatError(f"line {number}: expected 62 electrodes, got {len(row) - 1}",
+                                 field="electrodes", frame=i)
+        try:
+            t_s[i] = float(row[0])
+        except ValueError:
+            raise EpgFormatError(f"line {number}: {row[0]!r} is not a time in seconds",
+                                 field="t_s", frame=i) from None
+        for name, cell, value in zip(CSV_ELECTRODES, _CSV_CELLS, row[1:]):
+            value = value.strip()
+            if value not in ("0", "1"):
+                raise EpgFormatError(f"line {number}: value {value!r} is not 0 or 1",
+                                     field=name, frame=i)
+            frames[i, cell] = value == "1"
+    if "frame_rate_hz" in meta:
+        try:
+            frame_rate = float(meta.pop("frame_rate_hz"))
+        except ValueError:
+            raise EpgFormatError("not a number", field="frame_rate_hz") from None
+    for key in ("start_s", "end_s"):
+        if key in meta:
+            try:
+                meta[key] = float(meta[key])
+            except ValueError:
+                raise EpgFormatError(f"{meta[key]!r} is not a number", field=key) from None
+    name = meta.pop("name", "") or "CSV recording"
+    return [make_sequence(frames.reshape(-1, 8, 8), t_s, name, frame_rate, meta)]
+
+
+def write_csv(seq: EpgSequence) -> bytes:
+    out = io.StringIO()
+    out.write(f"{CSV_MAGIC}\n# name: {_one_line(seq.name)}\n")
+    if seq.frame_rate_hz is not None:
+        out.write(f"# frame_rate_hz: {seq.frame_rate_hz!r}\n")
+    for key, value in seq.meta.items():
+        if key not in ("name", "frame_rate_hz"):
+            value = repr(value) if isinstance(value, float) else str(value)
+            out.write(f"# {_one_line(str(key).replace(':', '_'))}: {_one_line(value)}\n")
+    out.write(",".join(["t_s", *CSV_ELECTRODES]) + "\n")
+    flat = seq.frames.reshape(len(seq.frames), 64)[:, _CSV_CELLS]
+    for t, values in zip(seq.t_s, flat):
+        out.write(f"{float(t)!r}," + ",".join("1" if v else "0" for v in values) + "\n")
+    return out.getvalue().encode()
+
+
+def _one_line(text: str) -> str:
+    return " ".join(text.split())
+
+
+# --- SSFF --------------------------------------------------------------------------------------
+
+def parse_ssff(content: bytes) -> list[EpgSequence]:
+    end = content.find(b"\n" + SSFF_END.encode())
+    if not content.startswith(SSFF_MAGIC.encode()) or end < 0:
+        raise EpgFormatError(f"an SSFF file starts with {SSFF_MAGIC!r} and its header ends "
+                             f"with {SSFF_END!r}", field="header")
+    data_at = content.index(b"\n", end + 1) + 1 if b"\n" in content[end + 1:] else len(content)
+    header = content[:end].decode("latin-1").splitlines()[1:]
+    rate = start = None
+    columns, meta = [], {}
+    for line in header:
+        fields = line.split()
+        if not fields:
+            continue
+        key = fields[0]
+        if key == "Record_Freq":
+            rate = _ssff_number(fields, "Record_Freq")
+        elif key == "Start_Time":
+            start = _ssff_number(fields, "Start_Time")
+        elif key == "Column":
+            if len(fields) != 4 or fields[2] not in SSFF_TYPE_SIZES or not fields[3].isdigit():
+                raise EpgFormatError(f"{line.strip()!r} is not 'Column name TYPE count'",
+                                     field="Column")
+            columns.append((fields[1], fields[2], int(fields[3])))
+        elif len(fields) >= 3 and fields[1] == "CHAR" and key in SSFF_META_KEYS:
+            meta[key] = line.split(None, 2)[2].strip()
+        elif len(fields) == 3 and fields[1] == "DOUBLE" and key in SSFF_META_NUMBERS:
+            meta[key] = _ssff_number(fields[1:], key)
+    if rate is None or not rate > 0:
+        raise EpgFormatError("a positive Record_Freq line is required", field="Record_Freq")
+    if start is None or start < 0:
+        raise EpgFormatError("a Start_Time line of 0 or more seconds is required",
+                             field="Start_Time")
+    epg = [c for c in columns if c[0].lower() == "epg"] or columns
+    if len(epg) != 1 or epg[0][1:] != ("BYTE", 8):
+        found = ", ".join(f"{n} {t} {k}" for n, t, k in columns) or "none"
+        raise EpgFormatError(f"expected one column 'epg BYTE 8' (8 bytes per frame, R8 first); "
+                             f"found {found}", field="Column")
+    record = sum(SSFF_TYPE_SIZES[t] * k for _, t, k in columns)
+    offset = 0
+    for column in columns:
+        if column is epg[0]:
+            break
+        offset += SSFF_TYPE_SIZES[column[1]] * column[2]
+    data = np.frombuffer(content[data_at:], dtype=np.uint8)
+    if data.size % record:
+        raise EpgFormatError(f"{data.size} data bytes are not whole {record}-byte records; "
+                             f"the last is cut short", field="data", frame=data.size // record)
+    raw = data.reshape(-1, record)[:, offset:offset + 8]
+    if len(raw) > MAX_FRAMES:
+        raise EpgFormatError(f"{len(raw)} frames is more than the limit of {MAX_FRAMES}",
+                             field="frames")
+    corners = raw[:, 7] & 0b10000001
+    if corners.any():
+        raise EpgFormatError("R1 has no electrode in columns 1 and 8; bits 0 and 7 of byte 8 "
+                             "must be 0", field="epg[7]", frame=int(np.argmax(corners > 0)))
+    t_s = start + np.arange(len(raw)) / rate
+    name = meta.pop("name", "") or "SSFF recording"
+    return [make_sequence(raw_to_frames(raw), t_s, name, rate, meta)]
+
+
+def _ssff_number(fields: list[str], key: str) -> float:
+    try:
+        value = float(fields[1])
+    except (IndexError, ValueError):
+        raise EpgFormatError(f"{' '.join(fields)!r} has no number", field=key) from None
+    if not math.isfinite(value):
+        raise EpgFormatError(f"{value} is not finite", field=key)
+    return value
+
+
+def write_ssff(seq: EpgSequence) -> bytes:
+    """SSFF needs a constant frame rate: times must be Start_Time + i / Record_Freq."""
+    rate = seq.frame_rate_hz
+    if rate is None:
+        rate = 1.0
+    expected = seq.t_s[0] + np.arange(seq.n_frames) / rate
+    drift = np.abs(seq.t_s - expected)
+    if (drift > 0.01 / rate).any():
+        frame = int(np.argmax(drift > 0.01 / rate))
+        raise EpgFormatError(f"frames are not evenly spaced at {rate:g} Hz, which SSFF needs",
+                             field="t_s", frame=frame)
+    lines = [SSFF_MAGIC, "Machine IBM-PC", f"Record_Freq {rate!r}",
+             f"Start_Time {float(seq.t_s[0])!r}", "Column epg BYTE 8"]
+    values = {"name": seq.name, **{k: seq.meta[k] for k in SSFF_META_KEYS if k in seq.meta}}
+    for key, value in values.items():
+        lines.append(f"{key} CHAR {' '.join(str(value).split())[:200]}")
+    for key in SSFF_META_NUMBERS:
+        if isinstance(seq.meta.get(key), (int, float)):
+            lines.append(f"{key} DOUBLE {float(seq.meta[key])!r}")
+    header = ("\n".join(lines) + "\n" + SSFF_END + "\n").encode("latin-1", "replace")
+    return header + frames_to_raw(seq.frames).tobytes()
