@@ -47,3 +47,49 @@ EPG_ELECTRODES = EPG_CELLS - 2
 EPG_MISSING_CELLS = (0, 7)
 #: Zones as half-open row ranges: alveolar R1-R2, palatal R3-R5, velar R6-R8.
 EPG_ZONES = {"alveolar": (0, 2), "palatal": (2, 5), "velar": (5, 8)}
+
+# --- Tongue-palate collision (the paper's liner and voxel table) -------------------------------
+# Tables are built by glasshead.pipeline.collision_tables and read by geometry.collision and
+# web/src/core/tables.js; tests/vectors/collision-constants.json asserts both sides agree.
+
+#: Format version of the binary collision tables; a reader refuses any other version.
+COLLISION_TABLES_FORMAT_VERSION = 1
+#: Magic bytes that open a collision tables file.
+COLLISION_TABLES_MAGIC = b"GHCOLTAB"
+#: Liner step in longitude and in latitude, degrees (see docs in geometry/liner.py).
+COLLISION_LINER_STEP_DEG = 0.5
+#: Voxels per axis of the voxel table (the paper's 32 x 32 x 32).
+COLLISION_VOXELS = 32
+#: Voxel classes: certainly outside, straddling the surface, certainly inside.
+VOXEL_OK, VOXEL_BORDER, VOXEL_NOT_OK = 0, 1, 2
+#: Liner cell kinds: no triangle seen from O in the cell (every ray misses); one triangle covers
+#: the cell and is the first hit everywhere in it (a plane test); a short triangle list.
+CELL_EMPTY, CELL_PLANE, CELL_LIST = 0, 1, 2
+#: Per-vertex flags: screened by the voxel table (untouched), tested against the liner and
+#: found outside (untouched), corrected (moved along the line toward O onto the surface).
+FLAG_SCREENED, FLAG_TESTED, FLAG_CORRECTED = 0, 1, 2
+#: Largest vertex count accepted by POST /collision/correct.
+COLLISION_MAX_VERTICES = 20000
+
+
+class CollisionTolerance:
+    """Every tolerance of the collision tables in one place, with the reason for each."""
+
+    #: rad. Cells are widened by this before they are bounded, so that rounding in atan2
+    #: (about 1e-16 rad) can never put a direction in a cell whose bounds exclude it.
+    angle = 1e-9
+    #: mm. Voxel boxes are widened, and radius bounds loosened, by this: the float32 rounding of
+    #: table values (about 3e-6 mm at 50 mm) is far below it and the tongue never notices it.
+    length = 1e-5
+    #: Moller-Trumbore barycentric slack, so that a ray through an edge shared by two triangles
+    #: cannot slip between them through rounding.
+    barycentric = 1e-9
+    #: mm. Points closer than this to the surface count as on it when a result is compared with
+    #: an exact reference computed from the float64 mesh (tables store float32 triangles).
+    surface = 1e-3
+    #: mm. The largest depth inside the maxilla that a corrected tongue may keep (the issue's
+    #: exactness bound).
+    depth = 0.1
+
+
+COLLISION_TOL = CollisionTolerance()

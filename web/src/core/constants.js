@@ -26,3 +26,37 @@ export const EPG_ZONES = Object.freeze( {
 	palatal: Object.freeze( [ 2, 5 ] ),
 	velar: Object.freeze( [ 5, 8 ] ),
 } );
+
+// --- Tongue-palate collision (the paper's liner and voxel table) ---------------------------------
+// Mirrors server/glasshead/constants.py; tests/vectors/collision-constants.json checks both.
+
+/** Format version of the binary collision tables; the loader refuses any other version. */
+export const COLLISION_TABLES_FORMAT_VERSION = 1;
+/** Magic bytes that open a collision tables file ("GHCOLTAB"). */
+export const COLLISION_TABLES_MAGIC = 'GHCOLTAB';
+/** Liner step in longitude and in latitude, degrees. */
+export const COLLISION_LINER_STEP_DEG = 0.5;
+/** Voxels per axis of the voxel table. */
+export const COLLISION_VOXELS = 32;
+/** Voxel classes: certainly outside, straddling the surface, certainly inside. */
+export const VOXEL_OK = 0;
+export const VOXEL_BORDER = 1;
+export const VOXEL_NOT_OK = 2;
+/** Liner cell kinds: every ray misses; one triangle is the first hit (plane test); a short list. */
+export const CELL_EMPTY = 0;
+export const CELL_PLANE = 1;
+export const CELL_LIST = 2;
+/** Per-vertex flags: screened (untouched), tested and outside (untouched), corrected. */
+export const FLAG_SCREENED = 0;
+export const FLAG_TESTED = 1;
+export const FLAG_CORRECTED = 2;
+/** Largest vertex count accepted by POST /collision/correct. */
+export const COLLISION_MAX_VERTICES = 20000;
+/** Tolerances of the collision kernels; see CollisionTolerance in constants.py for the reasons. */
+export const COLLISION_TOL = Object.freeze( {
+	angle: 1e-9,
+	length: 1e-5,
+	barycentric: 1e-9,
+	surface: 1e-3,
+	depth: 0.1,
+} );
