@@ -147,7 +147,7 @@ def _emur_segment(segment) -> EpgSequence:
             raise EpgFormatError("a frame is an object with t_ms and rows or raw",
                                  field="frames", frame=i)
         t_s[i] = _number(frame.get("t_ms"), "t_ms", i) / 1000.0
-        from_rows = _emur_rows(frame["rows"], i) if "rows" in frame else None
+        from_rows = rows_to_frame(frame["rows"], i) if "rows" in frame else None
         from_raw = _emur_raw(frame["raw"], i) if "raw" in frame else None
         if from_rows is None and from_raw is None:
             raise EpgFormatError("the frame has neither rows nor raw", field="rows", frame=i)
@@ -165,7 +165,8 @@ def _emur_segment(segment) -> EpgSequence:
     return make_sequence(frames, t_s, segment.get("name") or name, meta=meta)
 
 
-def _emur_rows(rows, frame: int) -> np.ndarray:
+def rows_to_frame(rows, frame: int) -> np.ndarray:
+    """8 strings of 8 '0'/'1' (R1 first) -> an (8, 8) uint8 frame; EpgFormatError names the fault."""
     if not isinstance(rows, list) or len(rows) != 8:
         count = len(rows) if isinstance(rows, list) else "not a list"
         raise EpgFormatError(f"expected 8 rows of 8 contacts, got {count}", field="rows",

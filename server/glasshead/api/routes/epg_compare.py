@@ -1,0 +1,156 @@
+"""Compare a stored EPG recording with a reference, and plot indices over time.
+
+The reference is another stored recording, or frames sent by the client: the synthetic EPG of a
+target (a saved pose, or a phoneme target) computed where the tongue model runs. One reference
+frame stands for the whole recording (a static target); a sequence is aligned by time from each
+side's first frame (see ``glasshead.epg.compare``).
+"""
+
+from typing import Annotated
+
+import numpy as np
+from fastapi import APIRouter, HTTPException, Query, Response
+from pydantic import BaseModel, Field
+from sqlalchemy.orm import Session
+
+from glasshead.api.routes.recordings import get_record
+from glasshead.epg import compare as epg_compare
+from glasshead.epg.formats import rows_to_frame
+from glasshead.epg.indices import epg_indices
+from glasshead.epg.plot import DEFAULT_PANELS, PANELS, Track, index_tracks_svg
+from glasshead.epg.sequence import EpgFormatError, check_times
+from glasshead.store.session import SessionDep
+
+router = APIRouter(tags=["epg recordings"])
+
+#: Most reference frames accepted in a request body.
+MAX_REFERENCE_FRAMES = 20_000
+PanelsQuery = Annotated[list[str] | None, Query(
+    description=f"indices to plot, one panel each; default {', '.join(DEFAULT_PANELS)}")]
+CODE_LEGEND = {
+    str(epg_compare.BOTH_OFF): "both off",
+    str(epg_compare.BOTH_ON): "both on",
+    str(epg_compare.ONLY_RECORDING): "recording only",
+    str(epg_compare.ONLY_REFERENCE): "reference only",
+    str(epg_compare.NO_ELECTRODE): "no electrode (R1 columns 1 and 8)",
+}
+
+
+class RecordingReference(BaseModel):
+    recording_id: int
+
+
+class FramesReference(BaseModel):
+    label: str = Field("target", max_length=200, description="e.g. the saved pose's name")
+    frames: list[list[str]] = Field(
+        min_length=1, max_length=MAX_REFERENCE_FRAMES,
+        description="per frame 8 strings of '0'/'1', R1 first")
+    t_s: list[float] | None = Field(
+        None, description="frame times, seconds; needed when there are 2 or more frames and "
+                          "not one per recording frame")
+
+
+class CompareRequest(BaseModel):
+    reference: RecordingReference | FramesReference
+
+
+class ComparisonReport(BaseModel):
+    recording_id: int
+    reference_label: str
+    t_s: list[float]
+    reference_frame: list[int] = Field(description="reference frame used for each frame")
+    agreement: list[float] = Field(description="fraction of the 62 electrodes that agree")
+    codes: list[list[str]] = Field(description="per frame 8 strings of codes, see code_legend")
+    code_legend: dict[str, str]
+    electrode_agreement: list[list[float | None]] = Field(
+        description="8 x 8: fraction of frames in which each electrode agrees")
+    recording_indices: dict[str, list[float]]
+    reference_indices: dict[str, list[float]]
+    index_difference: dict[str, list[float]] = Field(description="recording minus reference")
+    summary: dict
+
+
+def resolve_reference(session: Session, reference) -> tuple[str, np.ndarray, np.ndarray | None]:
+    """(label, frames (m, 8, 8), times (m,) or None) of a reference; 404/422 when it is bad."""
+    if isinstance(reference, RecordingReference):
+        other = get_record(session, reference.recording_id).to_sequence()
+        return other.name, other.frames, other.t_s
+    try:
+        frames = np.stack([rows_to_frame(rows, i) for i, rows in enumerate(reference.frames)])
+        times = None
+        if reference.t_s is not None:
+            times = np.asarray(reference.t_s, dtype=np.float64)
+            if times.shape != (len(frames),):
+                raise EpgFormatError(f"{times.size} times for {len(frames)} frames", field="t_s")
+            check_times(times)
+    except EpgFormatError as error:
+        raise HTTPException(status_code=422, detail=f"reference: {error}") from None
+    return reference.label, frames, times
+
+
+def run_comparison(session: Session, recording_id: int, request: CompareRequest):
+    sequence = get_record(session, recording_id).to_sequence()
+    label, frames, times = resolve_reference(session, request.reference)
+    try:
+        result = epg_compare.compare(sequence.frames, sequence.t_s, frames, times)
+    except ValueError as error:
+        raise HTTPException(status_code=422, detail=f"reference: {error}") from None
+    return sequence, label, frames, result
+
+
+@router.post("/epg/recordings/{recording_id}/compare", operation_id="compareRecording",
+             response_model=ComparisonReport)
+def compare_recording(recording_id: int, request: CompareRequest,
+                      session: SessionDep) -> ComparisonReport:
+    """Electrode-by-electrode agreement per frame and the differences of the indices."""
+    sequence, label, _, result = run_comparison(session, recording_id, request)
+    per_electrode = [[None if np.isnan(v) else float(v) for v in row]
+                     for row in result.electrode_agreement]
+    return ComparisonReport(
+        recording_id=recording_id, reference_label=label, t_s=sequence.t_s.tolist(),
+        reference_frame=result.reference_frame.tolist(), agreement=result.agreement.tolist(),
+        codes=[["".join(str(int(v)) for v in row) for row in frame] for frame in result.codes],
+        code_legend=CODE_LEGEND, electrode_agreement=per_electrode,
+        recording_indices=_lists(result.recording_indices),
+        reference_indices=_lists(result.reference_indices),
+        index_difference=_lists(result.index_difference), summary=result.summary())
+
+
+@router.post("/epg/recordings/{recording_id}/compare/plot", operation_id="plotComparison",
+             response_class=Response,
+             responses={200: {"content": {"image/svg+xml": {}}}})
+def plot_comparison(recording_id: int, request: CompareRequest, session: SessionDep,
+                    panels: PanelsQuery = None) -> Response:
+    """SVG: the recording's indices over time (solid) against the reference's (dashed)."""
+    panels = _check_panels(panels)
+    sequence, label, reference_frames, result = run_comparison(session, recording_id, request)
+    aligned = reference_frames[result.reference_frame]
+    tracks = [Track(sequence.name, sequence.t_s, epg_indices(sequence.frames)),
+              Track(label, sequence.t_s, epg_indices(aligned))]
+    svg = index_tracks_svg(tracks, panels, title=f"{sequence.name} against {label}")
+    return Response(svg, media_type="image/svg+xml")
+
+
+@router.get("/epg/recordings/{recording_id}/plot", operation_id="plotRecording",
+            response_class=Response, responses={200: {"content": {"image/svg+xml": {}}}})
+def plot_recording(recording_id: int, session: SessionDep,
+                   panels: PanelsQuery = None) -> Response:
+    """SVG: the recording's indices over time."""
+    panels = _check_panels(panels)
+    sequence = get_record(session, recording_id).to_sequence()
+    svg = index_tracks_svg([Track(sequence.name, sequence.t_s, epg_indices(sequence.frames))],
+                           panels, title=sequence.name)
+    return Response(svg, media_type="image/svg+xml")
+
+
+def _check_panels(panels: list[str] | None) -> list[str]:
+    panels = panels or list(DEFAULT_PANELS)
+    unknown = [p for p in panels if p not in PANELS]
+    if unknown:
+        raise HTTPException(status_code=422, detail=f"field panels: unknown {unknown}; choose "
+                                                    f"from {', '.join(sorted(PANELS))}")
+    return panels
+
+
+def _lists(values: dict) -> dict[str, list[float]]:
+    return {k: np.asarray(v, dtype=float).tolist() for k, v in values.items()}

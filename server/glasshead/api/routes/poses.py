@@ -1,0 +1,146 @@
+"""Saved poses: named parameter sets saved from the workbench, the targets EPG is compared with.
+
+A pose's ``params`` map articulation parameter names (as in the tongue rig) to numbers; names
+are unique, so a pose can be found by name (``GET /poses?name=...``).
+"""
+
+import math
+import re
+from datetime import datetime
+from typing import Annotated
+
+from fastapi import APIRouter, HTTPException, Query, Response, status
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
+from sqlalchemy import func, select
+from sqlalchemy.exc import IntegrityError
+from sqlalchemy.orm import Session
+
+from glasshead.store.models import SavedPose
+from glasshead.store.session import SessionDep
+
+router = APIRouter(tags=["poses"])
+
+PARAM_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_.]{0,63}$")
+MAX_PARAMS = 256
+PoseName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1, max_length=120)]
+
+
+def _check_params(params: dict[str, float]) -> dict[str, float]:
+    if len(params) > MAX_PARAMS:
+        raise ValueError(f"{len(params)} parameters is more than {MAX_PARAMS}")
+    for name, value in params.items():
+        if not PARAM_NAME.match(name):
+            raise ValueError(f"{name!r} is not a parameter name (a letter, then letters, "
+                             "digits, '_' or '.')")
+        if not math.isfinite(value):
+            raise ValueError(f"{name}: {value} is not a finite number")
+    return params
+
+
+class PoseIn(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: PoseName
+    description: str = Field("", max_length=2000)
+    params: dict[str, float] = Field(description="parameter name -> value, in the rig's units")
+
+    @field_validator("params")
+    @classmethod
+    def _params(cls, params):
+        return _check_params(params)
+
+
+class PosePatch(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: PoseName | None = None
+    description: str | None = Field(None, max_length=2000)
+    params: dict[str, float] | None = None
+
+    @field_validator("params")
+    @classmethod
+    def _params(cls, params):
+        return None if params is None else _check_params(params)
+
+
+class PoseOut(BaseModel):
+    model_config = ConfigDict(from_attributes=True)
+    id: int
+    name: str
+    description: str
+    params: dict[str, float]
+    created_at: datetime
+    updated_at: datetime
+
+
+class PoseList(BaseModel):
+    poses: list[PoseOut]
+    total: int
+
+
+def get_pose_record(session: Session, pose_id: int) -> SavedPose:
+    pose = session.get(SavedPose, pose_id)
+    if pose is None:
+        raise HTTPException(status_code=404, detail=f"no saved pose with id {pose_id}")
+    return pose
+
+
+def _commit(session: Session, name: str) -> None:
+    try:
+        session.commit()
+    except IntegrityError:
+        session.rollback()
+        raise HTTPException(status_code=409, detail=f"field name: a pose named {name!r} "
+                                                    "already exists") from None
+
+
+@router.post("/poses", operation_id="createPose", status_code=status.HTTP_201_CREATED,
+             response_model=PoseOut)
+def create_pose(pose: PoseIn, session: SessionDep) -> SavedPose:
+    record = SavedPose(name=pose.name, description=pose.description, params=pose.params)
+    session.add(record)
+    _commit(session, pose.name)
+    return record
+
+
+@router.get("/poses", operation_id="listPoses", response_model=PoseList)
+def list_poses(session: SessionDep, name: str | None = None,
+               offset: Annotated[int, Query(ge=0)] = 0,
+               limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> PoseList:
+    """Poses in name order; ``name`` selects the one pose of that name."""
+    query = select(SavedPose)
+    if name is not None:
+        query = query.where(SavedPose.name == name.strip())
+    total = session.scalar(select(func.count()).select_from(query.subquery()))
+    poses = session.scalars(query.order_by(SavedPose.name).offset(offset).limit(limit))
+    return PoseList(poses=[PoseOut.model_validate(p) for p in poses], total=total)
+
+
+@router.get("/poses/{pose_id}", operation_id="getPose", response_model=PoseOut)
+def get_pose(pose_id: int, session: SessionDep) -> SavedPose:
+    return get_pose_record(session, pose_id)
+
+
+@router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut)
+def replace_pose(pose_id: int, pose: PoseIn, session: SessionDep) -> SavedPose:
+    record = get_pose_record(session, pose_id)
+    record.name, record.description, record.params = pose.name, pose.description, pose.params
+    _commit(session, pose.name)
+    return record
+
+
+@router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut)
+def update_pose(pose_id: int, patch: PosePatch, session: SessionDep) -> SavedPose:
+    record = get_pose_record(session, pose_id)
+    for field, value in patch.model_dump(exclude_unset=True).items():
+        if value is None:
+            raise HTTPException(status_code=422, detail=f"field {field}: may not be null")
+        setattr(record, field, value)
+    _commit(session, record.name)
+    return record
+
+
+@router.delete("/poses/{pose_id}", operation_id="deletePose",
+               status_code=status.HTTP_204_NO_CONTENT)
+def delete_pose(pose_id: int, session: SessionDep) -> Response:
+    session.delete(get_pose_record(session, pose_id))
+    session.commit()
+    return Response(status_code=status.HTTP_204_NO_CONTENT)

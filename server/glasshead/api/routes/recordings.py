@@ -1,0 +1,236 @@
+"""EPG recordings: import (emuR JSON, CSV, SSFF), list, read for playback, export, delete.
+
+POST /epg/recordings takes either a multipart upload (``file``, optional ``format`` and ``name``)
+or a JSON body ``{"format", "content" | "content_base64", "name"}``. A file is checked whole before
+anything is stored: one bad frame and nothing of the file is kept (422 naming the frame and field).
+Playback needs ``t_s`` (each frame's own time, seconds) and ``frame_rate_hz``, both in the detail.
+"""
+
+import base64
+import binascii
+import json
+from datetime import datetime
+from typing import Annotated, Literal
+
+from fastapi import APIRouter, HTTPException, Query, Request, Response, status
+from fastapi.concurrency import run_in_threadpool
+from pydantic import BaseModel, Field, ValidationError
+from sqlalchemy import func, select
+from sqlalchemy.orm import Session
+
+from glasshead.epg import formats
+from glasshead.epg.indices import epg_indices
+from glasshead.epg.sequence import EpgFormatError, rows_to_strings
+from glasshead.store.models import EpgRecording
+from glasshead.store.session import SessionDep
+
+router = APIRouter(tags=["epg recordings"])
+
+#: Largest upload accepted, bytes (about 110,000 frames of CSV).
+MAX_UPLOAD_BYTES = 16 * 1024 * 1024
+FormatName = Literal["emur-json", "csv", "ssff"]
+
+
+class RecordingUpload(BaseModel):
+    """A recording file sent as JSON: text or JSON in ``content``, binary (ssff) in base64."""
+
+    format: FormatName
+    content: str | dict | list | None = Field(
+        None, description="csv: the file's text; emur-json: the document or its text")
+    content_base64: str | None = Field(None, description="the file's bytes in base64 (ssff)")
+    name: str | None = Field(None, max_length=200, description="overrides the file's name")
+
+
+class RecordingSummary(BaseModel):
+    id: int
+    name: str
+    source_format: str
+    frame_rate_hz: float | None = Field(description="frames per second of the recording")
+    n_frames: int
+    start_s: float = Field(description="time of the first frame, seconds")
+    duration_s: float = Field(description="last frame time minus first frame time, seconds")
+    meta: dict
+    created_at: datetime
+
+
+class RecordingDetail(RecordingSummary):
+    t_s: list[float] = Field(description="each frame's time, seconds")
+    frames: list[list[str]] = Field(
+        description="per frame 8 strings of '0'/'1', R1 (front) first; character c = column c+1")
+
+
+class RecordingList(BaseModel):
+    recordings: list[RecordingSummary]
+    total: int
+
+
+class IndexTracks(BaseModel):
+    recording_id: int
+    t_s: list[float]
+    indices: dict[str, list[float]]
+
+
+def summary(record: EpgRecording) -> RecordingSummary:
+    return RecordingSummary(
+        id=record.id, name=record.name, source_format=record.source_format,
+        frame_rate_hz=record.frame_rate_hz, n_frames=record.n_frames, start_s=record.first_t_s,
+        duration_s=record.last_t_s - record.first_t_s, meta=record.meta or {},
+        created_at=record.created_at)
+
+
+def get_record(session: Session, recording_id: int) -> EpgRecording:
+    record = session.get(EpgRecording, recording_id)
+    if record is None:
+        raise HTTPException(status_code=404, detail=f"no EPG recording with id {recording_id}")
+    return record
+
+
+@router.post(
+    "/epg/recordings", operation_id="createRecordings", status_code=status.HTTP_201_CREATED,
+    response_model=RecordingList,
+    openapi_extra={"requestBody": {"required": True, "content": {
+        "multipart/form-data": {"schema": {"type": "object", "required": ["file"], "properties": {
+            "file": {"type": "string", "format": "binary"},
+            "format": {"type": "string", "enum": list(formats.FORMATS)},
+            "name": {"type": "string"}}}},
+        "application/json": {"schema": RecordingUpload.model_json_schema()},
+    }}},
+)
+async def create_recordings(request: Request, session: SessionDep) -> RecordingList:
+    """Import a file; emuR JSON with several segments makes one recording per segment."""
+    content_type = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    declared = request.headers.get("content-length", "")
+    if declared.isdigit() and int(declared) > MAX_UPLOAD_BYTES + 64 * 1024:
+        raise _too_large()
+    if content_type == "multipart/form-data":
+        content, fmt, name = await _read_multipart(request)
+    elif content_type == "application/json":
+        content, fmt, name = _read_json_upload(await _read_body(request))
+    else:
+        raise HTTPException(status_code=415, detail="send multipart/form-data (a file) or "
+                                                    "application/json (format and content)")
+    return await run_in_threadpool(_import, session, content, fmt, name)
+
+
+def _import(session: Session, content: bytes, fmt: str | None, name: str | None):
+    try:
+        fmt = fmt or formats.detect_format(content)
+        sequences = formats.parse(content, fmt, name=name)
+    except EpgFormatError as error:
+        raise HTTPException(status_code=422, detail=str(error)) from None
+    records = [EpgRecording.from_sequence(seq, fmt) for seq in sequences]
+    session.add_all(records)
+    session.commit()
+    return RecordingList(recordings=[summary(r) for r in records], total=len(records))
+
+
+async def _read_body(request: Request) -> bytes:
+    body = bytearray()
+    async for chunk in request.stream():
+        body += chunk
+        if len(body) > MAX_UPLOAD_BYTES:
+            raise _too_large()
+    return bytes(body)
+
+
+async def _read_multipart(request: Request) -> tuple[bytes, str | None, str | None]:
+    form = await request.form(max_files=1, max_fields=4)
+    upload = form.get("file")
+    if upload is None or isinstance(upload, str):
+        raise HTTPException(status_code=422, detail="field file: the upload has no file part")
+    content = await upload.read(MAX_UPLOAD_BYTES + 1)
+    if len(content) > MAX_UPLOAD_BYTES:
+        raise _too_large()
+    fmt = form.get("format") or None
+    if fmt is not None and fmt not in formats.FORMATS:
+        raise HTTPException(status_code=422, detail=f"field format: {fmt!r} is not one of "
+                                                    f"{', '.join(formats.FORMATS)}")
+    if fmt is None:
+        try:
+            fmt = formats.detect_format(content, upload.filename)
+        except EpgFormatError as error:
+            raise HTTPException(status_code=422, detail=str(error)) from None
+    name = form.get("name") or None
+    return content, fmt, str(name)[:200] if name else None
+
+
+def _read_json_upload(body: bytes) -> tuple[bytes, str, str | None]:
+    try:
+        upload = RecordingUpload.model_validate_json(body)
+    except ValidationError as error:
+        problems = "; ".join(f"field {'.'.join(str(p) for p in e['loc']) or 'body'}: {e['msg']}"
+                             for e in error.errors())
+        raise HTTPException(status_code=422, detail=problems) from None
+    if (upload.content is None) == (upload.content_base64 is None):
+        raise HTTPException(status_code=422,
+                            detail="field content: give exactly one of content, content_base64")
+    if upload.content_base64 is not None:
+        try:
+            content = base64.b64decode(upload.content_base64, validate=True)
+        except (binascii.Error, ValueError):
+            raise HTTPException(status_code=422,
+                                detail="field content_base64: not valid base64") from None
+    elif isinstance(upload.content, str):
+        content = upload.content.encode()
+    else:
+        content = json.dumps(upload.content).encode()
+    return content, upload.format, upload.name
+
+
+def _too_large() -> HTTPException:
+    return HTTPException(status_code=413, detail=f"field file: larger than the "
+                                                 f"{MAX_UPLOAD_BYTES // (1024 * 1024)} MiB limit")
+
+
+@router.get("/epg/recordings", operation_id="listRecordings", response_model=RecordingList)
+def list_recordings(session: SessionDep, offset: Annotated[int, Query(ge=0)] = 0,
+                    limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> RecordingList:
+    """Recordings, newest first, without their frames."""
+    total = session.scalar(select(func.count()).select_from(EpgRecording))
+    records = session.scalars(select(EpgRecording).order_by(EpgRecording.id.desc())
+                              .offset(offset).limit(limit))
+    return RecordingList(recordings=[summary(r) for r in records], total=total)
+
+
+@router.get("/epg/recordings/{recording_id}", operation_id="getRecording",
+            response_model=RecordingDetail)
+def get_recording(recording_id: int, session: SessionDep) -> RecordingDetail:
+    """One recording with every frame and its time, for playback at its own frame rate."""
+    record = get_record(session, recording_id)
+    sequence = record.to_sequence()
+    return RecordingDetail(**summary(record).model_dump(), t_s=sequence.t_s.tolist(),
+                           frames=[rows_to_strings(f) for f in sequence.frames])
+
+
+@router.get("/epg/recordings/{recording_id}/indices", operation_id="getRecordingIndices",
+            response_model=IndexTracks)
+def get_recording_indices(recording_id: int, session: SessionDep) -> IndexTracks:
+    """The emuR indices of every frame (see POST /epg/indices for their names)."""
+    sequence = get_record(session, recording_id).to_sequence()
+    return IndexTracks(recording_id=recording_id, t_s=sequence.t_s.tolist(),
+                       indices={k: v.tolist() for k, v in epg_indices(sequence.frames).items()})
+
+
+@router.get("/epg/recordings/{recording_id}/export", operation_id="exportRecording",
+            response_class=Response,
+            responses={200: {"content": {t: {} for t in set(formats.MEDIA_TYPES.values())}}})
+def export_recording(recording_id: int, session: SessionDep,
+                     format: Annotated[FormatName, Query()] = "csv") -> Response:
+    """The recording as a file in ``format``; ssff needs evenly spaced frames (else 409)."""
+    record = get_record(session, recording_id)
+    try:
+        content = formats.serialise([record.to_sequence()], format)
+    except EpgFormatError as error:
+        raise HTTPException(status_code=409, detail=str(error)) from None
+    stem = "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in record.name)[:80]
+    filename = f"{stem or 'recording'}{formats.EXTENSIONS[format]}"
+    return Response(content, media_type=formats.MEDIA_TYPES[format],
+                    headers={"Content-Disposition": f'attachment; filename="{filename}"'})
+
+
+@router.delete("/epg/recordings/{recording_id}", operation_id="deleteRecording",
+               status_code=status.HTTP_204_NO_CONTENT)
+def delete_recording(recording_id: int, session: SessionDep) -> Response:
+    session.delete(get_record(session, recording_id))
+    session.commit()
+    return Response(status_code=status.HTTP_204_NO_CONTENT)
