@@ -105,14 +105,16 @@ def check_times(t_s: np.ndarray) -> None:
     bad = ~np.isfinite(t_s)
     if bad.any():
         frame = int(np.argmax(bad))
-        raise EpgFormatError(f"{t_s[frame]} is not a finite time", field="t_s", frame=frame)
+        raise EpgFormatError(f"{float(t_s[frame])} is not a finite time", field="t_s",
+                             frame=frame)
     if t_s[0] < 0:
-        raise EpgFormatError(f"time {t_s[0]} s is negative", field="t_s", frame=0)
+        raise EpgFormatError(f"time {float(t_s[0])} s is negative", field="t_s", frame=0)
     steps = np.diff(t_s)
     if (steps <= 0).any():
         frame = int(np.argmax(steps <= 0)) + 1
         raise EpgFormatError(
-            f"time {t_s[frame]!r} s is not after the previous frame's {t_s[frame - 1]!r} s",
+            f"time {float(t_s[frame])!r} s is not after the previous frame's "
+            f"{float(t_s[frame - 1])!r} s",
             field="t_s", frame=frame)
 
 
