@@ -216,6 +216,20 @@ def test_comparing_two_recordings_and_plotting_them(client, emur_bytes):
     assert missing.status_code == 404
 
 
+def test_a_reference_made_from_a_saved_pose_is_labelled_with_the_pose_name(client,
+                                                                           emur_bytes):
+    segment = one_segment(emur_bytes, 0)
+    rid = client.post(f"{API}/epg/recordings", json={"format": "emur-json", "content": segment}
+                      ).json()["recordings"][0]["id"]
+    pose = client.post(f"{API}/poses", json={"name": "s target", "params": {"tip_height": 3.0}}
+                       ).json()
+    body = {"reference": {"pose_id": pose["id"], "frames": [segment["frames"][0]["rows"]]}}
+    report = client.post(f"{API}/epg/recordings/{rid}/compare", json=body).json()
+    assert report["reference_label"] == "s target" and report["agreement"][0] == 1.0
+    body["reference"]["pose_id"] = pose["id"] + 1
+    assert client.post(f"{API}/epg/recordings/{rid}/compare", json=body).status_code == 404
+
+
 def test_a_bad_reference_frame_is_named_in_the_error(client, emur_bytes):
     rid = client.post(f"{API}/epg/recordings", json={"format": "emur-json",
                                                      "content": one_segment(emur_bytes)}

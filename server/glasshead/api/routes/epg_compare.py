@@ -13,6 +13,7 @@ from fastapi import APIRouter, HTTPException, Query, Response
 from pydantic import BaseModel, Field
 from sqlalchemy.orm import Session
 
+from glasshead.api.routes.poses import get_pose_record
 from glasshead.api.routes.recordings import get_record
 from glasshead.epg import compare as epg_compare
 from glasshead.epg.formats import rows_to_frame
@@ -41,7 +42,10 @@ class RecordingReference(BaseModel):
 
 
 class FramesReference(BaseModel):
-    label: str = Field("target", max_length=200, description="e.g. the saved pose's name")
+    label: str = Field("target", max_length=200,
+                       description="what the frames show; defaults to the pose's name")
+    pose_id: int | None = Field(None, description="the saved pose these frames are the "
+                                                  "synthetic EPG of, if any")
     frames: list[list[str]] = Field(
         min_length=1, max_length=MAX_REFERENCE_FRAMES,
         description="per frame 8 strings of '0'/'1', R1 first")
@@ -75,6 +79,11 @@ def resolve_reference(session: Session, reference) -> tuple[str, np.ndarray, np.
     if isinstance(reference, RecordingReference):
         other = get_record(session, reference.recording_id).to_sequence()
         return other.name, other.frames, other.t_s
+    label = reference.label
+    if reference.pose_id is not None:
+        pose = get_pose_record(session, reference.pose_id)
+        if "label" not in reference.model_fields_set:
+            label = pose.name
     try:
         frames = np.stack([rows_to_frame(rows, i) for i, rows in enumerate(reference.frames)])
         times = None
@@ -85,7 +94,7 @@ def resolve_reference(session: Session, reference) -> tuple[str, np.ndarray, np.
             check_times(times)
     except EpgFormatError as error:
         raise HTTPException(status_code=422, detail=f"reference: {error}") from None
-    return reference.label, frames, times
+    return label, frames, times
 
 
 def run_comparison(session: Session, recording_id: int, request: CompareRequest):
