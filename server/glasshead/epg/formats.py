@@ -17,13 +17,8 @@
     then one row per frame: the time in seconds and 62 values 0 or 1.
 
 ``ssff``: the Simple Signal File Format of the EMU speech database system, which stores EPG as
-    an ``epg`` column of 8 BYTEs per frame in emuR's compressed layout. Specification: The EMU-SDMS
-    Manual (Winkelmann et al., IPS-LMU), appendix "File formats", section "The SSFF file format";
-    reader and writer in libassp ``headers.c`` (getSSFFhdr/putSSFFhdr, keyword ``epg`` = DT_EPG).
-    A plain text header (``SSFF -- (c) SHLRC``, ``Machine IBM-PC``, ``Record_Freq``,
-    ``Start_Time``, ``Column name TYPE count`` lines, optional ``name TYPE value`` lines, ended by
-    ``-----------------``) followed by interleaved binary records. Frames are evenly spaced:
-    t = Start_Time + i / Record_Freq.
+    an ``epg`` column of 8 BYTEs per frame in emuR's compressed layout (see ``glasshead.epg.ssff``
+    for the specification and its source).
 
 Every reader raises ``EpgFormatError`` naming the frame (0-based) and the field at fault.
 """
@@ -44,6 +39,7 @@ from glasshead.epg.sequence import (
     raw_to_frames,
     rows_to_strings,
 )
+from glasshead.epg.ssff import SSFF_MAGIC, parse_ssff, write_ssff
 
 FORMATS = ("emur-json", "csv", "ssff")
 MEDIA_TYPES = {"emur-json": "application/json", "csv": "text/csv",
@@ -57,12 +53,6 @@ CSV_ELECTRODES = [f"R{r}C{c}" for r in range(1, 9) for c in range(1, 9)
 #: Flat (row * 8 + column) cell of each CSV electrode column.
 _CSV_CELLS = np.array([(int(n[1]) - 1) * 8 + int(n[3]) - 1 for n in CSV_ELECTRODES])
 
-SSFF_MAGIC = "SSFF -- (c) SHLRC"
-SSFF_END = "-----------------"
-SSFF_TYPE_SIZES = {"CHAR": 1, "BYTE": 1, "SHORT": 2, "LONG": 4, "FLOAT": 4, "DOUBLE": 8}
-#: Metadata written to SSFF as ``key CHAR text`` and ``key DOUBLE number`` lines and read back.
-SSFF_META_KEYS = ("name", "label", "utterance", "word")
-SSFF_META_NUMBERS = ("start_s", "end_s")
 
 
 def detect_format(content: bytes, filename: str | None = None) -> str:
@@ -318,98 +308,3 @@ def write_csv(seq: EpgSequence) -> bytes:
 
 def _one_line(text: str) -> str:
     return " ".join(text.split())
-
-
-# --- SSFF --------------------------------------------------------------------------------------
-
-def parse_ssff(content: bytes) -> list[EpgSequence]:
-    end = content.find(b"\n" + SSFF_END.encode())
-    if not content.startswith(SSFF_MAGIC.encode()) or end < 0:
-        raise EpgFormatError(f"an SSFF file starts with {SSFF_MAGIC!r} and its header ends "
-                             f"with {SSFF_END!r}", field="header")
-    data_at = content.index(b"\n", end + 1) + 1 if b"\n" in content[end + 1:] else len(content)
-    header = content[:end].decode("latin-1").splitlines()[1:]
-    rate = start = None
-    columns, meta = [], {}
-    for line in header:
-        fields = line.split()
-        if not fields:
-            continue
-        key = fields[0]
-        if key == "Record_Freq":
-            rate = _ssff_number(fields, "Record_Freq")
-        elif key == "Start_Time":
-            start = _ssff_number(fields, "Start_Time")
-        elif key == "Column":
-            if len(fields) != 4 or fields[2] not in SSFF_TYPE_SIZES or not fields[3].isdigit():
-                raise EpgFormatError(f"{line.strip()!r} is not 'Column name TYPE count'",
-                                     field="Column")
-            columns.append((fields[1], fields[2], int(fields[3])))
-        elif len(fields) >= 3 and fields[1] == "CHAR" and key in SSFF_META_KEYS:
-            meta[key] = line.split(None, 2)[2].strip()
-        elif len(fields) == 3 and fields[1] == "DOUBLE" and key in SSFF_META_NUMBERS:
-            meta[key] = _ssff_number(fields[1:], key)
-    if rate is None or not rate > 0:
-        raise EpgFormatError("a positive Record_Freq line is required", field="Record_Freq")
-    if start is None or start < 0:
-        raise EpgFormatError("a Start_Time line of 0 or more seconds is required",
-                             field="Start_Time")
-    epg = [c for c in columns if c[0].lower() == "epg"] or columns
-    if len(epg) != 1 or epg[0][1:] != ("BYTE", 8):
-        found = ", ".join(f"{n} {t} {k}" for n, t, k in columns) or "none"
-        raise EpgFormatError(f"expected one column 'epg BYTE 8' (8 bytes per frame, R8 first); "
-                             f"found {found}", field="Column")
-    record = sum(SSFF_TYPE_SIZES[t] * k for _, t, k in columns)
-    offset = 0
-    for column in columns:
-        if column is epg[0]:
-            break
-        offset += SSFF_TYPE_SIZES[column[1]] * column[2]
-    data = np.frombuffer(content[data_at:], dtype=np.uint8)
-    if data.size % record:
-        raise EpgFormatError(f"{data.size} data bytes are not whole {record}-byte records; "
-                             f"the last is cut short", field="data", frame=data.size // record)
-    raw = data.reshape(-1, record)[:, offset:offset + 8]
-    if len(raw) > MAX_FRAMES:
-        raise EpgFormatError(f"{len(raw)} frames is more than the limit of {MAX_FRAMES}",
-                             field="frames")
-    corners = raw[:, 7] & 0b10000001
-    if corners.any():
-        raise EpgFormatError("R1 has no electrode in columns 1 and 8; bits 0 and 7 of byte 8 "
-                             "must be 0", field="epg[7]", frame=int(np.argmax(corners > 0)))
-    t_s = start + np.arange(len(raw)) / rate
-    name = meta.pop("name", "") or "SSFF recording"
-    return [make_sequence(raw_to_frames(raw), t_s, name, rate, meta)]
-
-
-def _ssff_number(fields: list[str], key: str) -> float:
-    try:
-        value = float(fields[1])
-    except (IndexError, ValueError):
-        raise EpgFormatError(f"{' '.join(fields)!r} has no number", field=key) from None
-    if not math.isfinite(value):
-        raise EpgFormatError(f"{value} is not finite", field=key)
-    return value
-
-
-def write_ssff(seq: EpgSequence) -> bytes:
-    """SSFF needs a constant frame rate: times must be Start_Time + i / Record_Freq."""
-    rate = seq.frame_rate_hz
-    if rate is None:
-        rate = 1.0
-    expected = seq.t_s[0] + np.arange(seq.n_frames) / rate
-    drift = np.abs(seq.t_s - expected)
-    if (drift > 0.01 / rate).any():
-        frame = int(np.argmax(drift > 0.01 / rate))
-        raise EpgFormatError(f"frames are not evenly spaced at {rate:g} Hz, which SSFF needs",
-                             field="t_s", frame=frame)
-    lines = [SSFF_MAGIC, "Machine IBM-PC", f"Record_Freq {rate!r}",
-             f"Start_Time {float(seq.t_s[0])!r}", "Column epg BYTE 8"]
-    values = {"name": seq.name, **{k: seq.meta[k] for k in SSFF_META_KEYS if k in seq.meta}}
-    for key, value in values.items():
-        lines.append(f"{key} CHAR {' '.join(str(value).split())[:200]}")
-    for key in SSFF_META_NUMBERS:
-        if isinstance(seq.meta.get(key), (int, float)):
-            lines.append(f"{key} DOUBLE {float(seq.meta[key])!r}")
-    header = ("\n".join(lines) + "\n" + SSFF_END + "\n").encode("latin-1", "replace")
-    return header + frames_to_raw(seq.frames).tobytes()
