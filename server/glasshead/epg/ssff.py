@@ -41,8 +41,6 @@ SSFF_META_KEYS = ("name", "label", "utterance", "word")
 SSFF_META_NUMBERS = ("start_s", "end_s")
 
 
-# --- SSFF --------------------------------------------------------------------------------------
-
 def parse_ssff(content: bytes) -> list[EpgSequence]:
     end = content.find(b"\n" + SSFF_END.encode())
     if not content.startswith(SSFF_MAGIC.encode()) or end < 0:
