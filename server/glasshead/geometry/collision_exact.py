@@ -1,0 +1,133 @@
+"""Exact point and ray queries against triangles: the references the collision tables answer to.
+
+- ``closest_points_on_triangles``: Ericson, Real-Time Collision Detection (2005), 5.1.5, "Closest
+  point on triangle to point", by Voronoi regions of the vertices, edges and face.
+- ``ray_triangle_hits``: Moller and Trumbore (1997), "Fast, minimum storage ray-triangle
+  intersection", two-sided.
+- ``first_hits_from_origin``: the exact answer to "does the segment from O to P cross the maxilla,
+  and where first", brute force over all triangles, the definition of inside used by the tables.
+- ``project_onto_closest``: the paper's slow exact correction (closest polygon, edge or vertex,
+  penetration detected by the sign of a dot product with the surface normal).
+"""
+
+import numpy as np
+
+from glasshead.constants import COLLISION_TOL
+
+
+def _dot(u, v):
+    return np.einsum("...i,...i->...", u, v)
+
+
+def closest_points_on_triangles(p, a, b, c):
+    """Closest points on triangles (a, b, c) to points p (Ericson 5.1.5), all broadcast together.
+
+    p, a, b, c : (..., 3) float. Returns (..., 3) float64.
+    """
+    p, a, b, c = np.broadcast_arrays(*(np.asarray(x, dtype=np.float64) for x in (p, a, b, c)))
+    ab, ac, ap = b - a, c - a, p - a
+    d1, d2 = _dot(ab, ap), _dot(ac, ap)
+    bp = p - b
+    d3, d4 = _dot(ab, bp), _dot(ac, bp)
+    cp = p - c
+    d5, d6 = _dot(ab, cp), _dot(ac, cp)
+    va = d3 * d6 - d5 * d4
+    vb = d5 * d2 - d1 * d6
+    vc = d1 * d4 - d3 * d2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = va + vb + vc
+        v_face, w_face = vb / denom, vc / denom
+        t_ab = d1 / (d1 - d3)
+        t_ac = d2 / (d2 - d6)
+        t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+    out = a + ab * v_face[..., None] + ac * w_face[..., None]
+    # Regions are tested from last to first so that the first matching region wins.
+    regions = [
+        ((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0), b + (c - b) * t_bc[..., None]),
+        ((vb <= 0) & (d2 >= 0) & (d6 <= 0), a + ac * t_ac[..., None]),
+        ((d6 >= 0) & (d5 <= d6), c),
+        ((vc <= 0) & (d1 >= 0) & (d3 <= 0), a + ab * t_ab[..., None]),
+        ((d3 >= 0) & (d4 <= d3), b),
+        ((d1 <= 0) & (d2 <= 0), a),
+    ]
+    for mask, point in regions:
+        out = np.where(mask[..., None], point, out)
+    return out
+
+
+def ray_triangle_hits(direction, a, e1, e2, origin=None):
+    """Two-sided Moller-Trumbore hits of rays ``origin + t * direction`` with triangles.
+
+    direction, a, e1, e2 : (..., 3) float, broadcast together; e1 = b - a, e2 = c - a.
+    origin : (..., 3) float or None for the zero vector.
+    Returns t, (...,) float64: the ray parameter of the hit, +inf where the ray misses (parallel
+    rays miss). Barycentric tests are widened by ``COLLISION_TOL.barycentric`` so that a ray
+    through an edge shared by two triangles cannot slip between them.
+    """
+    eps = COLLISION_TOL.barycentric
+    direction = np.asarray(direction, dtype=np.float64)
+    a, e1, e2 = (np.asarray(x, dtype=np.float64) for x in (a, e1, e2))
+    s = -a if origin is None else np.asarray(origin, dtype=np.float64) - a
+    h = np.cross(direction, e2)
+    det = _dot(e1, h)
+    ok = det != 0.0
+    inv = 1.0 / np.where(ok, det, 1.0)
+    u = _dot(s, h) * inv
+    q = np.cross(s, e1)
+    v = _dot(direction, q) * inv
+    t = _dot(e2, q) * inv
+    hit = ok & (u >= -eps) & (v >= -eps) & (u + v <= 1.0 + eps) & (t > 0.0)
+    return np.where(hit, t, np.inf)
+
+
+def first_hits_from_origin(points, origin, vertices, faces, chunk=256):
+    """Exact first crossing of each segment O -> P with a triangle mesh, brute force.
+
+    points : (n, 3) float; origin : (3,) float; vertices : (v, 3) float; faces : (m, 3) int.
+    Returns (t, radius): t (n,) float64 is the segment parameter of the first crossing (hit point
+    O + t (P - O)), +inf when the ray from O through P hits nothing at all; radius (n,) float64
+    is the distance from O to that first hit along the ray (+inf when none). P is inside the
+    maxilla exactly when t < 1.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    if points.ndim != 2 or points.shape[1] != 3:
+        raise ValueError(f"points must have shape (n, 3), got {points.shape}")
+    origin = np.asarray(origin, dtype=np.float64).reshape(3)
+    tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)] - origin
+    a, e1, e2 = tri[:, 0], tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    rel = points - origin
+    t = np.full(len(points), np.inf)
+    for start in range(0, len(points), chunk):
+        d = rel[start:start + chunk, None, :]
+        t[start:start + chunk] = ray_triangle_hits(d, a[None], e1[None], e2[None]).min(axis=1)
+    with np.errstate(invalid="ignore"):
+        radius = t * np.linalg.norm(rel, axis=1)
+    radius[~np.isfinite(t)] = np.inf
+    return t, radius
+
+
+def project_onto_closest(points, vertices, faces, chunk=128):
+    """The paper's exact slow correction: project penetrating points onto the closest triangle.
+
+    For each point the closest point on the mesh (closest triangle, edge or vertex, Ericson
+    5.1.5) is found by brute force; the point is penetrating when it lies behind that triangle,
+    i.e. (P - closest) . normal < 0 with normals facing the oral cavity, and is then moved to the
+    closest point. points (n, 3), vertices (v, 3), faces (m, 3).
+    Returns (corrected (n, 3) float64, moved (n,) bool).
+    """
+    points = np.asarray(points, dtype=np.float64)
+    tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    corrected = points.copy()
+    moved = np.zeros(len(points), dtype=bool)
+    for start in range(0, len(points), chunk):
+        p = points[start:start + chunk, None, :]
+        closest = closest_points_on_triangles(p, tri[None, :, 0], tri[None, :, 1], tri[None, :, 2])
+        dist2 = ((closest - p) ** 2).sum(axis=2)
+        nearest = np.argmin(dist2, axis=1)
+        rows = np.arange(len(nearest))
+        q = closest[rows, nearest]
+        behind = _dot(points[start:start + chunk] - q, normals[nearest]) < 0.0
+        corrected[start:start + chunk][behind] = q[behind]
+        moved[start:start + chunk] = behind
+    return corrected, moved
