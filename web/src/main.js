@@ -1,0 +1,26 @@
+// Entry point: the debug object, the view registry and the router.
+//
+// To add a view, register its path with a function that mounts it and returns { unmount() }:
+//   router.register( '/workbench', async ( container ) => ( await import( './ui/Workbench.js' ) ).mount( container ) );
+// and link to it as `#/workbench`.
+
+import './styles.css';
+import { installDebug, registerDebug } from './debug.js';
+import { Router } from './ui/router.js';
+
+installDebug( window );
+
+const router = new Router( document.getElementById( 'app' ) );
+
+router.register( '/', async ( container ) => ( await import( './ui/HeadView.js' ) ).mountHeadView( container ), { title: 'Glasshead' } );
+
+registerDebug( 'route', () => router.currentPath );
+registerDebug( 'routes', () => router.paths );
+
+router.start().catch( ( error ) => {
+
+	console.error( 'Glasshead: the page could not start:', error );
+
+} );
+
+export { router };

@@ -1,0 +1,231 @@
+// The renderer, camera, controls, lights and render loop. Scene content (the head, later the
+// tongue and EPG dots) is added to `viewer.scene` by its owners, who also hook into the loop with
+// `viewer.onFrame( fn )`.
+
+import {
+	Color,
+	DirectionalLight,
+	HemisphereLight,
+	PerspectiveCamera,
+	Scene,
+	SRGBColorSpace,
+	Vector3,
+	WebGLRenderer,
+} from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { easeInOut, interpolatePose } from './viewPresets.js';
+import { FrameTimer } from './FrameTimer.js';
+
+export const BACKGROUND_COLOR = '#dfe3e8';
+
+export class Viewer {
+
+	/**
+	 * container: the element the canvas fills. Throws if WebGL2 is unavailable.
+	 */
+	constructor( container, { fov = 30 } = {} ) {
+
+		this.container = container;
+		this.renderer = new WebGLRenderer( { antialias: true, stencil: true, powerPreference: 'high-performance' } );
+		this.renderer.outputColorSpace = SRGBColorSpace;
+		this.renderer.localClippingEnabled = true;
+		this.renderer.setPixelRatio( Math.min( window.devicePixelRatio || 1, 2 ) );
+		this.renderer.domElement.className = 'viewer-canvas';
+		this.renderer.domElement.setAttribute( 'aria-label', '3D view of the head' );
+		this.renderer.domElement.setAttribute( 'role', 'img' );
+		container.appendChild( this.renderer.domElement );
+
+		this.scene = new Scene();
+		this.scene.background = new Color( BACKGROUND_COLOR );
+
+		// Millimetres: the head is about 200 mm across.
+		this.camera = new PerspectiveCamera( fov, 1, 5, 5000 );
+		this.camera.position.set( 600, 50, 0 );
+		this.scene.add( this.camera );
+		this.addLights();
+
+		this.controls = new OrbitControls( this.camera, this.renderer.domElement );
+		this.controls.enableDamping = true;
+		this.controls.dampingFactor = 0.12;
+		this.controls.zoomToCursor = true; // point at the teeth and zoom in on them
+		this.controls.minDistance = 80;
+		this.controls.maxDistance = 2000;
+		this.controls.addEventListener( 'start', () => {
+
+			this.flight = null;
+
+		} );
+
+		this.frameHooks = new Set();
+		this.timer = new FrameTimer( 60 );
+		this.frameCount = 0;
+		this.flight = null;
+		this.lastTime = null;
+
+		this.resizeObserver = new ResizeObserver( () => this.resize() );
+		this.resizeObserver.observe( container );
+		this.resize();
+
+		this.renderer.setAnimationLoop( ( time ) => this.frame( time ) );
+
+	}
+
+	/** Soft light that follows the camera, so every view is lit from the viewer's side. */
+	addLights() {
+
+		this.scene.add( new HemisphereLight( '#ffffff', '#8a7f78', 1.6 ) );
+
+		const key = new DirectionalLight( '#fff6ee', 1.9 );
+		key.position.set( - 0.6, 0.9, 1 );
+		const fill = new DirectionalLight( '#e8eeff', 0.8 );
+		fill.position.set( 1, 0.1, 0.6 );
+		const rim = new DirectionalLight( '#ffffff', 0.6 );
+		rim.position.set( 0, 0.6, - 1 );
+		for ( const light of [ key, fill, rim ] ) {
+
+			// A directional light shines from its position toward its target; both ride on the camera.
+			light.target.position.set( 0, 0, 0 );
+			this.camera.add( light, light.target );
+
+		}
+
+	}
+
+	/** WebGL2 is required by three.js; reports what the renderer really got. */
+	get webgl2() {
+
+		const gl = this.renderer.getContext();
+		return typeof WebGL2RenderingContext !== 'undefined' && gl instanceof WebGL2RenderingContext;
+
+	}
+
+	/** Median time between recent frames, in milliseconds (null before two frames). */
+	get frameTimeMs() {
+
+		return this.timer.median();
+
+	}
+
+	/** True while the camera is flying to a view. */
+	get animating() {
+
+		return this.flight !== null;
+
+	}
+
+	/**
+	 * Call fn( dtSeconds, timeSeconds ) before every render. Returns a function that removes it.
+	 */
+	onFrame( fn ) {
+
+		this.frameHooks.add( fn );
+		return () => this.frameHooks.delete( fn );
+
+	}
+
+	/** Fly the camera to pose { position, target } ([x, y, z] arrays) in durationMs. */
+	flyTo( pose, durationMs = 700 ) {
+
+		const from = {
+			position: this.camera.position.toArray(),
+			target: this.controls.target.toArray(),
+		};
+		if ( durationMs <= 0 ) {
+
+			this.applyPose( pose );
+			this.flight = null;
+			return;
+
+		}
+
+		this.flight = { from, to: pose, start: null, duration: durationMs, current: { position: [ 0, 0, 0 ], target: [ 0, 0, 0 ] } };
+
+	}
+
+	applyPose( pose ) {
+
+		this.camera.position.fromArray( pose.position );
+		this.controls.target.fromArray( pose.target );
+		this.camera.lookAt( this.controls.target );
+
+	}
+
+	resize() {
+
+		const width = Math.max( 1, this.container.clientWidth );
+		const height = Math.max( 1, this.container.clientHeight );
+		this.renderer.setSize( width, height, false );
+		this.camera.aspect = width / height;
+		this.camera.updateProjectionMatrix();
+
+	}
+
+	get aspect() {
+
+		return this.camera.aspect;
+
+	}
+
+	/**
+	 * The CSS-pixel rectangle on the canvas covered by the world-space box (THREE.Box3), or null if
+	 * it is behind the camera.
+	 */
+	screenRect( box ) {
+
+		const corner = new Vector3();
+		let x0 = Infinity, y0 = Infinity, x1 = - Infinity, y1 = - Infinity;
+		for ( let i = 0; i < 8; i ++ ) {
+
+			corner.set( i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z );
+			corner.project( this.camera );
+			if ( corner.z > 1 ) return null;
+			x0 = Math.min( x0, corner.x ); x1 = Math.max( x1, corner.x );
+			y0 = Math.min( y0, corner.y ); y1 = Math.max( y1, corner.y );
+
+		}
+
+		const rect = this.renderer.domElement.getBoundingClientRect();
+		const left = ( x0 + 1 ) / 2 * rect.width + rect.left;
+		const right = ( x1 + 1 ) / 2 * rect.width + rect.left;
+		const top = ( 1 - y1 ) / 2 * rect.height + rect.top;
+		const bottom = ( 1 - y0 ) / 2 * rect.height + rect.top;
+		return { x: left, y: top, width: right - left, height: bottom - top };
+
+	}
+
+	frame( timeMs ) {
+
+		if ( this.lastTime !== null ) this.timer.add( timeMs - this.lastTime );
+		const dt = this.lastTime === null ? 0 : ( timeMs - this.lastTime ) / 1000;
+		this.lastTime = timeMs;
+
+		if ( this.flight ) this.advanceFlight( timeMs );
+		this.controls.update();
+		for ( const hook of this.frameHooks ) hook( dt, timeMs / 1000 );
+		this.renderer.render( this.scene, this.camera );
+		this.frameCount ++;
+
+	}
+
+	advanceFlight( timeMs ) {
+
+		const flight = this.flight;
+		if ( flight.start === null ) flight.start = timeMs;
+		const s = Math.min( 1, ( timeMs - flight.start ) / flight.duration );
+		interpolatePose( flight.from, flight.to, easeInOut( s ), flight.current );
+		this.applyPose( flight.current );
+		if ( s >= 1 ) this.flight = null;
+
+	}
+
+	dispose() {
+
+		this.renderer.setAnimationLoop( null );
+		this.resizeObserver.disconnect();
+		this.controls.dispose();
+		this.renderer.dispose();
+		this.renderer.domElement.remove();
+
+	}
+
+}

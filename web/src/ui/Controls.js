@@ -1,0 +1,123 @@
+// The head view's control panel: skin transparency, cutaway, views, loading status and errors.
+// Big targets for tablets and projectors; every control has an accessible name.
+
+import { VIEW_NAMES } from '../scene/viewPresets.js';
+
+const VIEW_LABELS = Object.freeze( { front: 'Front', profile: 'Profile', 'three-quarter': 'Three-quarter' } );
+
+/** Create an element with attributes and children. */
+export function h( tag, attributes = {}, ...children ) {
+
+	const element = document.createElement( tag );
+	for ( const [ key, value ] of Object.entries( attributes ) ) {
+
+		if ( key === 'className' ) element.className = value;
+		else if ( key.startsWith( 'on' ) ) element.addEventListener( key.slice( 2 ).toLowerCase(), value );
+		else element.setAttribute( key, value );
+
+	}
+
+	element.append( ...children );
+	return element;
+
+}
+
+export class Controls {
+
+	/**
+	 * handlers: { onTransparency( percent ), onCutaway( on ), onView( name ) }.
+	 * initial: { transparency, cutaway, view }.
+	 */
+	constructor( handlers, initial ) {
+
+		this.handlers = handlers;
+
+		this.slider = h( 'input', {
+			type: 'range', min: '0', max: '100', step: '1', value: String( initial.transparency ),
+			id: 'skin-transparency', 'aria-label': 'Skin transparency', className: 'slider',
+			onInput: () => this.transparencyChanged(),
+		} );
+		this.sliderValue = h( 'output', { for: 'skin-transparency', className: 'slider-value' } );
+
+		this.cutawayButton = h( 'button', {
+			type: 'button', className: 'toggle', 'aria-pressed': String( initial.cutaway ),
+			onClick: () => this.setCutaway( this.cutawayButton.getAttribute( 'aria-pressed' ) !== 'true', true ),
+		}, 'Cutaway' );
+
+		this.viewButtons = new Map( VIEW_NAMES.map( ( name ) => [ name, h( 'button', {
+			type: 'button', className: 'view-button', 'aria-pressed': String( name === initial.view ),
+			'data-view': name, onClick: () => this.setView( name, true ),
+		}, VIEW_LABELS[ name ] ) ] ) );
+
+		this.status = h( 'p', { className: 'status', role: 'status', 'aria-live': 'polite' } );
+		this.error = h( 'p', { className: 'error', role: 'alert', hidden: '' } );
+
+		this.element = h( 'aside', { className: 'panel', 'aria-label': 'Head controls' },
+			h( 'h1', { className: 'title' }, 'Glasshead' ),
+			h( 'div', { className: 'field' },
+				h( 'label', { for: 'skin-transparency', className: 'field-label' }, 'Skin transparency' ),
+				h( 'div', { className: 'slider-row' }, this.slider, this.sliderValue ),
+			),
+			h( 'div', { className: 'field' }, this.cutawayButton ),
+			h( 'div', { className: 'field' },
+				h( 'span', { className: 'field-label', id: 'view-label' }, 'View' ),
+				h( 'div', { className: 'view-buttons', role: 'group', 'aria-labelledby': 'view-label' }, ...this.viewButtons.values() ),
+			),
+			this.status,
+			this.error,
+		);
+
+		this.showTransparency( initial.transparency );
+
+	}
+
+	transparencyChanged() {
+
+		const percent = Number( this.slider.value );
+		this.showTransparency( percent );
+		this.handlers.onTransparency( percent );
+
+	}
+
+	showTransparency( percent ) {
+
+		this.sliderValue.textContent = `${ percent } %`;
+		this.slider.setAttribute( 'aria-valuetext', `${ percent } percent` );
+
+	}
+
+	setCutaway( on, fromUser = false ) {
+
+		this.cutawayButton.setAttribute( 'aria-pressed', String( on ) );
+		if ( fromUser ) this.handlers.onCutaway( on );
+
+	}
+
+	setView( name, fromUser = false ) {
+
+		for ( const [ view, button ] of this.viewButtons ) button.setAttribute( 'aria-pressed', String( view === name ) );
+		if ( fromUser ) this.handlers.onView( name );
+
+	}
+
+	/** Enable or disable the controls (disabled while loading or after a failure). */
+	setEnabled( enabled ) {
+
+		for ( const control of [ this.slider, this.cutawayButton, ...this.viewButtons.values() ] ) control.disabled = ! enabled;
+
+	}
+
+	showStatus( text ) {
+
+		this.status.textContent = text;
+
+	}
+
+	showError( text ) {
+
+		this.error.textContent = text;
+		this.error.hidden = ! text;
+
+	}
+
+}

@@ -1,0 +1,172 @@
+// The head view (route `#/`): the 3D head with its control panel.
+
+import { getAnatomy } from '../api.js';
+import { registerDebug } from '../debug.js';
+import { Head } from '../scene/Head.js';
+import { loadAnatomy } from '../scene/loadAnatomy.js';
+import { Viewer } from '../scene/Viewer.js';
+import { viewPose } from '../scene/viewPresets.js';
+import { Controls, h } from './Controls.js';
+
+export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, view: 'three-quarter' } );
+
+/** Duration of a camera move between views. */
+const FLIGHT_MS = 650;
+
+export class HeadView {
+
+	constructor() {
+
+		this.state = { ...DEFAULT_STATE, loaded: false, error: null, meshes: [] };
+		this.unregister = [];
+
+	}
+
+	/** Build the view inside `container` and start loading. */
+	mount( container ) {
+
+		this.stage = h( 'div', { className: 'stage' } );
+		this.root = h( 'div', { className: 'head-view' }, this.stage );
+		container.append( this.root );
+
+		this.controls = new Controls( {
+			onTransparency: ( percent ) => this.setTransparency( percent ),
+			onCutaway: ( on ) => this.setCutaway( on ),
+			onView: ( name ) => this.setView( name ),
+		}, this.state );
+		this.root.append( this.controls.element );
+		this.controls.setEnabled( false );
+
+		this.registerDebugFields();
+
+		try {
+
+			this.viewer = new Viewer( this.stage );
+
+		} catch ( error ) {
+
+			this.fail( `This browser cannot show the 3D head (WebGL2 is needed): ${ error.message }` );
+			return this;
+
+		}
+
+		this.head = new Head();
+		this.viewer.scene.add( this.head.group );
+		this.load();
+		return this;
+
+	}
+
+	registerDebugFields() {
+
+		const fields = {
+			loaded: () => this.state.loaded,
+			error: () => this.state.error,
+			meshes: () => this.state.meshes,
+			transparency: () => this.state.transparency,
+			cutaway: () => this.state.cutaway,
+			view: () => this.state.view,
+			webgl2: () => ( this.viewer ? this.viewer.webgl2 : false ),
+			frameTimeMs: () => ( this.viewer ? this.viewer.frameTimeMs : null ),
+			frames: () => ( this.viewer ? this.viewer.frameCount : 0 ),
+			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
+			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
+		};
+		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
+
+	}
+
+	async load() {
+
+		this.controls.showStatus( 'Loading the anatomy…' );
+		try {
+
+			const anatomy = await getAnatomy();
+			this.controls.showStatus( `Loading meshes: 0 of ${ anatomy.meshes.length }` );
+			await loadAnatomy( this.head, anatomy.meshes, {
+				onProgress: ( loaded, total ) => this.controls.showStatus( `Loading meshes: ${ loaded } of ${ total }` ),
+			} );
+
+		} catch ( error ) {
+
+			this.fail( error.message );
+			return;
+
+		}
+
+		if ( ! this.viewer ) return; // unmounted while loading
+		this.state.meshes = this.head.meshInfo();
+		this.head.setTransparency( this.state.transparency );
+		this.head.setCutaway( this.state.cutaway );
+		this.fitViews();
+		this.viewer.flyTo( this.poses[ this.state.view ], 0 );
+		this.state.loaded = true;
+		this.controls.setEnabled( true );
+		this.controls.showStatus( '' );
+
+	}
+
+	/** Camera poses of the named views, framing the whole head. */
+	fitViews() {
+
+		const sphere = this.head.boundingSphere();
+		const center = sphere.center.toArray();
+		this.poses = {};
+		for ( const name of [ 'front', 'profile', 'three-quarter' ] ) {
+
+			this.poses[ name ] = viewPose( name, center, sphere.radius, this.viewer.camera.fov, Math.min( 1.4, this.viewer.aspect ) );
+
+		}
+
+	}
+
+	setTransparency( percent ) {
+
+		this.state.transparency = percent;
+		this.head.setTransparency( percent );
+
+	}
+
+	setCutaway( on ) {
+
+		this.state.cutaway = on;
+		this.controls.setCutaway( on );
+		this.head.setCutaway( on );
+
+	}
+
+	setView( name ) {
+
+		this.state.view = name;
+		this.controls.setView( name );
+		if ( this.poses ) this.viewer.flyTo( this.poses[ name ], FLIGHT_MS );
+
+	}
+
+	fail( message ) {
+
+		this.state.error = message;
+		this.controls.showStatus( '' );
+		this.controls.showError( message );
+		console.error( `Glasshead: ${ message }` );
+
+	}
+
+	unmount() {
+
+		for ( const unregister of this.unregister ) unregister();
+		this.viewer?.dispose();
+		this.head?.dispose();
+		this.viewer = null;
+		this.root.remove();
+
+	}
+
+}
+
+/** Route entry for the view registry. */
+export function mountHeadView( container ) {
+
+	return new HeadView().mount( container );
+
+}
