@@ -93,3 +93,15 @@ class CollisionTolerance:
 
 
 COLLISION_TOL = CollisionTolerance()
+
+# --- Tongue rig ----------------------------------------------------------------------------------
+# The rig definition (assets/build/tongue-rig.json) is read by geometry.tongue_surface and
+# web/src/core/tongue.js; tests/vectors/tongue-surface.json asserts both evaluate it alike.
+
+#: Format version of the tongue rig definition; both evaluators refuse any other version.
+TONGUE_RIG_FORMAT_VERSION = 1
+#: mm. Largest difference allowed between the Python and JavaScript tongue vertices (JS returns
+#: float32 positions: about 4e-6 mm of rounding at 50 mm, far inside this).
+TONGUE_VERTEX_TOLERANCE_MM = 1e-3
+#: Largest relative difference allowed between the two sides' tongue volumes.
+TONGUE_VOLUME_RELATIVE_TOLERANCE = 1e-4

@@ -60,3 +60,25 @@ export const COLLISION_TOL = Object.freeze( {
 	surface: 1e-3,
 	depth: 0.1,
 } );
+
+// --- Project frame (mirrors the Badin conversion in server/glasshead/constants.py) ---------------
+
+/** Origin of the project frame as a point of the Badin (ArtiSynth) source frame, metres. */
+export const BADIN_ORIGIN_M = Object.freeze( [ 0.080, 0.0, 0.100 ] );
+/** Rows map Badin axes (x posterior, y right, z superior) to project axes (anterior, superior, left). */
+export const BADIN_TO_PROJECT_AXES = Object.freeze( [
+	Object.freeze( [ - 1.0, 0.0, 0.0 ] ),
+	Object.freeze( [ 0.0, 0.0, 1.0 ] ),
+	Object.freeze( [ 0.0, - 1.0, 0.0 ] ),
+] );
+/** Metres to millimetres. */
+export const M_TO_MM = 1000.0;
+
+// --- Tongue rig ----------------------------------------------------------------------------------
+
+/** Format version of the tongue rig definition; the evaluator refuses any other version. */
+export const TONGUE_RIG_FORMAT_VERSION = 1;
+/** mm. Largest difference allowed between the Python and JavaScript tongue vertices. */
+export const TONGUE_VERTEX_TOLERANCE_MM = 1e-3;
+/** Largest relative difference allowed between the two sides' tongue volumes. */
+export const TONGUE_VOLUME_RELATIVE_TOLERANCE = 1e-4;

@@ -1,0 +1,353 @@
+"""The tongue rig definition: what the JSON holds, how it is built, and how it is checked.
+
+The tongue follows Cohen, Beskow and Massaro (1998), section 3: a polygon surface built from a
+sagittal B-spline curve and coronal B-spline sections whose control points move, singly and in
+pairs, under named articulation parameters. Here:
+
+- The **sagittal curve** is a closed cubic B-spline in the mid-sagittal plane (z = 0) with the
+  control points A, B, C, ... lettered from the tip over the dorsum to the root, then along the
+  floor and the underside back to the tip.
+- Every point of the surface is seen from one **hub** H, a point inside the tongue on the
+  mid-sagittal plane. A station u of the sagittal curve defines a *page*: the half-plane through
+  the z-parallel line of H that contains S(u). Pages never cross each other except on that line,
+  so the surface cannot fold through itself.
+- In each page the **coronal section** is a radial B-spline: the distance from H along the
+  direction at page angle phi (phi = -90 deg: toward the subject's right, 0: toward S(u),
+  +90: toward the left). With w = ``pole_half_width``, R = |S(u) - H| and R0 its rest value,
+  a control value is ``w + (R0 - w) * ratio + (R - R0) * follow + offset``: the rest section
+  spans from the poles (ratio 0) to the sagittal curve (ratio 1, the midline); when the curve
+  moves, each control follows it by ``follow`` = cos(its page angle), so the section moves with
+  the curve rather than swelling; articulation offsets are in mm. The two controls at each end
+  equal w: every page meets the z-line of H at the same two poles, so the surface is a closed
+  sphere-like shell.
+- Three sections (front, middle, back) are **blended** along the tongue by weights that each
+  sagittal control point carries (``section_weights``), interpolated with the sagittal basis.
+- **Parameters** displace control points linearly: ``point = rest + (value - neutral) * by``.
+  ``jaw_opening`` instead poses the jaw (see ``geometry.jaw``); the tongue rides on it, each
+  sagittal control point and the hub by its ``jaw_weight``.
+
+``build_definition`` assembles the JSON document; ``validate_definition`` checks one that was
+read back. Both evaluators (``geometry.tongue_surface`` and ``web/src/core/tongue.js``) are
+generic interpreters of this document: no parameter has code of its own.
+"""
+
+import copy
+import math
+
+import numpy as np
+
+from glasshead.constants import FRAME_AXES, TONGUE_RIG_FORMAT_VERSION
+from glasshead.geometry.bspline import clamped_knots, greville_abscissae, periodic_knots
+
+SAGITTAL_DEGREE = 3
+CORONAL_DEGREE = 3
+
+#: Section names, in the order of ``section_weights``.
+SECTIONS = ("front", "middle", "back")
+
+#: Sagittal control points: letter, role, direction from the hub in degrees (the rest-shape fit
+#: moves each point only along this ray, which keeps the control polygon star-shaped about the
+#: hub), jaw weight, and the blend of sections it carries (None: fitted to the MRI tongue).
+SAGITTAL_POINTS = (
+    ("A", "tip, underside", 13.0, 1.0, (1.0, 0.0, 0.0)),
+    ("B", "tip", 22.0, 1.0, (1.0, 0.0, 0.0)),
+    ("C", "blade, front", 33.0, 1.0, (1.0, 0.0, 0.0)),
+    ("D", "blade, back", 46.0, 1.0, None),
+    ("E", "dorsum, front", 62.0, 0.95, None),
+    ("F", "dorsum, front-centre", 79.0, 0.9, None),
+    ("G", "dorsum, centre", 97.0, 0.85, (0.0, 1.0, 0.0)),
+    ("H", "dorsum, back-centre", 115.0, 0.85, None),
+    ("I", "dorsum, back", 133.0, 0.9, None),
+    ("J", "root, top", 152.0, 0.95, None),
+    ("K", "root", 170.0, 1.0, (0.0, 0.0, 1.0)),
+    ("L", "root, low", 188.0, 1.0, None),
+    ("M", "root, base", 208.0, 1.0, None),
+    ("N", "floor, back", 228.0, 1.0, None),
+    ("O", "floor", 255.0, 1.0, None),
+    ("P", "floor, front", 281.0, 1.0, None),
+    ("Q", "underside, low", 304.0, 1.0, None),
+    ("R", "underside, front", 326.0, 1.0, None),
+    ("S", "underside, behind the tip", 348.0, 1.0, (1.0, 0.0, 0.0)),
+)
+
+#: Blend a fit starts from for the points whose blend is fitted.
+DEFAULT_SECTION_WEIGHTS = {
+    "D": (0.8, 0.2, 0.0), "E": (0.4, 0.6, 0.0), "F": (0.1, 0.9, 0.0), "H": (0.0, 0.9, 0.1),
+    "I": (0.0, 0.6, 0.4), "J": (0.0, 0.2, 0.8), "L": (0.0, 0.0, 1.0), "M": (0.0, 0.0, 1.0),
+    "N": (0.0, 0.2, 0.8), "O": (0.0, 0.5, 0.5), "P": (0.3, 0.5, 0.2), "Q": (0.6, 0.3, 0.1),
+    "R": (0.9, 0.1, 0.0),
+}
+
+#: The hub, mm, project frame. Chosen on the MRI tongue (tests/test_tongue_fit.py checks it):
+#: every direction from it but a few crosses the MRI surface once, and it sees every segment of
+#: the mid-sagittal outline at more than 9 degrees from grazing.
+HUB_MM = (-19.0, -15.0)
+#: How much the hub follows the jaw.
+HUB_JAW_WEIGHT = 0.95
+
+#: Inner knots of the coronal radial B-spline, degrees of page angle (denser near the lateral
+#: edges of the dorsum, where the tongue's cross-section turns fastest).
+CORONAL_INNER_KNOTS_DEG = (-66.0, -46.0, -32.0, -22.0, -12.0, 0.0, 12.0, 22.0, 32.0, 46.0, 66.0)
+#: Coronal control values, right pole to left pole (their page angles are the Greville abscissae).
+CORONAL_CONTROLS = (
+    "right pole", "right pole ring", "right lower side", "right side", "right upper side",
+    "right edge", "right paramedian", "midline", "left paramedian", "left edge",
+    "left upper side", "left side", "left lower side", "left pole ring", "left pole",
+)
+#: Controls pinned to the pole half-width (two at each end: the surface meets the pole at a
+#: right angle, so it is smooth there).
+POLE_CONTROLS = (0, 1, 13, 14)
+
+#: Surface resolution: stations along the sagittal curve, and page samples between the poles.
+STATIONS = 96
+PAGE_SAMPLES = 31
+
+# --- The articulation parameters -------------------------------------------------------------
+# (name, unit, min, max, description, moves); neutral is 0 for every tongue parameter (values
+# are displacements from the rest shape, so the table stays valid when the rest shape is refit).
+# Sagittal moves: (point, (dx, dy)) in mm per unit. Coronal moves: (control, offset), radial mm
+# per unit along the control's page direction, given for one section and applied to each.
+
+SAGITTAL_PARAMETERS = (
+    ("tip_advancement", "mm", -4.0, 10.0, "Moves the tip pair (A, B) forward.",
+     (("A", (1.0, 0.0)), ("B", (1.0, 0.0)), ("C", (0.4, 0.0)), ("S", (0.5, 0.0)))),
+    ("tip_height", "mm", -5.0, 8.0, "Raises the tip pair (A, B).",
+     (("A", (0.0, 1.0)), ("B", (0.0, 1.0)), ("C", (0.0, 0.6)), ("D", (0.0, 0.2)),
+      ("S", (0.0, 0.5)), ("R", (0.0, 0.2)))),
+    ("tip_thickness", "mm", -3.0, 3.0,
+     "Moves the tip pair apart vertically (negative: toward each other).",
+     (("A", (0.0, -0.5)), ("B", (0.0, 0.5)))),
+    ("blade_advancement", "mm", -4.0, 6.0, "Moves the blade (C, D) forward; the tip follows.",
+     (("A", (0.8, 0.0)), ("B", (0.8, 0.0)), ("C", (1.0, 0.0)), ("D", (0.6, 0.0)))),
+    ("blade_height", "mm", -4.0, 8.0, "Raises the blade (C, D).",
+     (("C", (0.0, 1.0)), ("D", (0.0, 0.7)), ("E", (0.0, 0.2)))),
+    ("dorsum_advancement", "mm", -4.0, 6.0, "Moves the dorsum (E to H) forward.",
+     (("C", (0.2, 0.0)), ("D", (0.5, 0.0)), ("E", (0.8, 0.0)), ("F", (1.0, 0.0)),
+      ("G", (1.0, 0.0)),
+      ("H", (0.5, 0.0)))),
+    ("dorsum_height", "mm", -6.0, 10.0, "Raises the centre of the dorsum (E to H).",
+     (("E", (0.0, 0.4)), ("F", (0.0, 1.0)), ("G", (0.0, 1.0)), ("H", (0.0, 0.5)))),
+    ("back_dorsum_height", "mm", -6.0, 8.0, "Raises the back of the dorsum (H to J).",
+     (("H", (0.0, 0.5)), ("I", (0.0, 1.0)), ("J", (0.0, 0.6)))),
+    ("root_advancement", "mm", -8.0, 8.0, "Moves the root (J to M) forward.",
+     (("J", (0.5, 0.0)), ("K", (1.0, 0.0)), ("L", (1.0, 0.0)), ("M", (0.6, 0.0)))),
+    ("body_height", "mm", -5.0, 8.0, "Raises the whole upper surface, tip to root.",
+     (("S", (0.0, 0.5)), ("A", (0.0, 1.0)), ("B", (0.0, 1.0)), ("C", (0.0, 1.0)),
+      ("D", (0.0, 1.0)),
+      ("E", (0.0, 1.0)), ("F", (0.0, 1.0)), ("G", (0.0, 1.0)), ("H", (0.0, 1.0)),
+      ("I", (0.0, 1.0)), ("J", (0.0, 1.0)), ("K", (0.0, 0.6)), ("L", (0.0, 0.3)))),
+)
+
+CORONAL_PARAMETERS = (
+    ("width", "mm", -6.0, 6.0, "Widens the section (about 1 mm of width per mm).",
+     (("right lower side", 0.5), ("right side", 0.5), ("right upper side", 0.45),
+      ("right edge", 0.3), ("left edge", 0.3), ("left upper side", 0.45), ("left side", 0.5),
+      ("left lower side", 0.5))),
+    ("groove_depth", "mm", -2.0, 6.0, "Lowers the midline: a central groove (negative: a ridge).",
+     (("midline", -1.0), ("right paramedian", -0.35), ("left paramedian", -0.35))),
+    ("groove_width", "mm", -2.0, 5.0, "Lowers the paramedian pair: widens the groove.",
+     (("right paramedian", -1.0), ("left paramedian", -1.0), ("right edge", -0.3),
+      ("left edge", -0.3))),
+    ("left_edge_height", "mm", -5.0, 8.0, "Raises the left lateral edge.",
+     (("left edge", 1.0), ("left upper side", 0.5), ("left paramedian", 0.25))),
+    ("right_edge_height", "mm", -5.0, 8.0, "Raises the right lateral edge.",
+     (("right edge", 1.0), ("right upper side", 0.5), ("right paramedian", 0.25))),
+    ("asymmetry", "mm", -4.0, 4.0, "Rolls the section: left side out, right side in.",
+     (("left paramedian", 0.25), ("left edge", 0.5), ("left upper side", 0.5),
+      ("left side", 0.35), ("left lower side", 0.2), ("right paramedian", -0.25),
+      ("right edge", -0.5), ("right upper side", -0.5), ("right side", -0.35),
+      ("right lower side", -0.2))),
+    ("side_bulge", "mm", -4.0, 5.0, "Pushes the lower sides out.",
+     (("right lower side", 1.0), ("right side", 0.6), ("left side", 0.6),
+      ("left lower side", 1.0))),
+)
+
+JAW_PARAMETER = ("jaw_opening", "deg", 0.0, 25.0,
+                 "Opens the jaw: rotation about the temporomandibular axis with a forward slide.")
+
+GROUP_SAGITTAL = "tongue sagittal"
+GROUP_JAW = "jaw"
+
+
+def coronal_knots_deg():
+    """Clamped knot vector of the coronal radial B-spline, degrees, (19,) float64."""
+    return clamped_knots(CORONAL_INNER_KNOTS_DEG, CORONAL_DEGREE, -90.0, 90.0)
+
+
+def coronal_control_angles_deg():
+    """Page angle where each coronal control has the most weight (Greville), (15,) float64."""
+    return greville_abscissae(coronal_knots_deg(), CORONAL_DEGREE)
+
+
+def parameter_table():
+    """The parameter list of the definition (without the rest shape), as JSON-ready dicts."""
+    table = []
+    for name, unit, low, high, text, moves in SAGITTAL_PARAMETERS:
+        table.append(_parameter(name, unit, low, high, GROUP_SAGITTAL, text,
+                                [{"point": p, "by": list(by)} for p, by in moves]))
+    for section in SECTIONS:
+        for name, unit, low, high, text, moves in CORONAL_PARAMETERS:
+            table.append(_parameter(f"{section}_{name}", unit, low, high,
+                                    f"tongue coronal {section}", text,
+                                    [{"section": section, "control": c, "by": by}
+                                     for c, by in moves]))
+    name, unit, low, high, text = JAW_PARAMETER
+    table.append(_parameter(name, unit, low, high, GROUP_JAW, text, []))
+    return table
+
+
+def _parameter(name, unit, low, high, group, text, moves):
+    return {"name": name, "unit": unit, "min": low, "max": high, "neutral": 0.0, "group": group,
+            "description": text, "moves": moves}
+
+
+def build_definition(*, sagittal_positions, section_weights, ratios, pole_half_width,
+                     station_params, page_angles_deg, jaw, hub=HUB_MM, fit=None, source=None):
+    """Assemble the rig definition document.
+
+    sagittal_positions : (18, 2) float, rest control points A..R, mm.
+    section_weights : (18, 3) float, the blend each control point carries (rows sum to 1).
+    ratios : mapping section -> (15,) float, rest control ratios (pole entries are ignored).
+    pole_half_width : float, mm.
+    station_params : (STATIONS,) float in [0, 1), increasing: where the surface samples the curve.
+    page_angles_deg : (PAGE_SAMPLES,) float in (-90, 90), increasing: page samples between poles.
+    jaw : the jaw block (``geometry.jaw.jaw_definition``).
+    """
+    positions = np.asarray(sagittal_positions, dtype=np.float64)
+    weights = np.asarray(section_weights, dtype=np.float64)
+    if positions.shape != (len(SAGITTAL_POINTS), 2):
+        raise ValueError(f"sagittal_positions must be ({len(SAGITTAL_POINTS)}, 2)")
+    if weights.shape != (len(SAGITTAL_POINTS), len(SECTIONS)):
+        raise ValueError(f"section_weights must be ({len(SAGITTAL_POINTS)}, {len(SECTIONS)})")
+    points = [
+        {"name": name, "role": role, "position": _floats(positions[k]),
+         "jaw_weight": jaw_weight, "section_weights": _floats(weights[k])}
+        for k, (name, role, _angle, jaw_weight, _blend) in enumerate(SAGITTAL_POINTS)
+    ]
+    ratio_lists = {}
+    for section in SECTIONS:
+        values = np.asarray(ratios[section], dtype=np.float64).copy()
+        values[list(POLE_CONTROLS)] = 0.0
+        ratio_lists[section] = _floats(values)
+    definition = {
+        "format_version": TONGUE_RIG_FORMAT_VERSION,
+        "kind": "glasshead tongue rig",
+        "units": "mm",
+        "frame": {"name": "project", "axes": dict(FRAME_AXES), "mid_sagittal_plane": "z = 0"},
+        "source": source or {},
+        "hub": {"position": _floats(hub), "jaw_weight": HUB_JAW_WEIGHT},
+        "sagittal": {
+            "degree": SAGITTAL_DEGREE,
+            "closed": True,
+            "knots": _floats(periodic_knots(len(SAGITTAL_POINTS), SAGITTAL_DEGREE)),
+            "control_points": points,
+        },
+        "coronal": {
+            "degree": CORONAL_DEGREE,
+            "parameter": "page angle, degrees: -90 subject's right pole, 0 the sagittal curve, "
+                         "+90 left pole",
+            "knots": _floats(coronal_knots_deg()),
+            "controls": list(CORONAL_CONTROLS),
+            "control_angles_deg": _floats(coronal_control_angles_deg()),
+            "follow": _floats(np.cos(np.radians(coronal_control_angles_deg()))),
+            "pole_controls": list(POLE_CONTROLS),
+            "pole_half_width": float(pole_half_width),
+            "sections": list(SECTIONS),
+            "ratios": ratio_lists,
+        },
+        "jaw": copy.deepcopy(jaw),
+        "surface": {
+            "station_params": _floats(station_params),
+            "page_angles_deg": _floats(page_angles_deg),
+            "vertex_count": 2 + len(station_params) * len(page_angles_deg),
+            "triangle_count": 2 * len(station_params) * len(page_angles_deg),
+            "layout": "vertex 0 is the right pole, vertex 1 the left pole, then one ring per "
+                      "station (page samples right to left); triangles wind counter-clockwise "
+                      "seen from outside",
+        },
+        "parameters": parameter_table(),
+        "fit": fit or {},
+    }
+    validate_definition(definition)
+    return definition
+
+
+def _floats(values):
+    return [float(v) for v in np.asarray(values, dtype=np.float64).reshape(-1)]
+
+
+def validate_definition(definition):
+    """Check a rig definition read from JSON; raise ValueError naming the first problem."""
+    if not isinstance(definition, dict):
+        raise ValueError("a rig definition must be a JSON object")
+    version = definition.get("format_version")
+    if version != TONGUE_RIG_FORMAT_VERSION:
+        raise ValueError(f"rig format_version {version!r} is not {TONGUE_RIG_FORMAT_VERSION}")
+    for key in ("hub", "sagittal", "coronal", "jaw", "surface", "parameters"):
+        if key not in definition:
+            raise ValueError(f"rig definition has no '{key}'")
+    sagittal, coronal, surface = (definition[k] for k in ("sagittal", "coronal", "surface"))
+    points = sagittal["control_points"]
+    names = [p["name"] for p in points]
+    _unique(names, "sagittal control point")
+    degree = sagittal["degree"]
+    if len(sagittal["knots"]) != len(points) + 2 * degree + 1:
+        raise ValueError("closed sagittal curve needs len(points) + 2 * degree + 1 knots")
+    sections = coronal["sections"]
+    for p in points:
+        if len(p["position"]) != 2 or not all(map(math.isfinite, p["position"])):
+            raise ValueError(f"sagittal point {p['name']}: position must be 2 finite numbers")
+        w = p["section_weights"]
+        if len(w) != len(sections) or min(w) < 0 or abs(sum(w) - 1.0) > 1e-9:
+            raise ValueError(f"sagittal point {p['name']}: section_weights must be "
+                             f"{len(sections)} non-negative numbers summing to 1")
+    controls = coronal["controls"]
+    _unique(controls, "coronal control")
+    if len(coronal["knots"]) != len(controls) + coronal["degree"] + 1:
+        raise ValueError("coronal knots must number len(controls) + degree + 1")
+    if len(coronal["follow"]) != len(controls):
+        raise ValueError(f"coronal follow needs {len(controls)} values")
+    for section in sections:
+        if len(coronal["ratios"][section]) != len(controls):
+            raise ValueError(f"coronal section {section}: needs {len(controls)} ratios")
+    if not coronal["pole_half_width"] > 0:
+        raise ValueError("coronal pole_half_width must be positive")
+    params = np.asarray(surface["station_params"], dtype=np.float64)
+    if params.size < 3 or np.any(np.diff(params) <= 0) or params[0] < 0 or params[-1] >= 1:
+        raise ValueError("surface station_params must increase strictly within [0, 1)")
+    angles = np.asarray(surface["page_angles_deg"], dtype=np.float64)
+    if angles.size < 2 or np.any(np.diff(angles) <= 0) or angles[0] <= -90 or angles[-1] >= 90:
+        raise ValueError("surface page_angles_deg must increase strictly within (-90, 90)")
+    _validate_parameters(definition, set(names), set(controls), set(sections))
+
+
+def _validate_parameters(definition, point_names, control_names, section_names):
+    table = definition["parameters"]
+    _unique([p["name"] for p in table], "parameter")
+    poles = {definition["coronal"]["controls"][i] for i in definition["coronal"]["pole_controls"]}
+    jaw_name = definition["jaw"]["parameter"]
+    for p in table:
+        name = p["name"]
+        if p["unit"] not in ("mm", "deg", "ratio"):
+            raise ValueError(f"parameter {name}: unit must be mm, deg or ratio")
+        if not p["min"] <= p["neutral"] <= p["max"] or p["min"] == p["max"]:
+            raise ValueError(f"parameter {name}: needs min <= neutral <= max and min < max")
+        for move in p["moves"]:
+            if "point" in move:
+                if move["point"] not in point_names or len(move["by"]) != 2:
+                    raise ValueError(f"parameter {name}: bad sagittal move {move}")
+            elif move.get("section") in section_names and move.get("control") in control_names:
+                if move["control"] in poles:
+                    raise ValueError(f"parameter {name}: pole controls cannot move")
+            else:
+                raise ValueError(f"parameter {name}: bad move {move}")
+    if jaw_name not in {p["name"] for p in table}:
+        raise ValueError(f"the jaw parameter {jaw_name!r} is not in the parameter table")
+
+
+def _unique(names, what):
+    seen = set()
+    for name in names:
+        if name in seen:
+            raise ValueError(f"duplicate {what} name {name!r}")
+        seen.add(name)

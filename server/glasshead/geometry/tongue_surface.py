@@ -1,0 +1,216 @@
+"""The reference tongue evaluator (numpy, float64): rig definition + parameters -> surface.
+
+Twin of ``web/src/core/tongue.js``; ``geometry.tongue_rig`` describes the definition. Every
+table that does not depend on the parameters (basis functions at the stations and page angles,
+the blended rest ratios, the triangles) is built once in ``TongueRig.__init__``; an evaluation is
+then a few small matrix products:
+
+1. control points: rest + sum over parameters of (value - neutral) * move;
+2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
+3. stations: S = B_sagittal @ points; page direction e = (S - H) / |S - H|;
+4. radial control values per station, with R = |S - H|, R0 its rest value and w the pole
+   half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets (the pole
+   controls are w itself);
+5. radii at the page samples: lambda = values @ B_coronal^T; vertex = H + lambda * (cos(phi) e
+   + sin(phi) z).
+"""
+
+import math
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from glasshead.geometry.bspline import basis_matrix
+from glasshead.geometry.jaw import apply_jaw_pose, jaw_pose
+from glasshead.geometry.mesh_volume import mesh_volume, vertex_normals
+from glasshead.geometry.tongue_rig import validate_definition
+
+
+class ParameterError(ValueError):
+    """A parameter set the rig refuses: an unknown name, or a value outside its range."""
+
+    def __init__(self, name, message):
+        self.parameter = name
+        super().__init__(message)
+
+
+@dataclass
+class TongueSurface:
+    """vertices (n, 3) float64 mm; normals (n, 3) float64 unit; triangles (m, 3) int64;
+    volume float mm^3."""
+
+    vertices: np.ndarray
+    normals: np.ndarray
+    triangles: np.ndarray
+    volume: float
+
+
+def surface_triangles(stations, page_samples):
+    """Triangles (2 * stations * page_samples, 3) int64 of the surface layout (see tongue_rig).
+
+    Vertex 0 is the right pole, 1 the left pole, ring vertex (i, j) is 2 + i * page_samples + j.
+    Winding: (station i, sample j) -> (i + 1, j) -> (i, j + 1) is counter-clockwise from outside.
+    """
+    if stations < 3 or page_samples < 2:
+        raise ValueError("need at least 3 stations and 2 page samples")
+    i = np.arange(stations)
+    j = np.arange(page_samples - 1)
+    here = 2 + i[:, None] * page_samples
+    there = 2 + ((i + 1) % stations)[:, None] * page_samples
+    a, b, c, d = here + j, there + j, there + j + 1, here + j + 1
+    quads = np.stack([np.stack([a, b, c], -1), np.stack([a, c, d], -1)], axis=2).reshape(-1, 3)
+    right = np.stack([np.zeros(stations, np.int64), there[:, 0], here[:, 0]], -1)
+    last = page_samples - 1
+    left = np.stack([here[:, 0] + last, there[:, 0] + last, np.ones(stations, np.int64)], -1)
+    return np.concatenate([right, quads, left]).astype(np.int64)
+
+
+class TongueRig:
+    """A loaded rig definition with its parameter-independent tables."""
+
+    def __init__(self, definition):
+        validate_definition(definition)
+        self.definition = definition
+        table = definition["parameters"]
+        self.parameter_names = [p["name"] for p in table]
+        self.parameters = {p["name"]: p for p in table}
+        self._index = {name: k for k, name in enumerate(self.parameter_names)}
+        self.neutral = np.array([p["neutral"] for p in table], dtype=np.float64)
+        self.minimum = np.array([p["min"] for p in table], dtype=np.float64)
+        self.maximum = np.array([p["max"] for p in table], dtype=np.float64)
+
+        sagittal, coronal, surface = (definition[k] for k in ("sagittal", "coronal", "surface"))
+        points = sagittal["control_points"]
+        point_index = {p["name"]: k for k, p in enumerate(points)}
+        self.rest_points = np.array([p["position"] for p in points], dtype=np.float64)
+        self.point_jaw_weights = np.array([p["jaw_weight"] for p in points], dtype=np.float64)
+        section_weights = np.array([p["section_weights"] for p in points], dtype=np.float64)
+        self.station_params = np.array(surface["station_params"], dtype=np.float64)
+        self.station_basis = basis_matrix(sagittal["knots"], sagittal["degree"],
+                                          self.station_params, count=len(points))
+        self.station_blend = self.station_basis @ section_weights
+
+        sections = coronal["sections"]
+        controls = coronal["controls"]
+        control_index = {c: k for k, c in enumerate(controls)}
+        self.pole_controls = np.array(coronal["pole_controls"], dtype=np.int64)
+        self.pole_half_width = float(coronal["pole_half_width"])
+        ratios = np.array([coronal["ratios"][s] for s in sections], dtype=np.float64)
+        ratios[:, self.pole_controls] = 0.0
+        self.station_ratios = self.station_blend @ ratios
+        angles_deg = np.array(surface["page_angles_deg"], dtype=np.float64)
+        self.page_basis = basis_matrix(coronal["knots"], coronal["degree"], angles_deg)
+        self.page_cos = np.cos(np.radians(angles_deg))
+        self.page_sin = np.sin(np.radians(angles_deg))
+
+        count = len(table)
+        self.sagittal_moves = np.zeros((count, len(points), 2))
+        self.coronal_moves = np.zeros((count, len(sections), len(controls)))
+        section_index = {s: k for k, s in enumerate(sections)}
+        for k, p in enumerate(table):
+            for move in p["moves"]:
+                if "point" in move:
+                    self.sagittal_moves[k, point_index[move["point"]]] += move["by"]
+                else:
+                    self.coronal_moves[k, section_index[move["section"]],
+                                       control_index[move["control"]]] += move["by"]
+
+        self.jaw = definition["jaw"]
+        self.jaw_parameter = self._index[self.jaw["parameter"]]
+        self.hub = np.array(definition["hub"]["position"], dtype=np.float64)
+        self.hub_jaw_weight = float(definition["hub"]["jaw_weight"])
+        self.follow = np.array(coronal["follow"], dtype=np.float64)
+        self.rest_radius = np.linalg.norm(self.station_basis @ self.rest_points - self.hub, axis=1)
+        self.stations = len(self.station_params)
+        self.page_samples = len(angles_deg)
+        self.triangles = surface_triangles(self.stations, self.page_samples)
+        self.vertex_count = 2 + self.stations * self.page_samples
+
+    # --- parameters ---------------------------------------------------------------------------
+
+    def values(self, params: Mapping[str, float] | None = None):
+        """(P,) float64 parameter values from a name -> value mapping; missing names are neutral.
+
+        Raises ParameterError for an unknown name or a value that is not finite or out of range.
+        """
+        values = self.neutral.copy()
+        for name, value in (params or {}).items():
+            if name not in self._index:
+                raise ParameterError(name, f"unknown parameter {name!r}; known: "
+                                           + ", ".join(self.parameter_names))
+            p = self.parameters[name]
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value):
+                raise ParameterError(name, f"{name} = {value!r} is not a finite number")
+            if not p["min"] <= value <= p["max"]:
+                raise ParameterError(name, f"{name} = {value:g} is outside its range "
+                                           f"[{p['min']:g}, {p['max']:g}] {p['unit']}")
+            values[self._index[name]] = float(value)
+        return values
+
+    def _checked(self, values):
+        values = np.asarray(values, dtype=np.float64)
+        if values.shape != self.neutral.shape:
+            raise ValueError(f"values must have shape {self.neutral.shape}, got {values.shape}")
+        if not np.all(np.isfinite(values)):
+            raise ValueError("parameter values must be finite")
+        return values
+
+    # --- evaluation -----------------------------------------------------------------------------
+
+    def control_points(self, values):
+        """Posed sagittal control points (n, 2), hub (2,) and coronal offsets (sections, controls)."""
+        values = self._checked(values)
+        delta = values - self.neutral
+        points = self.rest_points + np.tensordot(delta, self.sagittal_moves, axes=1)
+        offsets = np.tensordot(delta, self.coronal_moves, axes=1)
+        pose = jaw_pose(values[self.jaw_parameter], self.jaw)
+        points = apply_jaw_pose(points, pose, self.point_jaw_weights)
+        hub = apply_jaw_pose(self.hub[None, :], pose, [self.hub_jaw_weight])[0]
+        return points, hub, offsets
+
+    def page_radii(self, values):
+        """Stations (s, 2), page directions (s, 2) and radii (s, page_samples) of the surface."""
+        points, hub, offsets = self.control_points(values)
+        stations = self.station_basis @ points
+        towards = stations - hub
+        radius = np.linalg.norm(towards, axis=1)
+        direction = towards / radius[:, None]
+        pole = self.pole_half_width
+        controls = pole + (self.rest_radius[:, None] - pole) * self.station_ratios \
+            + (radius - self.rest_radius)[:, None] * self.follow + self.station_blend @ offsets
+        controls[:, self.pole_controls] = self.pole_half_width
+        return hub, stations, direction, controls @ self.page_basis.T
+
+    def vertices(self, values):
+        """(vertex_count, 3) float64 surface vertices for parameter values (P,)."""
+        hub, _stations, direction, radii = self.page_radii(values)
+        ring = np.empty((self.stations, self.page_samples, 3))
+        planar = radii * self.page_cos
+        ring[..., 0] = hub[0] + planar * direction[:, 0, None]
+        ring[..., 1] = hub[1] + planar * direction[:, 1, None]
+        ring[..., 2] = radii * self.page_sin
+        poles = np.array([[hub[0], hub[1], -self.pole_half_width],
+                          [hub[0], hub[1], self.pole_half_width]])
+        return np.concatenate([poles, ring.reshape(-1, 3)])
+
+    def evaluate(self, params: Mapping[str, float] | None = None):
+        """The surface for a name -> value mapping (missing names neutral): a TongueSurface."""
+        vertices = self.vertices(self.values(params))
+        return TongueSurface(vertices, vertex_normals(vertices, self.triangles), self.triangles,
+                             mesh_volume(vertices, self.triangles))
+
+    def volume(self, values):
+        """Enclosed volume, mm^3, for parameter values (P,)."""
+        return mesh_volume(self.vertices(values), self.triangles)
+
+    def pages_in_order(self, values):
+        """True when the pages turn once round the hub in order and every radius is positive:
+        then the surface is closed and free of self-intersection."""
+        _hub, _stations, direction, radii = self.page_radii(values)
+        following = np.roll(direction, -1, axis=0)
+        turn = np.arctan2(direction[:, 0] * following[:, 1] - direction[:, 1] * following[:, 0],
+                          np.einsum("ij,ij->i", direction, following))
+        return bool(np.all(turn > 0) and abs(turn.sum() - 2 * np.pi) < 1e-6
+                    and np.all(radii > 0))

@@ -1,0 +1,437 @@
+// The real-time tongue evaluator (twin of server/glasshead/geometry/tongue_surface.py): a generic
+// interpreter of the rig definition that Python writes (assets/build/tongue-rig.json; its format
+// is described in server/glasshead/geometry/tongue_rig.py).
+//
+// new TongueRig( definition ) builds every table that does not depend on the parameters (basis
+// functions at the stations and page angles, the blended rest ratios, the triangles, scratch
+// arrays). rig.evaluate( values, surface ) then writes positions and normals into the surface's
+// preallocated Float32Arrays and allocates nothing:
+//   1. control points = rest + sum over parameters of ( value - neutral ) * move;
+//   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
+//   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
+//   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets (poles: w);
+//   5. vertex = H + lambda ( cos( phi ) e + sin( phi ) z ), lambda = page basis * controls.
+// Cohen, Beskow and Massaro (1998), section 3: sagittal and coronal B-splines whose control
+// points move singly and in pairs under articulation parameters.
+
+import { basisTable } from './bspline.js';
+import { jawPose, applyJawPose, POSE_LENGTH } from './jaw.js';
+import { TONGUE_RIG_FORMAT_VERSION } from './constants.js';
+
+/** Sections blended along the tongue, in the order of each point's section_weights. */
+export const SECTION_COUNT = 3;
+
+export class TongueRig {
+
+	/** @param {object} definition the parsed rig JSON */
+	constructor( definition ) {
+
+		if ( definition?.format_version !== TONGUE_RIG_FORMAT_VERSION ) {
+
+			throw new Error( `tongue rig format_version ${definition?.format_version} is not ${TONGUE_RIG_FORMAT_VERSION}` );
+
+		}
+
+		this.definition = definition;
+		const { sagittal, coronal, surface, parameters, hub, jaw } = definition;
+
+		// Parameters.
+		this.parameters = parameters;
+		this.parameterCount = parameters.length;
+		this.parameterIndex = new Map( parameters.map( ( p, k ) => [ p.name, k ] ) );
+		this.neutral = Float64Array.from( parameters, ( p ) => p.neutral );
+		this.minimum = Float64Array.from( parameters, ( p ) => p.min );
+		this.maximum = Float64Array.from( parameters, ( p ) => p.max );
+
+		// Sagittal curve at the stations.
+		const points = sagittal.control_points;
+		const n = points.length;
+		const degree = sagittal.degree;
+		this.pointCount = n;
+		this.restPoints = Float64Array.from( points.flatMap( ( p ) => p.position ) );
+		this.pointJawWeights = Float64Array.from( points, ( p ) => p.jaw_weight );
+		this.stationCount = surface.station_params.length;
+		this.sagittalWidth = degree + 1;
+		const stations = basisTable( sagittal.knots, degree, surface.station_params );
+		this.stationFirst = stations.first;
+		this.stationBasis = stations.values;
+
+		// Blends and rest ratios per station (constant: they depend on no parameter).
+		const sections = coronal.sections;
+		const controls = coronal.controls;
+		const c = controls.length;
+		this.controlCount = c;
+		this.stationBlend = new Float64Array( this.stationCount * SECTION_COUNT );
+		this.stationRatios = new Float64Array( this.stationCount * c );
+		this.restRadius = new Float64Array( this.stationCount );
+		this.poleHalfWidth = coronal.pole_half_width;
+		this.isPole = new Uint8Array( c );
+		for ( const k of coronal.pole_controls ) this.isPole[ k ] = 1;
+		this.follow = Float64Array.from( coronal.follow );
+		this.hubRest = Float64Array.from( hub.position );
+		this.hubJawWeight = hub.jaw_weight;
+		for ( let i = 0; i < this.stationCount; i ++ ) {
+
+			let sx = 0;
+			let sy = 0;
+			for ( let k = 0; k < this.sagittalWidth; k ++ ) {
+
+				const weight = this.stationBasis[ i * this.sagittalWidth + k ];
+				const point = ( this.stationFirst[ i ] + k ) % n;
+				sx += weight * this.restPoints[ 2 * point ];
+				sy += weight * this.restPoints[ 2 * point + 1 ];
+				for ( let s = 0; s < SECTION_COUNT; s ++ ) {
+
+					this.stationBlend[ i * SECTION_COUNT + s ] += weight * points[ point ].section_weights[ s ];
+
+				}
+
+			}
+
+			this.restRadius[ i ] = Math.hypot( sx - this.hubRest[ 0 ], sy - this.hubRest[ 1 ] );
+			for ( let k = 0; k < c; k ++ ) {
+
+				let ratio = 0;
+				if ( ! this.isPole[ k ] ) {
+
+					for ( let s = 0; s < SECTION_COUNT; s ++ ) ratio += this.stationBlend[ i * SECTION_COUNT + s ] * coronal.ratios[ sections[ s ] ][ k ];
+
+				}
+
+				this.stationRatios[ i * c + k ] = ratio;
+
+			}
+
+		}
+
+		// Coronal B-spline at the page angles (degrees, as in the knots).
+		const angles = surface.page_angles_deg;
+		this.pageCount = angles.length;
+		this.coronalWidth = coronal.degree + 1;
+		const pages = basisTable( coronal.knots, coronal.degree, angles );
+		this.pageFirst = pages.first;
+		this.pageBasis = pages.values;
+		this.pageCos = Float64Array.from( angles, ( a ) => Math.cos( a * Math.PI / 180 ) );
+		this.pageSin = Float64Array.from( angles, ( a ) => Math.sin( a * Math.PI / 180 ) );
+
+		// Moves, as flat lists: sagittal (parameter, point, dx, dy); coronal (parameter, section * c + control, by).
+		const pointIndex = new Map( points.map( ( p, k ) => [ p.name, k ] ) );
+		const controlIndex = new Map( controls.map( ( name, k ) => [ name, k ] ) );
+		const sagittalMoves = [];
+		const coronalMoves = [];
+		parameters.forEach( ( p, k ) => {
+
+			for ( const move of p.moves ) {
+
+				if ( move.point !== undefined ) sagittalMoves.push( [ k, pointIndex.get( move.point ), move.by[ 0 ], move.by[ 1 ] ] );
+				else coronalMoves.push( [ k, sections.indexOf( move.section ) * c + controlIndex.get( move.control ), move.by ] );
+
+			}
+
+		} );
+		this.sagittalMoveParameter = Int32Array.from( sagittalMoves, ( m ) => m[ 0 ] );
+		this.sagittalMovePoint = Int32Array.from( sagittalMoves, ( m ) => m[ 1 ] );
+		this.sagittalMoveX = Float64Array.from( sagittalMoves, ( m ) => m[ 2 ] );
+		this.sagittalMoveY = Float64Array.from( sagittalMoves, ( m ) => m[ 3 ] );
+		this.coronalMoveParameter = Int32Array.from( coronalMoves, ( m ) => m[ 0 ] );
+		this.coronalMoveTarget = Int32Array.from( coronalMoves, ( m ) => m[ 1 ] );
+		this.coronalMoveBy = Float64Array.from( coronalMoves, ( m ) => m[ 2 ] );
+
+		this.jaw = jaw;
+		this.jawParameter = this.parameterIndex.get( jaw.parameter );
+		if ( this.jawParameter === undefined ) throw new Error( `jaw parameter ${jaw.parameter} is not in the parameter table` );
+
+		// Topology: fixed, so built once.
+		this.vertexCount = 2 + this.stationCount * this.pageCount;
+		this.triangleCount = 2 * this.stationCount * this.pageCount;
+		this.index = surfaceTriangles( this.stationCount, this.pageCount );
+
+		// Scratch for evaluate(): nothing is allocated per call.
+		this.points = new Float64Array( 2 * n );
+		this.hub = new Float64Array( 2 );
+		this.offsets = new Float64Array( SECTION_COUNT * c );
+		this.pose = new Float64Array( POSE_LENGTH );
+		this.direction = new Float64Array( 2 * this.stationCount );
+		this.radius = new Float64Array( this.stationCount );
+		this.controls = new Float64Array( this.stationCount * c );
+		this.vertices = new Float64Array( 3 * this.vertexCount );
+		this.normalSums = new Float64Array( 3 * this.vertexCount );
+
+	}
+
+	/** Preallocated output: positions and normals (Float32Array, xyz per vertex) and the shared index. */
+	createSurface() {
+
+		return {
+			positions: new Float32Array( 3 * this.vertexCount ),
+			normals: new Float32Array( 3 * this.vertexCount ),
+			index: this.index,
+			vertexCount: this.vertexCount,
+			triangleCount: this.triangleCount,
+		};
+
+	}
+
+	/**
+	 * Parameter values from a { name: value } object; missing names are neutral. Throws a
+	 * RangeError naming the parameter for an unknown name or a value that is not finite or is
+	 * outside its range (the API's 422 messages, word for word).
+	 * @param {Object<string, number>} params
+	 * @param {Float64Array} [target] length parameterCount
+	 * @returns {Float64Array}
+	 */
+	valuesFrom( params, target = new Float64Array( this.parameterCount ) ) {
+
+		target.set( this.neutral );
+		for ( const [ name, value ] of Object.entries( params ?? {} ) ) {
+
+			const k = this.parameterIndex.get( name );
+			if ( k === undefined ) throw new RangeError( `unknown parameter '${name}'; known: ${[ ...this.parameterIndex.keys() ].join( ', ' )}` );
+			const p = this.parameters[ k ];
+			if ( typeof value !== 'number' || ! Number.isFinite( value ) ) throw new RangeError( `${name} = ${value} is not a finite number` );
+			if ( value < p.min || value > p.max ) throw new RangeError( `${name} = ${value} is outside its range [${p.min}, ${p.max}] ${p.unit}` );
+			target[ k ] = value;
+
+		}
+
+		return target;
+
+	}
+
+	/**
+	 * Write the surface for parameter values into surface.positions and surface.normals.
+	 * @param {Float64Array} values length parameterCount (see valuesFrom())
+	 * @param {ReturnType<TongueRig['createSurface']>} surface from createSurface()
+	 * @returns the surface
+	 */
+	evaluate( values, surface ) {
+
+		this.posedControls( values );
+		this.writeVertices();
+		const vertices = this.vertices;
+		const positions = surface.positions;
+		for ( let k = 0; k < vertices.length; k ++ ) positions[ k ] = vertices[ k ];
+		vertexNormals( vertices, this.index, this.normalSums, surface.normals );
+		return surface;
+
+	}
+
+	/** Steps 1 and 2: control points, coronal offsets and the hub, posed with the jaw. */
+	posedControls( values ) {
+
+		const points = this.points;
+		points.set( this.restPoints );
+		for ( let m = 0; m < this.sagittalMoveParameter.length; m ++ ) {
+
+			const k = this.sagittalMoveParameter[ m ];
+			const delta = values[ k ] - this.neutral[ k ];
+			const o = 2 * this.sagittalMovePoint[ m ];
+			points[ o ] += delta * this.sagittalMoveX[ m ];
+			points[ o + 1 ] += delta * this.sagittalMoveY[ m ];
+
+		}
+
+		const offsets = this.offsets;
+		offsets.fill( 0 );
+		for ( let m = 0; m < this.coronalMoveParameter.length; m ++ ) {
+
+			const k = this.coronalMoveParameter[ m ];
+			offsets[ this.coronalMoveTarget[ m ] ] += ( values[ k ] - this.neutral[ k ] ) * this.coronalMoveBy[ m ];
+
+		}
+
+		jawPose( values[ this.jawParameter ], this.jaw, this.pose );
+		applyJawPose( this.pose, points, this.pointCount, 2, this.pointJawWeights, points );
+		this.hub.set( this.hubRest );
+		const w = this.hubJawWeight;
+		const pose = this.pose;
+		const hx = this.hub[ 0 ];
+		const hy = this.hub[ 1 ];
+		this.hub[ 0 ] = hx + w * ( pose[ 0 ] * hx + pose[ 1 ] * hy + pose[ 3 ] - hx );
+		this.hub[ 1 ] = hy + w * ( pose[ 4 ] * hx + pose[ 5 ] * hy + pose[ 7 ] - hy );
+
+	}
+
+	/** Steps 3 to 5: stations, radial controls and the float64 vertices. */
+	writeVertices() {
+
+		const n = this.pointCount;
+		const c = this.controlCount;
+		const points = this.points;
+		const hx = this.hub[ 0 ];
+		const hy = this.hub[ 1 ];
+		const pole = this.poleHalfWidth;
+		for ( let i = 0; i < this.stationCount; i ++ ) {
+
+			let sx = 0;
+			let sy = 0;
+			for ( let k = 0; k < this.sagittalWidth; k ++ ) {
+
+				const weight = this.stationBasis[ i * this.sagittalWidth + k ];
+				const point = ( this.stationFirst[ i ] + k ) % n;
+				sx += weight * points[ 2 * point ];
+				sy += weight * points[ 2 * point + 1 ];
+
+			}
+
+			const dx = sx - hx;
+			const dy = sy - hy;
+			const radius = Math.sqrt( dx * dx + dy * dy );
+			this.radius[ i ] = radius;
+			this.direction[ 2 * i ] = dx / radius;
+			this.direction[ 2 * i + 1 ] = dy / radius;
+			const rest = this.restRadius[ i ];
+			const b0 = this.stationBlend[ i * SECTION_COUNT ];
+			const b1 = this.stationBlend[ i * SECTION_COUNT + 1 ];
+			const b2 = this.stationBlend[ i * SECTION_COUNT + 2 ];
+			for ( let k = 0; k < c; k ++ ) {
+
+				this.controls[ i * c + k ] = this.isPole[ k ] ? pole
+					: pole + ( rest - pole ) * this.stationRatios[ i * c + k ] + ( radius - rest ) * this.follow[ k ]
+						+ b0 * this.offsets[ k ] + b1 * this.offsets[ c + k ] + b2 * this.offsets[ 2 * c + k ];
+
+			}
+
+		}
+
+		const vertices = this.vertices;
+		vertices[ 0 ] = hx; vertices[ 1 ] = hy; vertices[ 2 ] = - pole;
+		vertices[ 3 ] = hx; vertices[ 4 ] = hy; vertices[ 5 ] = pole;
+		const width = this.coronalWidth;
+		for ( let i = 0; i < this.stationCount; i ++ ) {
+
+			const ex = this.direction[ 2 * i ];
+			const ey = this.direction[ 2 * i + 1 ];
+			const row = i * c;
+			for ( let j = 0; j < this.pageCount; j ++ ) {
+
+				let lambda = 0;
+				const first = row + this.pageFirst[ j ];
+				for ( let k = 0; k < width; k ++ ) lambda += this.pageBasis[ j * width + k ] * this.controls[ first + k ];
+				const planar = lambda * this.pageCos[ j ];
+				const o = 3 * ( 2 + i * this.pageCount + j );
+				vertices[ o ] = hx + planar * ex;
+				vertices[ o + 1 ] = hy + planar * ey;
+				vertices[ o + 2 ] = lambda * this.pageSin[ j ];
+
+			}
+
+		}
+
+	}
+
+}
+
+/**
+ * Triangles of the surface layout (Uint32Array, 3 per triangle): vertex 0 is the right pole, 1
+ * the left pole, ring vertex ( station i, page sample j ) is 2 + i * pageCount + j; winding
+ * ( i, j ) -> ( i + 1, j ) -> ( i, j + 1 ) is counter-clockwise seen from outside.
+ */
+export function surfaceTriangles( stationCount, pageCount ) {
+
+	const index = new Uint32Array( 3 * 2 * stationCount * pageCount );
+	let t = 0;
+	for ( let i = 0; i < stationCount; i ++ ) {
+
+		const here = 2 + i * pageCount;
+		const there = 2 + ( ( i + 1 ) % stationCount ) * pageCount;
+		index[ t ++ ] = 0; index[ t ++ ] = there; index[ t ++ ] = here;
+
+	}
+
+	for ( let i = 0; i < stationCount; i ++ ) {
+
+		const here = 2 + i * pageCount;
+		const there = 2 + ( ( i + 1 ) % stationCount ) * pageCount;
+		for ( let j = 0; j < pageCount - 1; j ++ ) {
+
+			index[ t ++ ] = here + j; index[ t ++ ] = there + j; index[ t ++ ] = there + j + 1;
+			index[ t ++ ] = here + j; index[ t ++ ] = there + j + 1; index[ t ++ ] = here + j + 1;
+
+		}
+
+	}
+
+	const last = pageCount - 1;
+	for ( let i = 0; i < stationCount; i ++ ) {
+
+		const here = 2 + i * pageCount;
+		const there = 2 + ( ( i + 1 ) % stationCount ) * pageCount;
+		index[ t ++ ] = here + last; index[ t ++ ] = there + last; index[ t ++ ] = 1;
+
+	}
+
+	return index;
+
+}
+
+/**
+ * Area-weighted unit vertex normals: each triangle adds ( b - a ) x ( c - a ) to its corners.
+ * @param {Float32Array|Float64Array} positions xyz per vertex
+ * @param {Uint32Array} index
+ * @param {Float64Array} sums scratch, same length as positions
+ * @param {Float32Array|Float64Array} target normals, same length as positions
+ * @returns target
+ */
+export function vertexNormals( positions, index, sums, target ) {
+
+	sums.fill( 0 );
+	for ( let t = 0; t < index.length; t += 3 ) {
+
+		const a = 3 * index[ t ];
+		const b = 3 * index[ t + 1 ];
+		const c = 3 * index[ t + 2 ];
+		const ux = positions[ b ] - positions[ a ];
+		const uy = positions[ b + 1 ] - positions[ a + 1 ];
+		const uz = positions[ b + 2 ] - positions[ a + 2 ];
+		const vx = positions[ c ] - positions[ a ];
+		const vy = positions[ c + 1 ] - positions[ a + 1 ];
+		const vz = positions[ c + 2 ] - positions[ a + 2 ];
+		const nx = uy * vz - uz * vy;
+		const ny = uz * vx - ux * vz;
+		const nz = ux * vy - uy * vx;
+		sums[ a ] += nx; sums[ a + 1 ] += ny; sums[ a + 2 ] += nz;
+		sums[ b ] += nx; sums[ b + 1 ] += ny; sums[ b + 2 ] += nz;
+		sums[ c ] += nx; sums[ c + 1 ] += ny; sums[ c + 2 ] += nz;
+
+	}
+
+	for ( let v = 0; v < sums.length; v += 3 ) {
+
+		// Math.sqrt, not Math.hypot: hypot guards against overflow we cannot have and is far slower.
+		const length = Math.sqrt( sums[ v ] * sums[ v ] + sums[ v + 1 ] * sums[ v + 1 ] + sums[ v + 2 ] * sums[ v + 2 ] );
+		const scale = length > 0 ? 1 / length : 0;
+		target[ v ] = sums[ v ] * scale;
+		target[ v + 1 ] = sums[ v + 1 ] * scale;
+		target[ v + 2 ] = sums[ v + 2 ] * scale;
+
+	}
+
+	return target;
+
+}
+
+/**
+ * Signed volume, mm^3, of a closed mesh wound counter-clockwise from outside, by the divergence
+ * theorem: the sum over triangles of a . ( b x c ) / 6.
+ * @param {Float32Array|Float64Array} positions
+ * @param {Uint32Array} index
+ * @returns {number}
+ */
+export function meshVolume( positions, index ) {
+
+	let sum = 0;
+	for ( let t = 0; t < index.length; t += 3 ) {
+
+		const a = 3 * index[ t ];
+		const b = 3 * index[ t + 1 ];
+		const c = 3 * index[ t + 2 ];
+		const bx = positions[ b ], by = positions[ b + 1 ], bz = positions[ b + 2 ];
+		const cx = positions[ c ], cy = positions[ c + 1 ], cz = positions[ c + 2 ];
+		sum += positions[ a ] * ( by * cz - bz * cy ) + positions[ a + 1 ] * ( bz * cx - bx * cz ) + positions[ a + 2 ] * ( bx * cy - by * cx );
+
+	}
+
+	return sum / 6;
+
+}
