@@ -64,6 +64,7 @@ class Liner:
     rmin, rmax : (nlat, nlon) bounds of the first-hit radius over each cell (+inf when none).
     offsets : (nlat * nlon + 1,) uint32, CSR offsets of each cell's triangles in ``cell_triangles``.
     cell_triangles : (k,) uint32 triangle indices, nearest possible hit first.
+    normals, plane_offsets : (m, 3), (m,) triangle planes n . x = c relative to O, c >= 0.
     """
 
     grid: LinerGrid
@@ -73,6 +74,8 @@ class Liner:
     rmax: np.ndarray
     offsets: np.ndarray
     cell_triangles: np.ndarray
+    normals: np.ndarray = None
+    plane_offsets: np.ndarray = None
 
 
 def plane_of_triangles(tri):
@@ -172,7 +175,8 @@ def build_liner(tri, step):
     shape = (grid.nlat, grid.nlon)
     liner = Liner(grid=grid, node_radius=None, kind=kind.reshape(shape),
                   rmin=rmin.reshape(shape), rmax=rmax.reshape(shape), offsets=offsets,
-                  cell_triangles=owner.astype(np.uint32))
+                  cell_triangles=owner.astype(np.uint32), normals=normals,
+                  plane_offsets=offsets_c)
     liner.node_radius = node_radii(liner, tri)
     return liner
 

@@ -35,12 +35,12 @@ def direction_angles(p):
 
 
 def angles_to_direction(theta, phi):
-    """Unit directions for longitudes ``theta`` and latitudes ``phi`` (same shape, radians).
+    """Unit directions for longitudes ``theta`` and latitudes ``phi`` (radians, broadcast).
 
     Returns (..., 3) float64.
     """
-    theta = np.asarray(theta, dtype=np.float64)
-    phi = np.asarray(phi, dtype=np.float64)
+    theta, phi = np.broadcast_arrays(np.asarray(theta, dtype=np.float64),
+                                     np.asarray(phi, dtype=np.float64))
     cos_phi = np.cos(phi)
     return np.stack([cos_phi * np.sin(theta), cos_phi * np.cos(theta), np.sin(phi)], axis=-1)
 

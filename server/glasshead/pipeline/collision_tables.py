@@ -37,10 +37,7 @@ from glasshead.constants import (
     VOXEL_NOT_OK,
     VOXEL_OK,
 )
-from glasshead.geometry.collision_exact import (
-    closest_points_on_triangles,
-    first_hits_from_origin,
-)
+from glasshead.geometry.collision_exact import closest_points_on_triangles, ray_triangle_hits
 from glasshead.geometry.collision_format import encode_tables
 from glasshead.geometry.liner import build_liner, plane_of_triangles
 from glasshead.geometry.spherical import angles_to_direction
@@ -51,6 +48,8 @@ TABLES_FILE = "collision-tables.bin"
 MIN_CLEARANCE_MM = 3.0
 #: Margin around the visible surface for the voxel box, mm.
 VOXEL_MARGIN_MM = 1.0
+#: The voxel box reaches this fraction of the palate's length behind the visible surface.
+VOXEL_BACK_REACH = 0.5
 #: Refinement levels for voxels that neither test settles (each level halves the size).
 VOXEL_REFINE_DEPTH = 2
 
@@ -76,15 +75,31 @@ def _validate(vertices, faces):
 
 
 def _check_origin(origin, tri):
-    t, _ = first_hits_from_origin(origin[None] + [[0.0, 1000.0, 0.0]], origin,
-                                  tri.reshape(-1, 3), np.arange(3 * len(tri)).reshape(-1, 3))
-    if not np.isfinite(t[0]):
-        raise ValueError(f"collision origin {origin.round(2).tolist()} does not see the palate "
-                         "(the ray straight up misses the maxilla)")
-    d = np.linalg.norm(closest_points_on_triangles(origin, tri[:, 0], tri[:, 1], tri[:, 2])
-                       - origin, axis=1)
-    if d.min() < MIN_CLEARANCE_MM:
-        raise ValueError(f"collision origin is {d.min():.2f} mm from the maxilla; it must be at "
+    """Refuse an O that is not inside the oral cavity looking at the oral side of the maxilla.
+
+    Rays from O over the upper half-space must mostly hit, and hit triangles whose normals face
+    O (the frame conversion leaves the maxilla wound with normals toward the oral cavity); O must
+    keep ``MIN_CLEARANCE_MM`` from every triangle.
+    """
+    rel = tri - origin
+    a, e1, e2 = rel[:, 0], rel[:, 1] - rel[:, 0], rel[:, 2] - rel[:, 0]
+    theta, phi = np.meshgrid(np.radians(np.arange(-75.0, 76.0, 15.0)),
+                             np.radians(np.arange(-60.0, 61.0, 15.0)))
+    d = angles_to_direction(theta.ravel(), phi.ravel())
+    t = ray_triangle_hits(d[:, None], a[None], e1[None], e2[None])
+    first = np.argmin(t, axis=1)
+    hit = np.isfinite(t[np.arange(len(d)), first])
+    normals = np.cross(e1, e2)[first[hit]]
+    facing = np.einsum("ij,ij->i", normals, d[hit]) < 0
+    if hit.mean() < 0.5 or facing.mean() < 0.9:
+        raise ValueError(
+            f"collision origin {origin.round(2).tolist()} does not see the palate from the oral "
+            f"cavity ({hit.mean():.0%} of upward rays hit, {facing.mean() if hit.any() else 0:.0%}"
+            " of them the oral side); is the maxilla upside down or wound inside out?")
+    gap = np.linalg.norm(closest_points_on_triangles(origin, tri[:, 0], tri[:, 1], tri[:, 2])
+                         - origin, axis=1).min()
+    if gap < MIN_CLEARANCE_MM:
+        raise ValueError(f"collision origin is {gap:.2f} mm from the maxilla; it must be at "
                          f"least {MIN_CLEARANCE_MM} mm inside the oral cavity")
 
 
@@ -116,6 +131,8 @@ def build_collision_tables(maxilla_vertices, maxilla_faces, out_dir,
     bounds_min = np.minimum(surface.min(axis=0), origin) - VOXEL_MARGIN_MM
     bounds_max = np.maximum(surface.max(axis=0), origin) + VOXEL_MARGIN_MM
     bounds_min[1] = origin[1]  # below the floor nothing needs a voxel
+    # The back of the tongue rises behind the hard palate; cover it so it is screened cheaply.
+    bounds_min[0] -= VOXEL_BACK_REACH * (bounds_max[0] - bounds_min[0])
     shape = (voxels, voxels, voxels)
     voxel_classes = classify_voxels(liner, origin, bounds_min, bounds_max, shape,
                                     depth=VOXEL_REFINE_DEPTH)

@@ -1,0 +1,197 @@
+// Collision correction in JS against the shared vectors (answered by the Python twin), against a
+// brute-force raycast over every triangle of the tables, and the loader's refusals.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { createHash } from 'node:crypto';
+import { readFileSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+import * as constants from '../../web/src/core/constants.js';
+import {
+	FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED, COLLISION_TOL,
+} from '../../web/src/core/constants.js';
+import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../../web/src/core/collision.js';
+import { CollisionTablesError, crc32, parseCollisionTables } from '../../web/src/core/tables.js';
+
+const VECTORS_DIR = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
+const CASES = JSON.parse( readFileSync( join( VECTORS_DIR, 'collision-correct.json' ), 'utf8' ) );
+const CONSTANTS = JSON.parse( readFileSync( join( VECTORS_DIR, 'collision-constants.json' ), 'utf8' ) );
+const FILE = readFileSync( join( VECTORS_DIR, CASES.tables ) );
+const TABLES = parseCollisionTables( FILE );
+
+function fileCopy() {
+
+	return new Uint8Array( FILE.buffer.slice( FILE.byteOffset, FILE.byteOffset + FILE.byteLength ) );
+
+}
+
+test( 'the vector tables are the file the vectors were computed on', () => {
+
+	assert.equal( createHash( 'sha256' ).update( FILE ).digest( 'hex' ), CASES.tables_sha256 );
+
+} );
+
+test( 'collision constants agree with the Python constants', () => {
+
+	for ( const [ name, value ] of Object.entries( CONSTANTS.expected ) ) {
+
+		assert.deepEqual( constants[ name ], value, name );
+
+	}
+
+} );
+
+test( 'crc32 matches zlib on a known string', () => {
+
+	assert.equal( crc32( new TextEncoder().encode( 'The quick brown fox jumps over the lazy dog' ) ), 0x414FA339 );
+
+} );
+
+for ( const vector of CASES.cases ) {
+
+	test( `vector: ${ vector.description }`, () => {
+
+		const input = vector.input.vertices, expected = vector.expected;
+		const n = input.length;
+		const positions = new Float64Array( input.flat() );
+		const flags = new Uint8Array( n ).fill( 255 );
+		const stats = new Int32Array( 3 );
+		const corrected = correctVertices( positions, n, TABLES, flags, stats );
+		assert.deepEqual( Array.from( flags ), expected.flags );
+		assert.equal( corrected, expected.counts.corrected );
+		assert.deepEqual( Array.from( stats ), [ expected.counts.screened, expected.counts.tested, expected.counts.corrected ] );
+		for ( let i = 0; i < n; i ++ ) {
+
+			for ( let k = 0; k < 3; k ++ ) {
+
+				const got = positions[ 3 * i + k ], want = expected.vertices[ i ][ k ];
+				assert.ok( Math.abs( got - want ) <= 1e-9, `vertex ${ i }[${ k }]: got ${ got }, expected ${ want }` );
+				if ( expected.flags[ i ] !== FLAG_CORRECTED ) assert.equal( got, input[ i ][ k ], 'an untouched vertex is bit-identical' );
+
+			}
+
+		}
+
+		// Float32 positions, as the browser holds them, agree within the shared tolerance.
+		const positions32 = new Float32Array( input.flat() );
+		const flags32 = new Uint8Array( n );
+		correctVertices( positions32, n, TABLES, flags32, null );
+		assert.deepEqual( Array.from( flags32 ), expected.flags );
+		for ( let i = 0; i < 3 * n; i ++ ) assert.ok( Math.abs( positions32[ i ] - expected.vertices[ Math.floor( i / 3 ) ][ i % 3 ] ) <= CASES.tolerance_mm );
+
+	} );
+
+}
+
+for ( const refusal of CASES.refusals ) {
+
+	test( `refusal: ${ refusal.description }`, () => {
+
+		let bytes = fileCopy();
+		if ( refusal.input.patch ) {
+
+			const { offset, bytes: patch } = refusal.input.patch;
+			bytes.set( patch, offset < 0 ? bytes.length + offset : offset );
+
+		}
+
+		if ( refusal.input.truncate !== undefined ) bytes = bytes.slice( 0, refusal.input.truncate );
+		assert.throws( () => parseCollisionTables( bytes ), ( error ) => error instanceof CollisionTablesError && error.message.includes( refusal.expected.error ) );
+
+	} );
+
+}
+
+// Brute force: the first hit from O over every triangle of the tables (two-sided Moller-Trumbore).
+function exactHit( px, py, pz ) {
+
+	const tri = TABLES.triangles;
+	let best = Infinity;
+	for ( let o = 0; o < tri.length; o += 9 ) {
+
+		const [ ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z ] = tri.subarray( o, o + 9 );
+		const hx = py * e2z - pz * e2y, hy = pz * e2x - px * e2z, hz = px * e2y - py * e2x;
+		const det = e1x * hx + e1y * hy + e1z * hz;
+		if ( det === 0 ) continue;
+		const u = ( - ax * hx - ay * hy - az * hz ) / det;
+		const qx = - ay * e1z + az * e1y, qy = - az * e1x + ax * e1z, qz = - ax * e1y + ay * e1x;
+		const v = ( px * qx + py * qy + pz * qz ) / det;
+		const t = ( e2x * qx + e2y * qy + e2z * qz ) / det;
+		if ( u >= - 1e-9 && v >= - 1e-9 && u + v <= 1 + 1e-9 && t > 0 && t < best ) best = t;
+
+	}
+
+	return best;
+
+}
+
+test( 'seeded random points: moved exactly when a brute-force ray from O crosses the maxilla, and onto it', () => {
+
+	const seed = 1998;
+	let state = seed;
+	const random = () => ( ( state = ( state * 1103515245 + 12345 ) % 2147483648 ) / 2147483648 );
+	const min = TABLES.header.voxels.bounds.min, max = TABLES.header.voxels.bounds.max;
+	const [ ox, oy, oz ] = TABLES.origin;
+	const n = 3000;
+	const positions = new Float64Array( 3 * n );
+	for ( let i = 0; i < 3 * n; i ++ ) {
+
+		const k = i % 3, span = max[ k ] - min[ k ];
+		positions[ i ] = min[ k ] - 0.2 * span + 1.4 * span * random();
+
+	}
+
+	const before = positions.slice();
+	const flags = new Uint8Array( n );
+	correctVertices( positions, n, TABLES, flags, null );
+	let inside = 0;
+	for ( let i = 0; i < n; i ++ ) {
+
+		const px = before[ 3 * i ] - ox, py = before[ 3 * i + 1 ] - oy, pz = before[ 3 * i + 2 ] - oz;
+		const t = exactHit( px, py, pz );
+		const r = Math.hypot( px, py, pz );
+		const moved = flags[ i ] === FLAG_CORRECTED;
+		if ( Math.abs( t - 1 ) * r < COLLISION_TOL.surface ) continue; // on the surface: either answer
+		assert.equal( moved, t < 1, `seed ${ seed }, point ${ i }: moved ${ moved }, exact t ${ t }` );
+		if ( moved ) {
+
+			inside ++;
+			const q = [ positions[ 3 * i ] - ox, positions[ 3 * i + 1 ] - oy, positions[ 3 * i + 2 ] - oz ];
+			const gap = Math.abs( Math.hypot( ...q ) - t * r );
+			assert.ok( gap < COLLISION_TOL.length, `seed ${ seed }, point ${ i } lands on the first hit (off by ${ gap } mm)` );
+
+		} else {
+
+			assert.ok( flags[ i ] === FLAG_SCREENED || flags[ i ] === FLAG_TESTED );
+			for ( let k = 0; k < 3; k ++ ) assert.equal( positions[ 3 * i + k ], before[ 3 * i + k ] );
+
+		}
+
+	}
+
+	assert.ok( inside > 100, `seed ${ seed }: the sample reaches inside the maxilla (${ inside } points)` );
+
+} );
+
+test( 'stats and flags may be null, and the stats slots are in a fixed order', () => {
+
+	const positions = new Float64Array( CASES.cases.at( - 1 ).input.vertices.flat() );
+	const n = positions.length / 3;
+	const stats = new Int32Array( 3 );
+	const corrected = correctVertices( positions.slice(), n, TABLES, null, stats );
+	assert.equal( stats[ STAT_SCREENED ], n );
+	assert.ok( stats[ STAT_TESTED ] >= stats[ STAT_CORRECTED ] );
+	assert.equal( stats[ STAT_CORRECTED ], corrected );
+	assert.equal( correctVertices( positions.slice(), n, TABLES, null, null ), corrected );
+
+} );
+
+test( 'a buffer at an unaligned offset is copied, not misread', () => {
+
+	const shifted = new Uint8Array( FILE.length + 3 );
+	shifted.set( FILE, 3 );
+	const tables = parseCollisionTables( shifted.subarray( 3 ) );
+	assert.deepEqual( Array.from( tables.voxels ), Array.from( TABLES.voxels ) );
+
+} );

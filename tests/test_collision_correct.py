@@ -1,0 +1,124 @@
+"""Collision correction: the shared vectors, and exactness on real tongue poses.
+
+Exactness is measured against the definition of inside: P is inside the palate or teeth when the
+ray from O toward P crosses the maxilla before P, computed here by Embree (trimesh) over the full
+scene maxilla, independently of the tables.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from collision_support import (
+    ExactRays,
+    badin_mesh,
+    random_poses,
+    scene_maxilla,
+    scene_tables,
+    tongue_rig,
+)
+from glasshead.constants import COLLISION_TOL, FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED
+from glasshead.geometry import collision_vectors
+from glasshead.geometry.collision import correct_vertices
+from glasshead.geometry.collision_format import decode_tables
+
+VECTORS = json.loads((collision_vectors.VECTORS_DIR / collision_vectors.CASES_NAME).read_text())
+TABLES_BYTES = (collision_vectors.VECTORS_DIR / collision_vectors.TABLES_NAME).read_bytes()
+VECTOR_TABLES = decode_tables(TABLES_BYTES)
+#: Seeded random poses checked here; bench/collision_exactness.py runs 1,000.
+POSES = 200
+SEED = 1998
+
+
+def test_vector_files_are_well_formed_with_unique_descriptions():
+    descriptions = [c["description"] for c in VECTORS["cases"] + VECTORS["refusals"]]
+    assert len(descriptions) == len(set(descriptions))
+    for case in VECTORS["cases"]:
+        n = len(case["input"]["vertices"])
+        assert n > 0 and len(case["expected"]["flags"]) == n
+        assert case["expected"]["counts"]["screened"] == n
+
+
+def test_vector_files_are_up_to_date_with_the_python_reference():
+    data, document, consts = collision_vectors.build_all()
+    assert data == TABLES_BYTES, "run python -m glasshead.geometry.collision_vectors"
+    assert document == VECTORS
+    on_disk = json.loads((collision_vectors.VECTORS_DIR
+                          / collision_vectors.CONSTANTS_NAME).read_text())
+    assert consts == on_disk
+
+
+@pytest.mark.parametrize("case", VECTORS["cases"], ids=lambda c: c["description"])
+def test_python_twin_answers_each_vector(case):
+    out, flags, counts = correct_vertices(case["input"]["vertices"], VECTOR_TABLES)
+    assert flags.tolist() == case["expected"]["flags"]
+    assert counts == case["expected"]["counts"]
+    np.testing.assert_allclose(out, case["expected"]["vertices"], rtol=0, atol=1e-9)
+
+
+def test_vectors_cover_every_flag_and_a_whole_tongue():
+    flags = {f for c in VECTORS["cases"] for f in c["expected"]["flags"]}
+    assert flags == {FLAG_SCREENED, FLAG_TESTED, FLAG_CORRECTED}
+    assert max(len(c["input"]["vertices"]) for c in VECTORS["cases"]) > 300
+
+
+def test_untouched_vertices_are_returned_bit_for_bit():
+    tongue, _ = badin_mesh("tongue")
+    points = tongue + [6.0, 14.0, 1.5]
+    out, flags, _ = correct_vertices(points, VECTOR_TABLES)
+    keep = flags != FLAG_CORRECTED
+    assert keep.any() and (~keep).any()
+    assert np.array_equal(out[keep], points[keep])
+
+
+@pytest.mark.parametrize("bad, message", [
+    (np.zeros((4, 2)), r"shape \(n, 3\)"),
+    (np.zeros(3), r"shape \(n, 3\)"),
+    (np.array([[0.0, np.nan, 0.0]]), "finite"),
+    (np.array([[0.0, np.inf, 0.0]]), "finite"),
+])
+def test_malformed_vertices_are_refused(bad, message):
+    with pytest.raises(ValueError, match=message):
+        correct_vertices(bad, VECTOR_TABLES)
+
+
+@pytest.fixture(scope="module")
+def scene():
+    tables = scene_tables()
+    v, f = scene_maxilla()
+    return {"tables": tables, "rays": ExactRays(v, f, tables.header["origin"]), "rig": tongue_rig()}
+
+
+def test_the_tables_were_built_from_the_maxilla_the_scene_shows(scene):
+    v, f = scene_maxilla()
+    source = scene["tables"].header["source"]
+    assert (source["vertices"], source["faces"]) == (len(v), len(f))
+
+
+def test_random_tongue_poses_end_no_deeper_than_a_tenth_of_a_millimetre_and_spare_the_innocent(
+        scene):
+    tables, rays, rig = scene["tables"], scene["rays"], scene["rig"]
+    origin = np.array(tables.header["origin"])
+    tol = COLLISION_TOL
+    corrected_per_pose, worst = [], 0.0
+    for k, values in enumerate(random_poses(rig, POSES, SEED)):
+        points = rig.vertices(values)
+        out, flags, counts = correct_vertices(points, tables)
+        first = rays.radius(points)
+        r = np.linalg.norm(points - origin, axis=1)
+        outside = r < first - tol.surface
+        inside = r > first + tol.surface
+        moved = np.any(out != points, axis=1)
+        where = f"seed {SEED}, pose {k}"
+        assert not np.any(moved & outside), f"{where}: an innocent vertex was moved"
+        assert not np.any(inside & ~moved), f"{where}: a vertex inside was left there"
+        np.testing.assert_array_equal(moved, flags == FLAG_CORRECTED)
+        # Corrected vertices sit on the first surface along their own ray from O.
+        after = np.linalg.norm(out[moved] - origin, axis=1)
+        depth = after - rays.radius(out[moved])
+        worst = max(worst, float(depth.max(initial=0.0)))
+        np.testing.assert_allclose(after, first[moved], atol=1e-4, err_msg=where)
+        corrected_per_pose.append(counts["corrected"])
+    assert worst <= tol.depth
+    assert sum(corrected_per_pose) > POSES, "the poses must actually press into the palate"
