@@ -22,6 +22,7 @@ import { LIP_RENDER_ORDER, lipOpacity, SKIN_RENDER_ORDER, skinPassState } from '
 import { SectionOutline } from './SectionOutline.js';
 import { colorJawVertices, lowestY } from './jawColors.js';
 import { weldNormals } from '../core/weldNormals.js';
+import { buildOpeningMeshes } from './FaceOpenings.js';
 
 /** Clipping plane offset that keeps everything (cutaway off) without recompiling shaders. */
 const NO_CUT = 1e6;
@@ -126,6 +127,14 @@ export class Head {
 			const mesh = new Mesh( part.geometry, this.skinMaterials[ pass ] );
 			mesh.name = `${ part.name }:${ pass }`;
 			mesh.userData.skinPass = pass;
+			part.meshes.push( mesh );
+			part.group.add( mesh );
+
+		}
+
+		for ( const mesh of buildOpeningMeshes( part.geometry ) ) {
+
+			mesh.material.clippingPlanes = [ this.clipPlane ];
 			part.meshes.push( mesh );
 			part.group.add( mesh );
 
@@ -249,7 +258,24 @@ export class Head {
 			for ( const mesh of part.meshes ) {
 
 				const pass = mesh.userData.skinPass;
-				if ( pass ) {
+				if ( mesh.userData.opening ) {
+
+					// Eyes and nostrils belong to the skin: they fade and disappear with it.
+					const material = mesh.material;
+					if ( material.transparent !== state.transparent ) {
+
+						material.transparent = state.transparent;
+						material.needsUpdate = true;
+
+					}
+
+					material.opacity = state.opacity;
+					material.depthWrite = state.depthWrite;
+					material.userData.section.sectionOn.value = this.cutaway ? 1 : 0;
+					mesh.renderOrder = SKIN_RENDER_ORDER.front;
+					mesh.visible = state.visible;
+
+				} else if ( pass ) {
 
 					mesh.renderOrder = SKIN_RENDER_ORDER[ pass ];
 					if ( pass === 'back' ) mesh.visible = state.visible;
@@ -322,7 +348,14 @@ export class Head {
 		for ( const part of this.parts.values() ) {
 
 			part.geometry.dispose();
-			for ( const mesh of part.meshes ) if ( ! mesh.userData.skinPass ) mesh.material.dispose();
+			for ( const mesh of part.meshes ) {
+
+				if ( mesh.userData.skinPass ) continue;
+				mesh.material.dispose();
+				if ( mesh.geometry !== part.geometry ) mesh.geometry.dispose();
+
+			}
+
 			part.outline.geometry.dispose();
 
 		}

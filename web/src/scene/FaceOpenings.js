@@ -1,0 +1,144 @@
+// Eyes and nostrils: the face skin has openings there, which would let the viewer look straight
+// into the hollow head. Each is closed by a patch: the eyes by a dome painted as an eye (white,
+// iris, pupil, shadowed under the lids), the nostrils by a dark dimple.
+//
+// Which opening is which: openings crossing the mid-sagittal plane (the mouth slit, a neck rim) and
+// the largest one (the rim of the face mask) are left open; of the rest, the two highest that lie
+// on opposite sides of the midline are the eyes, and the others are nostrils.
+
+import { BufferAttribute, BufferGeometry, Color, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
+import { boundaryLoops, domePatch, loopFrame } from '../core/openings.js';
+import { addSectionShading, TISSUE_COLORS } from './materials.js';
+
+/** Eye proportions, in mm and as fractions of the opening's mean radius. */
+export const EYE = Object.freeze( {
+	irisRadius: 5.6, // mm; a human iris is about 11 to 12 mm across
+	pupilRadius: 2.2, // mm
+	bulge: 0.3, // of the opening's radius: the cornea's dome
+	sclera: '#f1ece4',
+	iris: '#5b6f7c',
+	pupil: '#141414',
+	lidShadow: '#7b5a50',
+} );
+
+/**
+ * Find the openings of a skin geometry to close. Returns [{ loop, frame, kind: 'eye'|'nostril' }].
+ */
+export function classifyOpenings( positions, index ) {
+
+	const loops = boundaryLoops( index ).filter( ( loop ) => loop.length >= 3 ).map( ( loop ) => ( { loop, frame: loopFrame( positions, loop ) } ) );
+	if ( loops.length === 0 ) return [];
+	const largest = loops.reduce( ( a, b ) => ( b.frame.perimeter > a.frame.perimeter ? b : a ) );
+	const closable = loops.filter( ( o ) => o !== largest && ( o.frame.minZ > 0 || o.frame.maxZ < 0 ) );
+	closable.sort( ( a, b ) => b.frame.centre[ 1 ] - a.frame.centre[ 1 ] );
+
+	const eyes = [];
+	for ( const candidate of closable ) {
+
+		if ( eyes.length === 2 ) break;
+		if ( eyes.length === 0 || Math.sign( eyes[ 0 ].frame.centre[ 2 ] ) !== Math.sign( candidate.frame.centre[ 2 ] ) ) eyes.push( candidate );
+
+	}
+
+	return closable.map( ( o ) => ( { ...o, kind: eyes.includes( o ) && eyes.length === 2 ? 'eye' : 'nostril' } ) );
+
+}
+
+/**
+ * Normals of a sphere behind the opening (its centre 1.3 mean radii back along the normal), so the
+ * eye is shaded like a ball even where the opening's rim is uneven.
+ */
+function eyeballNormals( positions, frame ) {
+
+	const { centre, normal, meanRadius } = frame;
+	const depth = 1.3 * meanRadius;
+	const ball = centre.map( ( c, k ) => c - normal[ k ] * depth );
+	const normals = new Float32Array( positions.length );
+	for ( let i = 0; i < positions.length; i += 3 ) {
+
+		const d = [ positions[ i ] - ball[ 0 ], positions[ i + 1 ] - ball[ 1 ], positions[ i + 2 ] - ball[ 2 ] ];
+		const length = Math.hypot( ...d ) || 1;
+		for ( let k = 0; k < 3; k ++ ) normals[ i + k ] = d[ k ] / length;
+
+	}
+
+	return normals;
+
+}
+
+/** Material that paints the eye dome from its per-vertex `eyeCoord` (u, v in mm; s out to the lid). */
+function createEyeMaterial() {
+
+	const material = addSectionShading( new MeshStandardMaterial( { color: '#ffffff', roughness: 0.25, side: DoubleSide } ), { sectionColor: TISSUE_COLORS.skinCut } );
+	const sectionShading = material.onBeforeCompile;
+	const colors = {
+		uSclera: { value: new Color( EYE.sclera ) },
+		uIris: { value: new Color( EYE.iris ) },
+		uPupil: { value: new Color( EYE.pupil ) },
+		uLid: { value: new Color( EYE.lidShadow ) },
+	};
+	material.onBeforeCompile = ( shader, renderer ) => {
+
+		sectionShading( shader, renderer );
+		Object.assign( shader.uniforms, colors );
+		shader.vertexShader = shader.vertexShader
+			.replace( '#include <common>', '#include <common>\nattribute vec3 eyeCoord;\nvarying vec3 vEyeCoord;' )
+			.replace( '#include <begin_vertex>', '#include <begin_vertex>\nvEyeCoord = eyeCoord;' );
+		shader.fragmentShader = shader.fragmentShader
+			.replace( '#include <common>', `#include <common>
+varying vec3 vEyeCoord;
+uniform vec3 uSclera, uIris, uPupil, uLid;` )
+			.replace( '#include <color_fragment>', `#include <color_fragment>
+{
+	float r = length( vEyeCoord.xy );
+	float edge = fwidth( r ) + 0.15;
+	vec3 eye = mix( uIris, uSclera, smoothstep( ${ EYE.irisRadius.toFixed( 2 ) } - edge, ${ EYE.irisRadius.toFixed( 2 ) } + edge, r ) );
+	eye = mix( eye, uIris * 0.55, smoothstep( ${ ( EYE.irisRadius - 1.2 ).toFixed( 2 ) }, ${ EYE.irisRadius.toFixed( 2 ) }, r ) * ( 1.0 - step( ${ EYE.irisRadius.toFixed( 2 ) }, r ) ) );
+	eye = mix( uPupil, eye, smoothstep( ${ EYE.pupilRadius.toFixed( 2 ) } - edge, ${ EYE.pupilRadius.toFixed( 2 ) } + edge, r ) );
+	// The lids shade the eye's rim.
+	eye = mix( eye, uLid, smoothstep( 0.65, 1.0, vEyeCoord.z ) * 0.85 );
+	diffuseColor.rgb *= eye;
+}` );
+
+	};
+
+	material.customProgramCacheKey = () => 'glasshead-eye';
+	return material;
+
+}
+
+function createNostrilMaterial() {
+
+	return addSectionShading( new MeshStandardMaterial( { color: TISSUE_COLORS.skinCavity, roughness: 0.9, side: DoubleSide } ), { sectionColor: TISSUE_COLORS.skinCut } );
+
+}
+
+/**
+ * Meshes closing the openings of a skin geometry (indexed, positions in mm). Each mesh has
+ * userData.opening = 'eye' | 'nostril'. Returns [] when the geometry has no closable openings.
+ */
+export function buildOpeningMeshes( geometry ) {
+
+	if ( ! geometry.index ) return [];
+	const positions = geometry.getAttribute( 'position' ).array;
+	const openings = classifyOpenings( positions, geometry.index.array );
+	const materials = { eye: null, nostril: null };
+	return openings.map( ( { loop, frame, kind } ) => {
+
+		const bulge = kind === 'eye' ? EYE.bulge * frame.meanRadius : - 0.6 * frame.meanRadius;
+		const patch = domePatch( positions, loop, frame, { rings: kind === 'eye' ? 10 : 4, bulge } );
+		const patchGeometry = new BufferGeometry();
+		patchGeometry.setAttribute( 'position', new BufferAttribute( patch.positions, 3 ) );
+		patchGeometry.setAttribute( 'eyeCoord', new BufferAttribute( patch.coords, 3 ) );
+		patchGeometry.setIndex( new BufferAttribute( patch.index, 1 ) );
+		if ( kind === 'eye' ) patchGeometry.setAttribute( 'normal', new BufferAttribute( eyeballNormals( patch.positions, frame ), 3 ) );
+		else patchGeometry.computeVertexNormals();
+		materials[ kind ] ??= kind === 'eye' ? createEyeMaterial() : createNostrilMaterial();
+		const mesh = new Mesh( patchGeometry, materials[ kind ] );
+		mesh.name = kind;
+		mesh.userData.opening = kind;
+		return mesh;
+
+	} );
+
+}
