@@ -349,20 +349,23 @@ console.log( `Collision: ${ POSES } seeded tongue poses (seed ${ SEED }), ${ n }
 const exact = judge( ours );
 const plain = judge( paperLiner );
 const oursPerPose = timeMethod( ours, POSES, ROUNDS );
+const raycastPerPose = timeMethod( raycastBVH, POSES, 1 );
 const contact = oursPerPose.filter( ( _, p ) => exact.corrected[ p ] > 0 );
 const results = [
 	[ 'ours: voxel table + exact liner', median( oursPerPose ), POSES ],
 	[ 'ours, frames with contact only', median( contact ), contact.length ],
 	[ 'paper: plain bilinear liner', median( timeMethod( paperLiner, POSES, ROUNDS ) ), POSES ],
 	[ '(a) closest triangle, brute force', median( timeMethod( projectBruteForce, SLOW_POSES, 0 ) ), SLOW_POSES ],
-	[ '(b) three-mesh-bvh closestPointToPoint', median( timeMethod( projectBVH, POSES, 1 ) ), POSES ],
-	[ '(c) three-mesh-bvh raycastFirst from O', median( timeMethod( raycastBVH, POSES, 1 ) ), POSES ],
+	[ '(b) three-mesh-bvh closestPointToPoint', median( timeMethod( projectBVH, POSES, 0 ) ), POSES ],
+	[ '(c) three-mesh-bvh raycastFirst from O', median( raycastPerPose ), POSES ],
+	[ '(c), frames with contact only', median( raycastPerPose.filter( ( _, p ) => exact.corrected[ p ] > 0 ) ), contact.length ],
 ];
 const oursMs = results[ 0 ][ 1 ];
-console.log( '\nmethod                                     median ms/frame   poses   ours faster by' );
+console.log( '\nmethod                                     median ms/frame   poses   ours faster by (contact rows: vs ours on contact)' );
 for ( const [ name, ms, count ] of results ) {
 
-	console.log( `${ name.padEnd( 42 ) } ${ ms.toFixed( 4 ).padStart( 14 ) } ${ String( count ).padStart( 7 ) }   ${ name.startsWith( 'ours' ) ? '' : ( ms / oursMs ).toFixed( 1 ) + 'x' }` );
+	const versus = name.includes( 'contact' ) ? results[ 1 ][ 1 ] : oursMs;
+	console.log( `${ name.padEnd( 42 ) } ${ ms.toFixed( 4 ).padStart( 14 ) } ${ String( count ).padStart( 7 ) }   ${ name.startsWith( 'ours' ) ? '' : ( ms / versus ).toFixed( 1 ) + 'x' }` );
 
 }
 
@@ -372,8 +375,10 @@ console.log( `ours against (c): worst depth after correction ${ exact.worst.toEx
 console.log( `paper liner against (c): worst depth ${ plain.worst.toFixed( 2 ) } mm, innocent vertices moved ${ plain.innocent }, vertices left inside ${ plain.missed }` );
 
 const ratioC = results[ 5 ][ 1 ] / oursMs;
+const ratioContact = results[ 6 ][ 1 ] / results[ 1 ][ 1 ];
 const isExact = exact.worst <= COLLISION_TOL.depth && exact.innocent === 0 && exact.missed === 0;
 console.log( `\ngoals: median ${ oursMs.toFixed( 4 ) } ms < ${ GOAL_MS } ms: ${ oursMs < GOAL_MS ? 'yes' : 'NO' }; ` +
-	`${ ratioC.toFixed( 1 ) }x faster than (c) >= ${ GOAL_RATIO }x: ${ ratioC >= GOAL_RATIO ? 'yes' : 'NO' }; ` +
+	`${ ratioC.toFixed( 1 ) }x faster than (c) >= ${ GOAL_RATIO }x: ${ ratioC >= GOAL_RATIO ? 'yes' : 'NO' } ` +
+	`(${ ratioContact.toFixed( 1 ) }x on frames with contact); ` +
 	`exact: ${ isExact ? 'yes' : 'NO' }` );
 process.exit( isExact ? 0 : 1 );
