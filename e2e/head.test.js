@@ -226,4 +226,52 @@ describe( 'the head view', { timeout: 240_000 }, () => {
 
 	} );
 
+	test( 'a failing anatomy request shows a clear error instead of a blank page', async () => {
+
+		const failing = await openPage( browser, { width: 800, height: 600 } );
+		try {
+
+			await failing.route( '**/api/v1/anatomy', ( route ) => route.fulfill( {
+				status: 503, contentType: 'application/json',
+				body: JSON.stringify( { detail: 'anatomy not built: run `glasshead build`' } ),
+			} ) );
+			await failing.goto( `${ server.baseUrl }/#/` );
+			const alert = failing.getByRole( 'alert' );
+			await alert.waitFor( { state: 'visible', timeout: 30_000 } );
+			assert.match( await alert.textContent(), /HTTP 503: anatomy not built: run `glasshead build`/ );
+			const state = await readDebug( failing );
+			assert.equal( state.loaded, false );
+			assert.match( state.error, /anatomy not built/ );
+			assert.equal( await failing.getByRole( 'button', { name: 'Cutaway' } ).isDisabled(), true );
+
+		} finally {
+
+			await failing.context().close();
+
+		}
+
+	} );
+
+	test( 'a mesh that fails to load is named in the error message', async () => {
+
+		const failing = await openPage( browser, { width: 800, height: 600 } );
+		const broken = anatomy.meshes.find( ( mesh ) => mesh.scene );
+		try {
+
+			await failing.route( ( url ) => url.pathname === new URL( broken.url, server.baseUrl ).pathname, ( route ) => route.fulfill( { status: 404, body: 'gone' } ) );
+			await failing.goto( `${ server.baseUrl }/#/` );
+			const alert = failing.getByRole( 'alert' );
+			await alert.waitFor( { state: 'visible', timeout: 60_000 } );
+			const text = await alert.textContent();
+			assert.ok( text.includes( `"${ broken.name }"` ), `the error does not name ${ broken.name }: ${ text }` );
+			assert.equal( ( await readDebug( failing ) ).loaded, false );
+
+		} finally {
+
+			await failing.context().close();
+
+		}
+
+	} );
+
 } );

@@ -14,7 +14,6 @@ import {
 	Mesh,
 	MeshBasicMaterial,
 	Plane,
-	Sphere,
 	Vector3,
 } from 'three';
 import { createTissueMaterial, tissueOf, TISSUE_COLORS } from './materials.js';
@@ -313,10 +312,18 @@ export class Head {
 
 	}
 
-	/** Bounding sphere of everything loaded (world frame). */
-	boundingSphere( target = new Sphere() ) {
+	/** Bounding box of the anatomy meshes (world frame; section outlines excluded). */
+	boundingBox( target = new Box3() ) {
 
-		return new Box3().setFromObject( this.group ).getBoundingSphere( target );
+		target.makeEmpty();
+		for ( const part of this.parts.values() ) {
+
+			part.geometry.computeBoundingBox();
+			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
+
+		}
+
+		return target;
 
 	}
 

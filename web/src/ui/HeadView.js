@@ -5,7 +5,8 @@ import { registerDebug } from '../debug.js';
 import { Head } from '../scene/Head.js';
 import { loadAnatomy } from '../scene/loadAnatomy.js';
 import { Viewer } from '../scene/Viewer.js';
-import { viewPose } from '../scene/viewPresets.js';
+import { Vector3 } from 'three';
+import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { Controls, h } from './Controls.js';
 
 export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, view: 'three-quarter' } );
@@ -109,14 +110,14 @@ export class HeadView {
 	/** Camera poses of the named views, framing the whole head. */
 	fitViews() {
 
-		const sphere = this.head.boundingSphere();
-		const center = sphere.center.toArray();
+		// The head's largest extent, not its bounding sphere (which would leave the head small in
+		// every view): the camera turns about the vertical, and the head is taller than it is deep.
+		const box = this.head.boundingBox();
+		const size = box.getSize( new Vector3() );
+		const radius = 0.52 * Math.max( size.x, size.y, size.z );
+		const center = box.getCenter( new Vector3() ).toArray();
 		this.poses = {};
-		for ( const name of [ 'front', 'profile', 'three-quarter' ] ) {
-
-			this.poses[ name ] = viewPose( name, center, sphere.radius, this.viewer.camera.fov, Math.min( 1.4, this.viewer.aspect ) );
-
-		}
+		for ( const name of VIEW_NAMES ) this.poses[ name ] = viewPose( name, center, radius, this.viewer.camera.fov, this.viewer.aspect );
 
 	}
 
