@@ -22,6 +22,8 @@ missing) the cells' exact triangle tests take over, so the correction is exact e
 """
 
 import hashlib
+import json
+import sys
 import time
 from pathlib import Path
 
@@ -38,12 +40,14 @@ from glasshead.constants import (
     VOXEL_OK,
 )
 from glasshead.geometry.collision_exact import closest_points_on_triangles, ray_triangle_hits
-from glasshead.geometry.collision_format import encode_tables
+from glasshead.geometry.collision_format import CollisionTablesError, decode_header, encode_tables
 from glasshead.geometry.liner import build_liner, plane_of_triangles
 from glasshead.geometry.spherical import angles_to_direction
 from glasshead.geometry.voxels import classify_voxels
 
 TABLES_FILE = "collision-tables.bin"
+#: Bumped whenever the builder's output changes for the same maxilla, so stale tables rebuild.
+BUILDER_VERSION = 1
 #: Nearest O may be to the maxilla, mm.
 MIN_CLEARANCE_MM = 3.0
 #: Margin around the visible surface for the voxel box, mm.
@@ -185,6 +189,7 @@ def build_collision_tables(maxilla_vertices, maxilla_faces, out_dir,
         "planes_layout": "unit normal n, c = n . a >= 0 relative to O (4 float32)",
         "source": {"vertices": len(v), "faces": len(f),
                    "sha256": hashlib.sha256(v.tobytes() + f.tobytes()).hexdigest()},
+        "builder": BUILDER_VERSION,
         "stats": stats,
     }
     data = encode_tables(header, arrays)
@@ -194,3 +199,64 @@ def build_collision_tables(maxilla_vertices, maxilla_faces, out_dir,
     stats["build_seconds"] = round(time.perf_counter() - started, 2)
     return {"file": TABLES_FILE, "bytes": len(data), "sha256": hashlib.sha256(data).hexdigest(),
             "origin": origin.tolist(), "header": header, "stats": stats}
+
+
+def load_scene_maxilla(assets_dir):
+    """(vertices (n, 3) float64, faces (m, 3) int64) of the maxilla the scene shows: the
+    ``maxilla`` entry with ``scene: true`` in ``assets_dir/manifest.json``."""
+    import trimesh
+
+    assets = Path(assets_dir)
+    manifest_path = assets / "manifest.json"
+    if not manifest_path.is_file():
+        raise FileNotFoundError(f"{manifest_path} is missing: build the anatomy first")
+    manifest = json.loads(manifest_path.read_text())
+    entries = [m for m in manifest.get("meshes", [])
+               if m.get("name") == "maxilla" and m.get("scene", True)]
+    if not entries:
+        raise ValueError(f"{manifest_path} lists no scene maxilla")
+    mesh = trimesh.load(assets / entries[0]["file"], force="mesh", process=False)
+    return np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int64)
+
+
+def build_step(assets_dir):
+    """The `glasshead build` step: tables from the scene maxilla, skipped when up to date.
+
+    Returns {"step": "collision-tables", "file", "skipped", "bytes", "stats"}.
+    """
+    v, f = load_scene_maxilla(assets_dir)
+    out = Path(assets_dir) / TABLES_FILE
+    digest = hashlib.sha256(np.ascontiguousarray(v).tobytes()
+                            + np.ascontiguousarray(f).tobytes()).hexdigest()
+    if out.is_file():
+        try:
+            header = decode_header(out.read_bytes())
+        except CollisionTablesError:
+            header = None
+        if header and header.get("source", {}).get("sha256") == digest \
+                and header.get("builder") == BUILDER_VERSION:
+            return {"step": "collision-tables", "file": str(out), "skipped": True,
+                    "bytes": out.stat().st_size, "stats": header.get("stats", {})}
+    summary = build_collision_tables(v, f, assets_dir)
+    return {"step": "collision-tables", "file": str(out), "skipped": False,
+            "bytes": summary["bytes"], "stats": summary["stats"]}
+
+
+def main(argv=None):
+    """python -m glasshead.pipeline.collision_tables [assets_dir]"""
+    from glasshead.settings import get_settings
+
+    argv = sys.argv[1:] if argv is None else argv
+    assets = Path(argv[0]) if argv else get_settings().assets_dir
+    report = build_step(assets)
+    s = report["stats"]
+    print(f"{report['file']}: {report['bytes']} bytes" + (" (up to date)" if report["skipped"]
+                                                          else ""))
+    print(f"liner {s.get('cells')} cells ({s.get('cells_plane')} plane, {s.get('cells_list')} "
+          f"list, {s.get('cells_empty')} empty); voxels {s.get('voxels_ok')} ok, "
+          f"{s.get('voxels_borderline')} borderline, {s.get('voxels_not_ok')} not ok")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
