@@ -207,6 +207,31 @@ export class Head {
 
 	}
 
+	/**
+	 * Move the vertices of part `name` to `positions` (Float32Array, 3 per vertex, same count and
+	 * triangles as before), e.g. a deformed tongue each frame. Normals and the section outline
+	 * follow; nothing is allocated once the outline buffer is large enough.
+	 */
+	updateVertices( name, positions ) {
+
+		const part = this.parts.get( name );
+		if ( ! part ) throw new Error( `no mesh called "${ name }"` );
+		const attribute = part.geometry.getAttribute( 'position' );
+		if ( positions.length !== attribute.array.length ) {
+
+			throw new RangeError( `"${ name }" has ${ attribute.count } vertices; got ${ positions.length / 3 }` );
+
+		}
+
+		attribute.array.set( positions );
+		attribute.needsUpdate = true;
+		part.geometry.computeVertexNormals();
+		part.geometry.computeBoundingSphere(); // reuses its Sphere: no allocation
+		if ( this.cutaway ) part.outline.update( part.geometry );
+		else part.outlineStale = true;
+
+	}
+
 	/** Skin transparency in percent, 0 (opaque) to 100 (no skin). */
 	setTransparency( percent ) {
 
@@ -252,6 +277,13 @@ export class Head {
 		}
 
 		for ( const part of this.parts.values() ) {
+
+			if ( this.cutaway && part.outlineStale ) {
+
+				part.outline.update( part.geometry );
+				part.outlineStale = false;
+
+			}
 
 			part.outline.visible = this.cutaway;
 			for ( const mesh of part.meshes ) {
@@ -334,7 +366,9 @@ export class Head {
 		for ( const name of [ 'upper_lip', 'lower_lip' ] ) {
 
 			const part = this.parts.get( name );
-			if ( part ) target.expandByObject( part.group );
+			if ( ! part ) continue;
+			part.geometry.computeBoundingBox();
+			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
 
 		}
 
