@@ -12,7 +12,7 @@ import {
 	FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED, COLLISION_TOL,
 } from '../../web/src/core/constants.js';
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../../web/src/core/collision.js';
-import { CollisionTablesError, crc32, parseCollisionTables } from '../../web/src/core/tables.js';
+import { CollisionTablesError, crc32, fetchCollisionTables, parseCollisionTables } from '../../web/src/core/tables.js';
 
 const VECTORS_DIR = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
 const CASES = JSON.parse( readFileSync( join( VECTORS_DIR, 'collision-correct.json' ), 'utf8' ) );
@@ -193,5 +193,25 @@ test( 'a buffer at an unaligned offset is copied, not misread', () => {
 	shifted.set( FILE, 3 );
 	const tables = parseCollisionTables( shifted.subarray( 3 ) );
 	assert.deepEqual( Array.from( tables.voxels ), Array.from( TABLES.voxels ) );
+
+} );
+
+test( 'fetching tables follows the header URL and refuses another format version before downloading', async () => {
+
+	const requested = [];
+	const fakeFetch = ( version ) => async ( url ) => {
+
+		requested.push( url );
+		if ( url.endsWith( '/collision/tables' ) ) return { ok: true, json: async () => ( { format_version: version, url: '/assets/build/t.bin' } ) };
+		return { ok: true, arrayBuffer: async () => fileCopy().buffer };
+
+	};
+
+	const tables = await fetchCollisionTables( '/api/v1', fakeFetch( constants.COLLISION_TABLES_FORMAT_VERSION ) );
+	assert.deepEqual( requested, [ '/api/v1/collision/tables', '/assets/build/t.bin' ] );
+	assert.equal( tables.nlon, TABLES.nlon );
+	requested.length = 0;
+	await assert.rejects( fetchCollisionTables( '/api/v1', fakeFetch( 99 ) ), /format version 99/ );
+	assert.deepEqual( requested, [ '/api/v1/collision/tables' ] );
 
 } );

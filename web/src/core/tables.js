@@ -218,3 +218,26 @@ export function parseCollisionTables( data ) {
 	};
 
 }
+
+/**
+ * Fetch and parse the collision tables from the API: GET {apiBase}/collision/tables gives the
+ * header and the URL of the binary. A server whose tables have another format version is refused
+ * before the binary is downloaded. fetchImpl is injectable for tests.
+ */
+export async function fetchCollisionTables( apiBase = '/api/v1', fetchImpl = globalThis.fetch ) {
+
+	const response = await fetchImpl( `${ apiBase }/collision/tables` );
+	if ( ! response.ok ) throw new CollisionTablesError( `GET ${ apiBase }/collision/tables answered ${ response.status }` );
+	const info = await response.json();
+	if ( info.format_version !== COLLISION_TABLES_FORMAT_VERSION ) {
+
+		throw new CollisionTablesError( `the server offers collision tables format version ${ info.format_version }; ` +
+			`this client understands version ${ COLLISION_TABLES_FORMAT_VERSION }` );
+
+	}
+
+	const binary = await fetchImpl( info.url );
+	if ( ! binary.ok ) throw new CollisionTablesError( `GET ${ info.url } answered ${ binary.status }` );
+	return parseCollisionTables( await binary.arrayBuffer() );
+
+}
