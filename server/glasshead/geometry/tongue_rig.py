@@ -22,7 +22,8 @@ pairs, under named articulation parameters. Here:
   sphere-like shell.
 - Three sections (front, middle, back) are **blended** along the tongue by weights that each
   sagittal control point carries (``section_weights``), interpolated with the sagittal basis.
-- **Parameters** displace control points linearly: ``point = rest + (value - neutral) * by``.
+- **Parameters** displace control points linearly: ``point = rest + (value - neutral) * by``;
+  a section's ``stretch`` (its width) scales its pages sideways, see ``STRETCH``.
   ``jaw_opening`` instead poses the jaw (see ``geometry.jaw``); the tongue rides on it, each
   sagittal control point and the hub by its ``jaw_weight``.
 
@@ -138,13 +139,24 @@ SAGITTAL_PARAMETERS = (
       ("I", (0.0, 1.0)), ("J", (0.0, 1.0)), ("K", (0.0, 0.6)), ("L", (0.0, 0.3)))),
 )
 
+#: A coronal move that stretches the section sideways instead of moving a control: a page point
+#: at angle phi and radius lambda gets z = lambda sin(phi) (1 + stretch (1 - sin(phi)^4)). The
+#: stretch fades to nothing at the poles, which every page shares, with zero slope there (the
+#: poles stay smooth), and for -1 < stretch < 1/4 it keeps each page's rays in order (the
+#: derivative of tan(phi) (1 + stretch (1 - sin(phi)^4)) is at least 1 - 4 stretch), so nothing
+#: folds. The width ranges keep the stretch within +-6 / 32.
+STRETCH = None
+#: Full width of the tongue body at the hub, mm: a stretch of 1 / WIDTH_REFERENCE_MM per mm of
+#: ``width`` widens the body by about 1 mm per mm.
+WIDTH_REFERENCE_MM = 32.0
+
 CORONAL_PARAMETERS = (
-    ("width", "mm", -6.0, 6.0, "Widens the section (about 1 mm of width per mm).",
-     (("right lower side", 0.5), ("right side", 0.5), ("right upper side", 0.45),
-      ("right edge", 0.3), ("left edge", 0.3), ("left upper side", 0.45), ("left side", 0.5),
-      ("left lower side", 0.5))),
+    ("width", "mm", -6.0, 6.0, "Widens the section, about 1 mm of width per mm.",
+     ((STRETCH, 1.0 / WIDTH_REFERENCE_MM),)),
+    # -1.35 at the midline: the B-spline spreads a control's move over its neighbours, so this
+    # lowers the surface's midline by 1 mm per mm where the section applies fully.
     ("groove_depth", "mm", -2.0, 6.0, "Lowers the midline: a central groove (negative: a ridge).",
-     (("midline", -1.0), ("right paramedian", -0.35), ("left paramedian", -0.35))),
+     (("midline", -1.35), ("right paramedian", -0.35), ("left paramedian", -0.35))),
     ("groove_width", "mm", -2.0, 5.0, "Lowers the paramedian pair: widens the groove.",
      (("right paramedian", -1.0), ("left paramedian", -1.0), ("right edge", -0.3),
       ("left edge", -0.3))),
@@ -189,7 +201,8 @@ def parameter_table():
         for name, unit, low, high, text, moves in CORONAL_PARAMETERS:
             table.append(_parameter(f"{section}_{name}", unit, low, high,
                                     f"tongue coronal {section}", text,
-                                    [{"section": section, "control": c, "by": by}
+                                    [{"section": section, "stretch": by} if c is STRETCH
+                                     else {"section": section, "control": c, "by": by}
                                      for c, by in moves]))
     name, unit, low, high, text = JAW_PARAMETER
     table.append(_parameter(name, unit, low, high, GROUP_JAW, text, []))
@@ -339,6 +352,9 @@ def _validate_parameters(definition, point_names, control_names, section_names):
             elif move.get("section") in section_names and move.get("control") in control_names:
                 if move["control"] in poles:
                     raise ValueError(f"parameter {name}: pole controls cannot move")
+            elif move.get("section") in section_names and "stretch" in move:
+                if not isinstance(move["stretch"], (int, float)):
+                    raise ValueError(f"parameter {name}: stretch must be a number")
             else:
                 raise ValueError(f"parameter {name}: bad move {move}")
     if jaw_name not in {p["name"] for p in table}:

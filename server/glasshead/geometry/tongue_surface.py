@@ -12,7 +12,7 @@ then a few small matrix products:
    half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets (the pole
    controls are w itself);
 5. radii at the page samples: lambda = values @ B_coronal^T; vertex = H + lambda * (cos(phi) e
-   + sin(phi) z).
+   + sin(phi) (1 + k (1 - sin(phi)^4)) z), k the blended sideways stretch of the sections.
 """
 
 import math
@@ -107,11 +107,14 @@ class TongueRig:
         count = len(table)
         self.sagittal_moves = np.zeros((count, len(points), 2))
         self.coronal_moves = np.zeros((count, len(sections), len(controls)))
+        self.stretch_moves = np.zeros((count, len(sections)))
         section_index = {s: k for k, s in enumerate(sections)}
         for k, p in enumerate(table):
             for move in p["moves"]:
                 if "point" in move:
                     self.sagittal_moves[k, point_index[move["point"]]] += move["by"]
+                elif "stretch" in move:
+                    self.stretch_moves[k, section_index[move["section"]]] += move["stretch"]
                 else:
                     self.coronal_moves[k, section_index[move["section"]],
                                        control_index[move["control"]]] += move["by"]
@@ -160,19 +163,22 @@ class TongueRig:
     # --- evaluation -----------------------------------------------------------------------------
 
     def control_points(self, values):
-        """Posed sagittal control points (n, 2), hub (2,) and coronal offsets (sections, controls)."""
+        """Posed sagittal control points (n, 2), hub (2,), coronal offsets (sections, controls)
+        and section stretches (sections,)."""
         values = self._checked(values)
         delta = values - self.neutral
         points = self.rest_points + np.tensordot(delta, self.sagittal_moves, axes=1)
         offsets = np.tensordot(delta, self.coronal_moves, axes=1)
+        stretch = delta @ self.stretch_moves
         pose = jaw_pose(values[self.jaw_parameter], self.jaw)
         points = apply_jaw_pose(points, pose, self.point_jaw_weights)
         hub = apply_jaw_pose(self.hub[None, :], pose, [self.hub_jaw_weight])[0]
-        return points, hub, offsets
+        return points, hub, offsets, stretch
 
     def page_radii(self, values):
-        """Stations (s, 2), page directions (s, 2) and radii (s, page_samples) of the surface."""
-        points, hub, offsets = self.control_points(values)
+        """Hub (2,), stations (s, 2), page directions (s, 2), radii (s, page_samples) and
+        sideways stretch (s,) of the surface."""
+        points, hub, offsets, stretch = self.control_points(values)
         stations = self.station_basis @ points
         towards = stations - hub
         radius = np.linalg.norm(towards, axis=1)
@@ -181,23 +187,27 @@ class TongueRig:
         controls = pole + (self.rest_radius[:, None] - pole) * self.station_ratios \
             + (radius - self.rest_radius)[:, None] * self.follow + self.station_blend @ offsets
         controls[:, self.pole_controls] = self.pole_half_width
-        return hub, stations, direction, controls @ self.page_basis.T
+        return hub, stations, direction, controls @ self.page_basis.T, self.station_blend @ stretch
 
     def vertices(self, values):
         """(vertex_count, 3) float64 surface vertices for parameter values (P,)."""
-        hub, _stations, direction, radii = self.page_radii(values)
+        hub, _stations, direction, radii, stretch = self.page_radii(values)
         ring = np.empty((self.stations, self.page_samples, 3))
         planar = radii * self.page_cos
         ring[..., 0] = hub[0] + planar * direction[:, 0, None]
         ring[..., 1] = hub[1] + planar * direction[:, 1, None]
-        ring[..., 2] = radii * self.page_sin
+        ring[..., 2] = radii * self.page_sin * (1.0 + stretch[:, None] * (1.0 - self.page_sin**4))
         poles = np.array([[hub[0], hub[1], -self.pole_half_width],
                           [hub[0], hub[1], self.pole_half_width]])
         return np.concatenate([poles, ring.reshape(-1, 3)])
 
     def evaluate(self, params: Mapping[str, float] | None = None):
         """The surface for a name -> value mapping (missing names neutral): a TongueSurface."""
-        vertices = self.vertices(self.values(params))
+        return self.surface(self.values(params))
+
+    def surface(self, values):
+        """The surface (vertices, normals, triangles, volume) for parameter values (P,)."""
+        vertices = self.vertices(values)
         return TongueSurface(vertices, vertex_normals(vertices, self.triangles), self.triangles,
                              mesh_volume(vertices, self.triangles))
 
@@ -206,11 +216,12 @@ class TongueRig:
         return mesh_volume(self.vertices(values), self.triangles)
 
     def pages_in_order(self, values):
-        """True when the pages turn once round the hub in order and every radius is positive:
+        """True when the pages turn once round the hub in order, every radius is positive and
+        every stretch keeps the rays of its page in order (-1 < k < 1/4, see tongue_rig.STRETCH):
         then the surface is closed and free of self-intersection."""
-        _hub, _stations, direction, radii = self.page_radii(values)
+        _hub, _stations, direction, radii, stretch = self.page_radii(values)
         following = np.roll(direction, -1, axis=0)
         turn = np.arctan2(direction[:, 0] * following[:, 1] - direction[:, 1] * following[:, 0],
                           np.einsum("ij,ij->i", direction, following))
         return bool(np.all(turn > 0) and abs(turn.sum() - 2 * np.pi) < 1e-6
-                    and np.all(radii > 0))
+                    and np.all(radii > 0) and np.all((stretch > -1) & (stretch < 0.25)))

@@ -221,4 +221,5 @@ def page_angles_deg(radii_by_station, phi_deg, count=PAGE_SAMPLES):
     density = length[:, :-1] + TURNING_MM_PER_RAD * turning
     density = density.mean(axis=0)
     shares = spread_samples(density, count, interior=True)
-    return -90.0 + 180.0 * shares
+    angles = -90.0 + 180.0 * shares
+    return 0.5 * (angles - angles[::-1])  # exactly mirror-symmetric, so is the rest shape

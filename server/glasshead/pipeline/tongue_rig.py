@@ -4,7 +4,7 @@
 tongue) and ``jaw.obj`` (for the temporomandibular pivot), converts them into the project frame,
 fits the rest shape (``pipeline.tongue_fit``), measures it against the MRI with closest-point
 distances both ways, and writes the definition with the fit report in it. It skips the work when
-the output already records the same inputs (the sources' SHA-256 and the rig code's version).
+the output already records the same inputs (the SHA-256 of the sources and of the code).
 
 Run it alone with ``python -m glasshead.pipeline.tongue_rig [out_dir]``.
 """
@@ -25,6 +25,9 @@ from glasshead.geometry.meshio import read_obj
 from glasshead.geometry.mesh_volume import mesh_volume
 from glasshead.geometry.tongue_rig import HUB_MM, build_definition
 from glasshead.geometry.tongue_surface import TongueRig
+from glasshead.geometry import bspline
+from glasshead.geometry import jaw as jaw_module
+from glasshead.geometry import tongue_rig as rig_template
 from glasshead.pipeline import tongue_fit
 
 BADIN_DIR = Path("anatomy") / "artisynth-badin"
@@ -46,11 +49,19 @@ def _sha256(path):
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
+#: Modules whose code shapes the output; their text is part of the cache key.
+CODE = (tongue_fit, rig_template, jaw_module, bspline)
+
+
 def input_key(data_dir):
-    """What the output depends on: the two source files and the revision of the fit."""
+    """What the output depends on: the two source files and the code that builds the rig."""
     base = Path(data_dir) / BADIN_DIR
+    code = hashlib.sha256()
+    for module in CODE:
+        code.update(Path(module.__file__).read_bytes())
     return {"tongue.obj": _sha256(base / "tongue.obj"), "jaw.obj": _sha256(base / "jaw.obj"),
-            "fit_revision": FIT_REVISION, "format_version": TONGUE_RIG_FORMAT_VERSION}
+            "code": code.hexdigest(), "fit_revision": FIT_REVISION,
+            "format_version": TONGUE_RIG_FORMAT_VERSION}
 
 
 def surface_distances(vertices_a, triangles_a, vertices_b, triangles_b,
@@ -92,7 +103,7 @@ def fit_definition(data_dir):
     stations = tongue_fit.station_params(positions)
     probe = TongueRig(build_definition(station_params=stations, page_angles_deg=fine_phi[1:-1],
                                        **common))
-    _hub, _s, _d, radii = probe.page_radii(probe.neutral)
+    _hub, _s, _d, radii, _stretch = probe.page_radii(probe.neutral)
     pages = tongue_fit.page_angles_deg(radii, fine_phi[1:-1])
 
     definition = build_definition(station_params=stations, page_angles_deg=pages, **common)

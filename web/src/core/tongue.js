@@ -10,7 +10,8 @@
 //   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 //   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
 //   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets (poles: w);
-//   5. vertex = H + lambda ( cos( phi ) e + sin( phi ) z ), lambda = page basis * controls.
+//   5. vertex = H + lambda ( cos( phi ) e + sin( phi ) ( 1 + k ( 1 - sin( phi )^4 ) ) z ), lambda = page
+//      basis * controls, k the blended sideways stretch (the sections' widths).
 // Cohen, Beskow and Massaro (1998), section 3: sagittal and coronal B-splines whose control
 // points move singly and in pairs under articulation parameters.
 
@@ -113,17 +114,20 @@ export class TongueRig {
 		this.pageBasis = pages.values;
 		this.pageCos = Float64Array.from( angles, ( a ) => Math.cos( a * Math.PI / 180 ) );
 		this.pageSin = Float64Array.from( angles, ( a ) => Math.sin( a * Math.PI / 180 ) );
+		this.pageFade = Float64Array.from( this.pageSin, ( x ) => 1 - x * x * x * x );
 
 		// Moves, as flat lists: sagittal (parameter, point, dx, dy); coronal (parameter, section * c + control, by).
 		const pointIndex = new Map( points.map( ( p, k ) => [ p.name, k ] ) );
 		const controlIndex = new Map( controls.map( ( name, k ) => [ name, k ] ) );
 		const sagittalMoves = [];
 		const coronalMoves = [];
+		const stretchMoves = [];
 		parameters.forEach( ( p, k ) => {
 
 			for ( const move of p.moves ) {
 
 				if ( move.point !== undefined ) sagittalMoves.push( [ k, pointIndex.get( move.point ), move.by[ 0 ], move.by[ 1 ] ] );
+				else if ( move.stretch !== undefined ) stretchMoves.push( [ k, sections.indexOf( move.section ), move.stretch ] );
 				else coronalMoves.push( [ k, sections.indexOf( move.section ) * c + controlIndex.get( move.control ), move.by ] );
 
 			}
@@ -136,6 +140,9 @@ export class TongueRig {
 		this.coronalMoveParameter = Int32Array.from( coronalMoves, ( m ) => m[ 0 ] );
 		this.coronalMoveTarget = Int32Array.from( coronalMoves, ( m ) => m[ 1 ] );
 		this.coronalMoveBy = Float64Array.from( coronalMoves, ( m ) => m[ 2 ] );
+		this.stretchMoveParameter = Int32Array.from( stretchMoves, ( m ) => m[ 0 ] );
+		this.stretchMoveSection = Int32Array.from( stretchMoves, ( m ) => m[ 1 ] );
+		this.stretchMoveBy = Float64Array.from( stretchMoves, ( m ) => m[ 2 ] );
 
 		this.jaw = jaw;
 		this.jawParameter = this.parameterIndex.get( jaw.parameter );
@@ -150,6 +157,8 @@ export class TongueRig {
 		this.points = new Float64Array( 2 * n );
 		this.hub = new Float64Array( 2 );
 		this.offsets = new Float64Array( SECTION_COUNT * c );
+		this.stretch = new Float64Array( SECTION_COUNT );
+		this.stationStretch = new Float64Array( this.stationCount );
 		this.pose = new Float64Array( POSE_LENGTH );
 		this.direction = new Float64Array( 2 * this.stationCount );
 		this.radius = new Float64Array( this.stationCount );
@@ -240,6 +249,15 @@ export class TongueRig {
 
 		}
 
+		const stretch = this.stretch;
+		stretch.fill( 0 );
+		for ( let m = 0; m < this.stretchMoveParameter.length; m ++ ) {
+
+			const k = this.stretchMoveParameter[ m ];
+			stretch[ this.stretchMoveSection[ m ] ] += ( values[ k ] - this.neutral[ k ] ) * this.stretchMoveBy[ m ];
+
+		}
+
 		jawPose( values[ this.jawParameter ], this.jaw, this.pose );
 		applyJawPose( this.pose, points, this.pointCount, 2, this.pointJawWeights, points );
 		this.hub.set( this.hubRest );
@@ -284,6 +302,7 @@ export class TongueRig {
 			const b0 = this.stationBlend[ i * SECTION_COUNT ];
 			const b1 = this.stationBlend[ i * SECTION_COUNT + 1 ];
 			const b2 = this.stationBlend[ i * SECTION_COUNT + 2 ];
+			this.stationStretch[ i ] = b0 * this.stretch[ 0 ] + b1 * this.stretch[ 1 ] + b2 * this.stretch[ 2 ];
 			for ( let k = 0; k < c; k ++ ) {
 
 				this.controls[ i * c + k ] = this.isPole[ k ] ? pole
@@ -302,6 +321,7 @@ export class TongueRig {
 
 			const ex = this.direction[ 2 * i ];
 			const ey = this.direction[ 2 * i + 1 ];
+			const stretch = this.stationStretch[ i ];
 			const row = i * c;
 			for ( let j = 0; j < this.pageCount; j ++ ) {
 
@@ -312,7 +332,7 @@ export class TongueRig {
 				const o = 3 * ( 2 + i * this.pageCount + j );
 				vertices[ o ] = hx + planar * ex;
 				vertices[ o + 1 ] = hy + planar * ey;
-				vertices[ o + 2 ] = lambda * this.pageSin[ j ];
+				vertices[ o + 2 ] = lambda * this.pageSin[ j ] * ( 1 + stretch * this.pageFade[ j ] );
 
 			}
 

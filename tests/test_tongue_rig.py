@@ -1,0 +1,121 @@
+"""The tongue rig definition: its parameter table and the checks on a definition read back."""
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from glasshead.geometry.tongue_rig import (
+    CORONAL_CONTROLS, POLE_CONTROLS, SAGITTAL_POINTS, build_definition, parameter_table,
+    validate_definition)
+from glasshead.geometry.tongue_surface import TongueRig
+
+VECTORS = Path(__file__).parent / "vectors"
+
+
+@pytest.fixture(scope="module")
+def definition():
+    return json.loads((VECTORS / "tongue-surface.json").read_text())["rig"]
+
+
+def moves_of(name):
+    return next(p for p in parameter_table() if p["name"] == name)["moves"]
+
+
+def test_there_are_ten_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
+    groups = [p["group"] for p in parameter_table()]
+    assert groups.count("tongue sagittal") == 10
+    for section in ("front", "middle", "back"):
+        assert groups.count(f"tongue coronal {section}") == 7
+    assert groups.count("jaw") == 1
+
+
+def test_every_parameter_has_a_unit_a_range_around_its_neutral_value_and_a_description():
+    for p in parameter_table():
+        assert p["unit"] in ("mm", "deg", "ratio"), p["name"]
+        assert p["min"] <= p["neutral"] <= p["max"] and p["min"] < p["max"], p["name"]
+        assert p["description"], p["name"]
+        assert p["moves"] or p["group"] == "jaw", p["name"]
+
+
+def test_sagittal_control_points_are_lettered_from_the_tip_and_turn_round_the_hub_once():
+    letters = [name for name, *_ in SAGITTAL_POINTS]
+    assert letters == [chr(ord("A") + k) for k in range(len(letters))]
+    angles = [angle for _n, _r, angle, _w, _b in SAGITTAL_POINTS]
+    assert angles == sorted(angles) and angles[-1] - angles[0] < 360
+    assert SAGITTAL_POINTS[1][1] == "tip"
+
+
+def test_tip_advancement_moves_the_tip_pair_forward_together():
+    moves = {m["point"]: m["by"] for m in moves_of("tip_advancement")}
+    assert moves["A"] == moves["B"] == [1.0, 0.0]
+
+
+def test_tip_thickness_moves_the_tip_pair_vertically_in_opposite_directions():
+    moves = {m["point"]: m["by"] for m in moves_of("tip_thickness")}
+    assert set(moves) == {"A", "B"}
+    assert moves["A"][0] == moves["B"][0] == 0
+    assert moves["A"][1] == -moves["B"][1] != 0
+
+
+def test_edge_heights_move_one_side_only_and_mirror_each_other():
+    left = {(m["section"], m["control"]): m["by"] for m in moves_of("front_left_edge_height")}
+    right = {(m["section"], m["control"]): m["by"] for m in moves_of("front_right_edge_height")}
+    assert all(control.startswith("left") for _s, control in left)
+    assert {(s, c.replace("left", "right")): by for (s, c), by in left.items()} == right
+
+
+def test_no_parameter_moves_a_pole_control():
+    poles = {CORONAL_CONTROLS[k] for k in POLE_CONTROLS}
+    for p in parameter_table():
+        assert not any(m.get("control") in poles for m in p["moves"]), p["name"]
+
+
+def test_the_shared_definition_passes_its_own_checks(definition):
+    validate_definition(definition)
+    assert definition["units"] == "mm" and definition["frame"]["name"] == "project"
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda d: d.update(format_version=99), "format_version"),
+    (lambda d: d["parameters"].append(copy.deepcopy(d["parameters"][0])), "duplicate parameter"),
+    (lambda d: d["parameters"][0].update(neutral=100.0), "min <= neutral <= max"),
+    (lambda d: d["parameters"][0].update(unit="furlong"), "unit"),
+    (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "by": [1, 0]}), "bad sagittal move"),
+    (lambda d: d["parameters"][12]["moves"].append(
+        {"section": "front", "control": "left pole", "by": 1.0}), "pole controls cannot move"),
+    (lambda d: d["sagittal"]["control_points"][0].update(section_weights=[0.5, 0.1, 0.1]),
+     "summing to 1"),
+    (lambda d: d["surface"].update(station_params=[0.5, 0.2, 0.7]), "station_params"),
+    (lambda d: d["surface"].update(page_angles_deg=[-90.0, 0.0, 45.0]), "page_angles_deg"),
+    (lambda d: d["coronal"].update(pole_half_width=0.0), "pole_half_width"),
+    (lambda d: d.pop("jaw"), "'jaw'"),
+])
+def test_a_broken_definition_is_refused_with_a_message_naming_the_problem(definition, change,
+                                                                           message):
+    broken = copy.deepcopy(definition)
+    change(broken)
+    with pytest.raises(ValueError, match=message):
+        validate_definition(broken)
+
+
+def test_a_definition_survives_a_json_round_trip_unchanged_in_its_surface(definition):
+    rig = TongueRig(definition)
+    again = TongueRig(json.loads(json.dumps(definition)))
+    values = rig.values({"tip_height": 3.0, "middle_width": -2.0, "jaw_opening": 8.0})
+    np.testing.assert_array_equal(rig.vertices(values), again.vertices(values))
+
+
+def test_build_definition_checks_the_shapes_it_is_given(definition):
+    rig = TongueRig(definition)
+    common = dict(section_weights=np.tile([1.0, 0.0, 0.0], (len(SAGITTAL_POINTS), 1)),
+                  ratios={s: np.ones(15) for s in ("front", "middle", "back")},
+                  pole_half_width=15.0, station_params=rig.station_params,
+                  page_angles_deg=definition["surface"]["page_angles_deg"], jaw=definition["jaw"])
+    with pytest.raises(ValueError, match="sagittal_positions"):
+        build_definition(sagittal_positions=np.zeros((5, 2)), **common)
+    built = build_definition(sagittal_positions=rig.rest_points, **common)
+    assert built["surface"]["vertex_count"] == rig.vertex_count
+    assert all(v == 0 for k, v in enumerate(built["coronal"]["ratios"]["front"]) if k in POLE_CONTROLS)
