@@ -198,12 +198,10 @@ export async function waitForLoaded( page, timeoutMs = 90_000 ) {
 
 }
 
-/** Wait for the camera to settle and `frames` more frames to be drawn. */
-export async function settle( page, frames = 3 ) {
+/** Wait until the camera has stopped and every change has been drawn. */
+export async function settle( page ) {
 
-	await page.waitForFunction( () => window.glasshead.cameraMoving === false, null, { timeout: 30_000, polling: 100 } );
-	const start = await page.evaluate( () => window.glasshead.frames );
-	await page.waitForFunction( ( target ) => window.glasshead.frames >= target, start + frames, { timeout: 30_000, polling: 50 } );
+	await page.waitForFunction( () => window.glasshead.cameraMoving === false && window.glasshead.renderPending === false, null, { timeout: 30_000, polling: 50 } );
 
 }
 

@@ -50,6 +50,7 @@ export class Viewer {
 		this.controls.zoomToCursor = true; // point at the teeth and zoom in on them
 		this.controls.minDistance = 80;
 		this.controls.maxDistance = 2000;
+		this.controls.addEventListener( 'change', () => this.requestRender() );
 		this.controls.addEventListener( 'start', () => {
 
 			this.flight = null;
@@ -61,6 +62,8 @@ export class Viewer {
 		this.frameCount = 0;
 		this.flight = null;
 		this.lastTime = null;
+		this.lastRenderTime = null;
+		this.dirty = true;
 
 		this.resizeObserver = new ResizeObserver( () => this.resize() );
 		this.resizeObserver.observe( container );
@@ -99,7 +102,7 @@ export class Viewer {
 
 	}
 
-	/** Median time between recent frames, in milliseconds (null before two frames). */
+	/** Median time between recent consecutive drawn frames, in ms (null until something has moved). */
 	get frameTimeMs() {
 
 		return this.timer.median();
@@ -114,7 +117,9 @@ export class Viewer {
 	}
 
 	/**
-	 * Call fn( dtSeconds, timeSeconds ) before every render. Returns a function that removes it.
+	 * Call fn( dtSeconds, timeSeconds ) on every tick of the loop, before drawing. While a hook is
+	 * registered the scene is drawn every frame, unless the hook returns false (nothing changed).
+	 * Returns a function that removes the hook.
 	 */
 	onFrame( fn ) {
 
@@ -157,6 +162,7 @@ export class Viewer {
 		this.renderer.setSize( width, height, false );
 		this.camera.aspect = width / height;
 		this.camera.updateProjectionMatrix();
+		this.requestRender();
 
 	}
 
@@ -193,17 +199,57 @@ export class Viewer {
 
 	}
 
+	/** Draw the next frame (after a change to the scene made outside a frame hook). */
+	requestRender() {
+
+		this.dirty = true;
+
+	}
+
+	/** True while a change waits to be drawn. */
+	get renderPending() {
+
+		return this.dirty;
+
+	}
+
+	/**
+	 * One tick of the loop. The scene is drawn only when something changed: a camera move, a
+	 * requestRender(), or a frame hook that did not return false. A still head costs no GPU time,
+	 * which matters on tablets and on software-rendered test machines.
+	 */
 	frame( timeMs ) {
 
-		if ( this.lastTime !== null ) this.timer.add( timeMs - this.lastTime );
 		const dt = this.lastTime === null ? 0 : ( timeMs - this.lastTime ) / 1000;
 		this.lastTime = timeMs;
 
-		if ( this.flight ) this.advanceFlight( timeMs );
-		this.controls.update();
-		for ( const hook of this.frameHooks ) hook( dt, timeMs / 1000 );
+		if ( this.flight ) {
+
+			this.advanceFlight( timeMs );
+			this.dirty = true;
+
+		}
+
+		this.controls.update(); // emits 'change' (and so requests a render) while damping moves the camera
+		for ( const hook of this.frameHooks ) {
+
+			if ( hook( dt, timeMs / 1000 ) !== false ) this.dirty = true;
+
+		}
+
+		if ( ! this.dirty ) {
+
+			this.lastRenderTime = null;
+			return;
+
+		}
+
+		this.dirty = false;
 		this.renderer.render( this.scene, this.camera );
 		this.frameCount ++;
+		// Frame time: the interval between consecutive drawn frames (while something moves).
+		if ( this.lastRenderTime !== null ) this.timer.add( timeMs - this.lastRenderTime );
+		this.lastRenderTime = timeMs;
 
 	}
 

@@ -50,6 +50,7 @@ export class Controls {
 		}, VIEW_LABELS[ name ] ) ] ) );
 
 		this.status = h( 'p', { className: 'status', role: 'status', 'aria-live': 'polite' } );
+		this.progress = h( 'progress', { className: 'progress', max: '1', 'aria-label': 'Loading the anatomy', hidden: '' } );
 		this.error = h( 'p', { className: 'error', role: 'alert', hidden: '' } );
 
 		this.element = h( 'aside', { className: 'panel', 'aria-label': 'Head controls' },
@@ -63,6 +64,7 @@ export class Controls {
 				h( 'span', { className: 'field-label', id: 'view-label' }, 'View' ),
 				h( 'div', { className: 'view-buttons', role: 'group', 'aria-labelledby': 'view-label' }, ...this.viewButtons.values() ),
 			),
+			this.progress,
 			this.status,
 			this.error,
 		);
@@ -110,6 +112,22 @@ export class Controls {
 	showStatus( text ) {
 
 		this.status.textContent = text;
+
+	}
+
+	/** Show loading progress (done of total files); null hides the bar. */
+	showProgress( done, total ) {
+
+		if ( done === null ) {
+
+			this.progress.hidden = true;
+			return;
+
+		}
+
+		this.progress.hidden = false;
+		if ( total > 0 ) this.progress.value = done / total;
+		else this.progress.removeAttribute( 'value' ); // indeterminate until the list of meshes arrives
 
 	}
 

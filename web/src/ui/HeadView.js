@@ -71,6 +71,7 @@ export class HeadView {
 			frameTimeMs: () => ( this.viewer ? this.viewer.frameTimeMs : null ),
 			frames: () => ( this.viewer ? this.viewer.frameCount : 0 ),
 			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
+			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
 			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
 		};
 		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
@@ -80,12 +81,18 @@ export class HeadView {
 	async load() {
 
 		this.controls.showStatus( 'Loading the anatomy…' );
+		this.controls.showProgress( 0, 0 );
 		try {
 
 			const anatomy = await getAnatomy();
 			this.controls.showStatus( `Loading meshes: 0 of ${ anatomy.meshes.length }` );
 			await loadAnatomy( this.head, anatomy.meshes, {
-				onProgress: ( loaded, total ) => this.controls.showStatus( `Loading meshes: ${ loaded } of ${ total }` ),
+				onProgress: ( loaded, total ) => {
+
+					this.controls.showStatus( `Loading meshes: ${ loaded } of ${ total }` );
+					this.controls.showProgress( loaded, total );
+
+				},
 			} );
 
 		} catch ( error ) {
@@ -101,9 +108,11 @@ export class HeadView {
 		this.head.setCutaway( this.state.cutaway );
 		this.fitViews();
 		this.viewer.flyTo( this.poses[ this.state.view ], 0 );
+		this.viewer.requestRender();
 		this.state.loaded = true;
 		this.controls.setEnabled( true );
 		this.controls.showStatus( '' );
+		this.controls.showProgress( null );
 
 	}
 
@@ -125,6 +134,7 @@ export class HeadView {
 
 		this.state.transparency = percent;
 		this.head.setTransparency( percent );
+		this.viewer.requestRender();
 
 	}
 
@@ -133,6 +143,7 @@ export class HeadView {
 		this.state.cutaway = on;
 		this.controls.setCutaway( on );
 		this.head.setCutaway( on );
+		this.viewer.requestRender();
 
 	}
 
@@ -148,6 +159,7 @@ export class HeadView {
 
 		this.state.error = message;
 		this.controls.showStatus( '' );
+		this.controls.showProgress( null );
 		this.controls.showError( message );
 		console.error( `Glasshead: ${ message }` );
 
