@@ -51,6 +51,12 @@ export class HeadView {
 
 		}
 
+		this.viewer.renderer.domElement.addEventListener( 'webglcontextlost', ( event ) => {
+
+			event.preventDefault();
+			this.fail( 'The 3D view stopped because the graphics driver was reset. Reload the page to continue.' );
+
+		} );
 		this.head = new Head();
 		this.viewer.scene.add( this.head.group );
 		this.load();
