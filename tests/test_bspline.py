@@ -4,8 +4,15 @@ import numpy as np
 import pytest
 
 from glasshead.geometry.bspline import (
-    basis_funs, basis_matrix, basis_table, clamped_knots, find_span, greville_abscissae,
-    periodic_knots, wrap_periodic)
+    basis_funs,
+    basis_matrix,
+    basis_table,
+    clamped_knots,
+    find_span,
+    greville_abscissae,
+    periodic_knots,
+    wrap_periodic,
+)
 
 
 def cox_de_boor(knots, i, degree, u):

@@ -22,7 +22,7 @@ console.log( JSON.stringify( plain, ( _k, v ) => ( ArrayBuffer.isView( v ) ? Arr
 
 
 def assert_same(js, py, path):
-    if isinstance(py, bool) or isinstance(py, str) or py is None:
+    if isinstance(py, (bool, str)) or py is None:
         assert js == py, f"{path}: JS {js!r}, Python {py!r}"
     elif isinstance(py, (int, float)):
         assert isinstance(js, (int, float)) and not isinstance(js, bool), f"{path}: {js!r}"

@@ -7,8 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glasshead.geometry.jaw import (
-    apply_jaw_pose, estimate_condyle, jaw_definition, jaw_pose)
+from glasshead.geometry.jaw import apply_jaw_pose, estimate_condyle, jaw_definition, jaw_pose
 from glasshead.pipeline.tongue_rig import load_badin_mesh
 from glasshead.settings import get_settings
 

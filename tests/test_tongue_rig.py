@@ -8,8 +8,13 @@ import numpy as np
 import pytest
 
 from glasshead.geometry.tongue_rig import (
-    CORONAL_CONTROLS, POLE_CONTROLS, SAGITTAL_POINTS, build_definition, parameter_table,
-    validate_definition)
+    CORONAL_CONTROLS,
+    POLE_CONTROLS,
+    SAGITTAL_POINTS,
+    build_definition,
+    parameter_table,
+    validate_definition,
+)
 from glasshead.geometry.tongue_surface import TongueRig
 
 VECTORS = Path(__file__).parent / "vectors"
@@ -110,10 +115,11 @@ def test_a_definition_survives_a_json_round_trip_unchanged_in_its_surface(defini
 
 def test_build_definition_checks_the_shapes_it_is_given(definition):
     rig = TongueRig(definition)
-    common = dict(section_weights=np.tile([1.0, 0.0, 0.0], (len(SAGITTAL_POINTS), 1)),
-                  ratios={s: np.ones(15) for s in ("front", "middle", "back")},
-                  pole_half_width=15.0, station_params=rig.station_params,
-                  page_angles_deg=definition["surface"]["page_angles_deg"], jaw=definition["jaw"])
+    common = {"section_weights": np.tile([1.0, 0.0, 0.0], (len(SAGITTAL_POINTS), 1)),
+              "ratios": {s: np.ones(15) for s in ("front", "middle", "back")},
+              "pole_half_width": 15.0, "station_params": rig.station_params,
+              "page_angles_deg": definition["surface"]["page_angles_deg"],
+              "jaw": definition["jaw"]}
     with pytest.raises(ValueError, match="sagittal_positions"):
         build_definition(sagittal_positions=np.zeros((5, 2)), **common)
     built = build_definition(sagittal_positions=rig.rest_points, **common)

@@ -292,7 +292,7 @@ def _floats(values):
 def validate_definition(definition):
     """Check a rig definition read from JSON; raise ValueError naming the first problem."""
     if not isinstance(definition, dict):
-        raise ValueError("a rig definition must be a JSON object")
+        raise TypeError("a rig definition must be a JSON object")
     version = definition.get("format_version")
     if version != TONGUE_RIG_FORMAT_VERSION:
         raise ValueError(f"rig format_version {version!r} is not {TONGUE_RIG_FORMAT_VERSION}")

@@ -16,8 +16,8 @@ then a few small matrix products:
 """
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Mapping
 
 import numpy as np
 

@@ -101,7 +101,7 @@ def surface_document():
 
 
 def jaw_document():
-    definition, rig = _rig()
+    definition, _ = _rig()
     jaw = definition["jaw"]
     rng = np.random.default_rng(SEED + 1)
     points = np.round(rng.uniform([-60, -50, -30], [30, 20, 30], (8, 3)), 3)
@@ -123,7 +123,7 @@ def jaw_document():
 
 
 def bspline_document():
-    definition, _rig_unused = _rig()
+    definition, _ = _rig()
     rng = np.random.default_rng(SEED + 2)
     sagittal, coronal = definition["sagittal"], definition["coronal"]
     inputs = [

@@ -21,9 +21,18 @@ from scipy.optimize import least_squares
 
 from glasshead.geometry.bspline import basis_matrix, periodic_knots
 from glasshead.geometry.tongue_rig import (
-    CORONAL_DEGREE, DEFAULT_SECTION_WEIGHTS, HUB_MM, PAGE_SAMPLES, POLE_CONTROLS,
-    SAGITTAL_DEGREE, SAGITTAL_POINTS, SECTIONS, STATIONS, coronal_control_angles_deg,
-    coronal_knots_deg)
+    CORONAL_DEGREE,
+    DEFAULT_SECTION_WEIGHTS,
+    HUB_MM,
+    PAGE_SAMPLES,
+    POLE_CONTROLS,
+    SAGITTAL_DEGREE,
+    SAGITTAL_POINTS,
+    SECTIONS,
+    STATIONS,
+    coronal_control_angles_deg,
+    coronal_knots_deg,
+)
 
 #: Ray grid of the fit: page directions every 2 degrees, page angles every 3 (poles excluded).
 FIT_THETA_DEG = np.arange(0.0, 360.0, 2.0)

@@ -19,15 +19,15 @@ import numpy as np
 import trimesh
 
 from glasshead.constants import BADIN_TO_PROJECT_AXES, TONGUE_RIG_FORMAT_VERSION
-from glasshead.geometry.frame import badin_to_project, fix_winding
-from glasshead.geometry.jaw import estimate_condyle, jaw_definition
-from glasshead.geometry.meshio import read_obj
-from glasshead.geometry.mesh_volume import mesh_volume
-from glasshead.geometry.tongue_rig import HUB_MM, build_definition
-from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.geometry import bspline
 from glasshead.geometry import jaw as jaw_module
 from glasshead.geometry import tongue_rig as rig_template
+from glasshead.geometry.frame import badin_to_project, fix_winding
+from glasshead.geometry.jaw import estimate_condyle, jaw_definition
+from glasshead.geometry.mesh_volume import mesh_volume
+from glasshead.geometry.meshio import read_obj
+from glasshead.geometry.tongue_rig import HUB_MM, build_definition
+from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline import tongue_fit
 
 BADIN_DIR = Path("anatomy") / "artisynth-badin"
@@ -98,8 +98,8 @@ def fit_definition(data_dir):
 
     # Sample the fitted surface finely once to spread the final stations and page angles.
     fine_phi = np.linspace(-90.0, 90.0, 721)
-    common = dict(sagittal_positions=positions, section_weights=weights, ratios=ratios,
-                  pole_half_width=pole, jaw=jaw, hub=HUB_MM)
+    common = {"sagittal_positions": positions, "section_weights": weights, "ratios": ratios,
+              "pole_half_width": pole, "jaw": jaw, "hub": HUB_MM}
     stations = tongue_fit.station_params(positions)
     probe = TongueRig(build_definition(station_params=stations, page_angles_deg=fine_phi[1:-1],
                                        **common))

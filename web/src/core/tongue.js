@@ -342,6 +342,24 @@ export class TongueRig {
 
 }
 
+/** Unit vectors from sums (xyz per vertex) into target; a zero sum gives ( 0, 0, 0 ). */
+function normalise( sums, target ) {
+
+	for ( let v = 0; v < sums.length; v += 3 ) {
+
+		// Math.sqrt, not Math.hypot: hypot guards against overflow we cannot have and is far slower.
+		const length = Math.sqrt( sums[ v ] * sums[ v ] + sums[ v + 1 ] * sums[ v + 1 ] + sums[ v + 2 ] * sums[ v + 2 ] );
+		const scale = length > 0 ? 1 / length : 0;
+		target[ v ] = sums[ v ] * scale;
+		target[ v + 1 ] = sums[ v + 1 ] * scale;
+		target[ v + 2 ] = sums[ v + 2 ] * scale;
+
+	}
+
+	return target;
+
+}
+
 /**
  * Triangles of the surface layout (Uint32Array, 3 per triangle): vertex 0 is the right pole, 1
  * the left pole, ring vertex ( station i, page sample j ) is 2 + i * pageCount + j; winding
@@ -416,18 +434,7 @@ export function vertexNormals( positions, index, sums, target ) {
 
 	}
 
-	for ( let v = 0; v < sums.length; v += 3 ) {
-
-		// Math.sqrt, not Math.hypot: hypot guards against overflow we cannot have and is far slower.
-		const length = Math.sqrt( sums[ v ] * sums[ v ] + sums[ v + 1 ] * sums[ v + 1 ] + sums[ v + 2 ] * sums[ v + 2 ] );
-		const scale = length > 0 ? 1 / length : 0;
-		target[ v ] = sums[ v ] * scale;
-		target[ v + 1 ] = sums[ v + 1 ] * scale;
-		target[ v + 2 ] = sums[ v + 2 ] * scale;
-
-	}
-
-	return target;
+	return normalise( sums, target );
 
 }
 
