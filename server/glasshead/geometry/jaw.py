@@ -19,8 +19,9 @@ import numpy as np
 
 #: Height of the band at the top of each condyle whose centre is taken as the pivot, mm.
 CONDYLE_BAND_MM = 5.0
-#: Forward and downward slide of the condyles per degree of opening, mm / deg.
-TRANSLATION_PER_DEGREE = (0.2, -0.08)
+#: Forward and downward slide of the condyles along the articular eminence per degree of opening,
+#: mm / deg: about 12 mm forward at 25 degrees, as the condyles of a wide-open jaw travel.
+TRANSLATION_PER_DEGREE = (0.5, -0.15)
 
 
 def jaw_definition(pivot, translation_per_degree=TRANSLATION_PER_DEGREE, parameter="jaw_opening",

@@ -21,7 +21,9 @@ pairs, under named articulation parameters. Here:
   equal w: every page meets the z-line of H at the same two poles, so the surface is a closed
   sphere-like shell.
 - Three sections (front, middle, back) are **blended** along the tongue by weights that each
-  sagittal control point carries (``section_weights``), interpolated with the sagittal basis.
+  sagittal control point carries (``section_weights``), interpolated with the sagittal basis;
+  the coronal offsets are further weighted by each point's ``coronal_weight`` (1 on the upper
+  surface, 0 on the floor and underside, see ``CORONAL_WEIGHTS``).
 - **Parameters** displace control points linearly: ``point = rest + (value - neutral) * by``;
   a section's ``stretch`` (its width) scales its pages sideways, see ``STRETCH``.
   ``jaw_opening`` instead poses the jaw (see ``geometry.jaw``); the tongue rides on it, each
@@ -70,6 +72,13 @@ SAGITTAL_POINTS = (
     ("R", "underside, front", 326.0, 1.0, None),
     ("S", "underside, behind the tip", 348.0, 1.0, (1.0, 0.0, 0.0)),
 )
+
+#: How much the coronal offsets (groove, edges, bulge) act at each sagittal control point: fully
+#: on the upper surface, tip to root; not on the floor and the underside, which have no groove
+#: or lateral edges (the sections' width stretch acts everywhere).
+CORONAL_WEIGHTS = {"A": 0.5, "B": 1.0, "C": 1.0, "D": 1.0, "E": 1.0, "F": 1.0, "G": 1.0,
+                   "H": 1.0, "I": 1.0, "J": 1.0, "K": 1.0, "L": 0.6, "M": 0.0, "N": 0.0,
+                   "O": 0.0, "P": 0.0, "Q": 0.0, "R": 0.0, "S": 0.0}
 
 #: Blend a fit starts from for the points whose blend is fitted.
 DEFAULT_SECTION_WEIGHTS = {
@@ -234,7 +243,8 @@ def build_definition(*, sagittal_positions, section_weights, ratios, pole_half_w
         raise ValueError(f"section_weights must be ({len(SAGITTAL_POINTS)}, {len(SECTIONS)})")
     points = [
         {"name": name, "role": role, "position": _floats(positions[k]),
-         "jaw_weight": jaw_weight, "section_weights": _floats(weights[k])}
+         "jaw_weight": jaw_weight, "coronal_weight": CORONAL_WEIGHTS[name],
+         "section_weights": _floats(weights[k])}
         for k, (name, role, _angle, jaw_weight, _blend) in enumerate(SAGITTAL_POINTS)
     ]
     ratio_lists = {}
@@ -310,6 +320,9 @@ def validate_definition(definition):
     for p in points:
         if len(p["position"]) != 2 or not all(map(math.isfinite, p["position"])):
             raise ValueError(f"sagittal point {p['name']}: position must be 2 finite numbers")
+        if not 0 <= p["coronal_weight"] <= 1 or not 0 <= p["jaw_weight"] <= 1:
+            raise ValueError(f"sagittal point {p['name']}: jaw_weight and coronal_weight must "
+                             "lie in [0, 1]")
         w = p["section_weights"]
         if len(w) != len(sections) or min(w) < 0 or abs(sum(w) - 1.0) > 1e-9:
             raise ValueError(f"sagittal point {p['name']}: section_weights must be "

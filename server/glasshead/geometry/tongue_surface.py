@@ -9,8 +9,8 @@ then a few small matrix products:
 2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 3. stations: S = B_sagittal @ points; page direction e = (S - H) / |S - H|;
 4. radial control values per station, with R = |S - H|, R0 its rest value and w the pole
-   half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets (the pole
-   controls are w itself);
+   half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets times the
+   coronal weight (the pole controls are w itself);
 5. radii at the page samples: lambda = values @ B_coronal^T; vertex = H + lambda * (cos(phi) e
    + sin(phi) (1 + k (1 - sin(phi)^4)) z), k the blended sideways stretch of the sections.
 """
@@ -90,6 +90,9 @@ class TongueRig:
         self.station_basis = basis_matrix(sagittal["knots"], sagittal["degree"],
                                           self.station_params, count=len(points))
         self.station_blend = self.station_basis @ section_weights
+        coronal_weights = np.array([p["coronal_weight"] for p in points], dtype=np.float64)
+        self.station_offset_blend = self.station_blend \
+            * (self.station_basis @ coronal_weights)[:, None]
 
         sections = coronal["sections"]
         controls = coronal["controls"]
@@ -185,7 +188,8 @@ class TongueRig:
         direction = towards / radius[:, None]
         pole = self.pole_half_width
         controls = pole + (self.rest_radius[:, None] - pole) * self.station_ratios \
-            + (radius - self.rest_radius)[:, None] * self.follow + self.station_blend @ offsets
+            + (radius - self.rest_radius)[:, None] * self.follow \
+            + self.station_offset_blend @ offsets
         controls[:, self.pole_controls] = self.pole_half_width
         return hub, stations, direction, controls @ self.page_basis.T, self.station_blend @ stretch
 

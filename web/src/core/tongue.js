@@ -9,7 +9,8 @@
 //   1. control points = rest + sum over parameters of ( value - neutral ) * move;
 //   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 //   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
-//   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets (poles: w);
+//   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets * coronal weight
+//      (poles: w);
 //   5. vertex = H + lambda ( cos( phi ) e + sin( phi ) ( 1 + k ( 1 - sin( phi )^4 ) ) z ), lambda = page
 //      basis * controls, k the blended sideways stretch (the sections' widths).
 // Cohen, Beskow and Massaro (1998), section 3: sagittal and coronal B-splines whose control
@@ -63,6 +64,7 @@ export class TongueRig {
 		const c = controls.length;
 		this.controlCount = c;
 		this.stationBlend = new Float64Array( this.stationCount * SECTION_COUNT );
+		this.stationOffsetBlend = new Float64Array( this.stationCount * SECTION_COUNT );
 		this.stationRatios = new Float64Array( this.stationCount * c );
 		this.restRadius = new Float64Array( this.stationCount );
 		this.poleHalfWidth = coronal.pole_half_width;
@@ -75,17 +77,25 @@ export class TongueRig {
 
 			let sx = 0;
 			let sy = 0;
+			let coronalWeight = 0;
 			for ( let k = 0; k < this.sagittalWidth; k ++ ) {
 
 				const weight = this.stationBasis[ i * this.sagittalWidth + k ];
 				const point = ( this.stationFirst[ i ] + k ) % n;
 				sx += weight * this.restPoints[ 2 * point ];
 				sy += weight * this.restPoints[ 2 * point + 1 ];
+				coronalWeight += weight * points[ point ].coronal_weight;
 				for ( let s = 0; s < SECTION_COUNT; s ++ ) {
 
 					this.stationBlend[ i * SECTION_COUNT + s ] += weight * points[ point ].section_weights[ s ];
 
 				}
+
+			}
+
+			for ( let s = 0; s < SECTION_COUNT; s ++ ) {
+
+				this.stationOffsetBlend[ i * SECTION_COUNT + s ] = coronalWeight * this.stationBlend[ i * SECTION_COUNT + s ];
 
 			}
 
@@ -303,11 +313,14 @@ export class TongueRig {
 			const b1 = this.stationBlend[ i * SECTION_COUNT + 1 ];
 			const b2 = this.stationBlend[ i * SECTION_COUNT + 2 ];
 			this.stationStretch[ i ] = b0 * this.stretch[ 0 ] + b1 * this.stretch[ 1 ] + b2 * this.stretch[ 2 ];
+			const o0 = this.stationOffsetBlend[ i * SECTION_COUNT ];
+			const o1 = this.stationOffsetBlend[ i * SECTION_COUNT + 1 ];
+			const o2 = this.stationOffsetBlend[ i * SECTION_COUNT + 2 ];
 			for ( let k = 0; k < c; k ++ ) {
 
 				this.controls[ i * c + k ] = this.isPole[ k ] ? pole
 					: pole + ( rest - pole ) * this.stationRatios[ i * c + k ] + ( radius - rest ) * this.follow[ k ]
-						+ b0 * this.offsets[ k ] + b1 * this.offsets[ c + k ] + b2 * this.offsets[ 2 * c + k ];
+						+ o0 * this.offsets[ k ] + o1 * this.offsets[ c + k ] + o2 * this.offsets[ 2 * c + k ];
 
 			}
 
