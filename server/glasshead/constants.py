@@ -105,3 +105,22 @@ TONGUE_RIG_FORMAT_VERSION = 1
 TONGUE_VERTEX_TOLERANCE_MM = 1e-3
 #: Largest relative difference allowed between the two sides' tongue volumes.
 TONGUE_VOLUME_RELATIVE_TOLERANCE = 1e-4
+
+# --- Synthetic EPG: electrode layout and contact ------------------------------------------------
+# The layout (assets/build/epg-layout.json) is built by glasshead.pipeline.epg_layout and read by
+# glasshead.epg.contacts and web/src/core/epgContacts.js; tests/vectors/epg-contacts.json asserts
+# both sides compute the same contacts.
+
+#: Format version of the electrode layout file; both readers refuse any other version.
+EPG_LAYOUT_FORMAT_VERSION = 1
+#: mm. An electrode is contacted when the tongue surface crosses its probe: the segment along the
+#: electrode's normal from EPG_CONTACT_BEHIND_MM behind it (inside the palate) to this far in
+#: front of it (toward the tongue). 1 mm is about the thickness of a real EPG plate's electrode
+#: and of the saliva film that closes the circuit.
+EPG_CONTACT_TOLERANCE_MM = 1.0
+#: mm. How far behind the electrode the probe reaches: a corrected tongue lies on the palate
+#: within 0.1 mm (COLLISION_TOL.depth), so half a millimetre catches every touch.
+EPG_CONTACT_BEHIND_MM = 0.5
+#: Electrode grids: the Reading 62-electrode palate and a dense grid of 12 rows of 8.
+EPG_GRIDS = ("reading62", "dense96")
+EPG_DENSE_ROWS = 12

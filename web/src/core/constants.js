@@ -82,3 +82,16 @@ export const TONGUE_RIG_FORMAT_VERSION = 1;
 export const TONGUE_VERTEX_TOLERANCE_MM = 1e-3;
 /** Largest relative difference allowed between the two sides' tongue volumes. */
 export const TONGUE_VOLUME_RELATIVE_TOLERANCE = 1e-4;
+
+// --- Synthetic EPG: electrode layout and contact (mirrors server/glasshead/constants.py) --------
+
+/** Format version of the electrode layout file; the loader refuses any other version. */
+export const EPG_LAYOUT_FORMAT_VERSION = 1;
+/** mm. An electrode is contacted when the tongue surface crosses its probe: the segment along its
+ * normal from EPG_CONTACT_BEHIND_MM behind it to this far in front of it (toward the tongue). */
+export const EPG_CONTACT_TOLERANCE_MM = 1.0;
+/** mm. How far behind the electrode (into the palate) the probe reaches. */
+export const EPG_CONTACT_BEHIND_MM = 0.5;
+/** Electrode grids: the Reading 62-electrode palate and a dense grid of 12 rows of 8. */
+export const EPG_GRIDS = Object.freeze( [ 'reading62', 'dense96' ] );
+export const EPG_DENSE_ROWS = 12;

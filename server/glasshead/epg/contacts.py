@@ -1,0 +1,148 @@
+"""Synthetic EPG contact: which electrodes the corrected tongue surface touches.
+
+Twin of ``web/src/core/epgContacts.js``; ``tests/vectors/epg-contacts.json`` proves that both give
+the same contacts.
+
+Each electrode has a **probe**: the segment along its normal n (toward the tongue) from
+``behind`` mm behind it to ``tolerance`` mm in front of it. The electrode is contacted when the
+tongue surface crosses its probe: when some tongue triangle is hit by the line E + t n at a
+t with -behind <= t <= tolerance (two-sided Moller-Trumbore 1997, with the barycentric slack of
+the collision kernels, so a probe through an edge shared by two triangles cannot slip between
+them). The tongue has been corrected against the palate first, so a touching tongue lies on the
+palate's surface, where the electrodes are (Cohen, Beskow and Massaro 1998, part 6: "an
+electrode is contacted when the tongue reaches it").
+
+This module tests every probe against every triangle (the exact reference); the JS twin finds the
+same answer with a broad phase that only skips triangles that cannot reach any probe. Both do the
+same float64 operations in the same order on the same values, so they agree bit for bit on the
+same vertices.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from glasshead.constants import (
+    COLLISION_TOL,
+    EPG_CONTACT_BEHIND_MM,
+    EPG_CONTACT_TOLERANCE_MM,
+)
+
+#: Barycentric slack of the probe test (shared with the collision kernels, for the same reason).
+BARYCENTRIC_SLACK = COLLISION_TOL.barycentric
+
+
+@dataclass
+class Probes:
+    """The electrodes of one grid, ready for contact tests.
+
+    origins (k, 3) float64 electrode positions; directions (k, 3) float64 unit normals toward the
+    tongue; cells (k,) int64 flat grid cell of each electrode (row * columns + column); ids (k,)
+    str; rows, columns: grid size; tolerance, behind: the probe's reach in front and behind, mm.
+    """
+
+    grid: str
+    origins: np.ndarray
+    directions: np.ndarray
+    cells: np.ndarray
+    ids: list
+    rows: int
+    columns: int
+    tolerance: float = EPG_CONTACT_TOLERANCE_MM
+    behind: float = EPG_CONTACT_BEHIND_MM
+
+    @property
+    def count(self) -> int:
+        return len(self.origins)
+
+
+def probes_from_layout(grid_layout: dict, tolerance=EPG_CONTACT_TOLERANCE_MM,
+                       behind=EPG_CONTACT_BEHIND_MM) -> Probes:
+    """Probes of one grid of a layout document (``layout["grids"][name]``)."""
+    electrodes = grid_layout["electrodes"]
+    if not electrodes:
+        raise ValueError("the layout grid has no electrodes")
+    origins = np.array([e["position"] for e in electrodes], dtype=np.float64)
+    directions = np.array([e["normal"] for e in electrodes], dtype=np.float64)
+    if origins.shape != (len(electrodes), 3) or directions.shape != origins.shape:
+        raise ValueError("electrode positions and normals must be [x, y, z]")
+    if not (np.all(np.isfinite(origins)) and np.all(np.isfinite(directions))):
+        raise ValueError("electrode positions and normals must be finite")
+    lengths = np.linalg.norm(directions, axis=1)
+    if np.any(np.abs(lengths - 1.0) > 1e-6):
+        raise ValueError("electrode normals must be unit vectors")
+    if not (tolerance > 0 and behind >= 0):
+        raise ValueError("the probe needs tolerance > 0 and behind >= 0")
+    cells = np.array([e["cell"] for e in electrodes], dtype=np.int64)
+    rows, columns = int(grid_layout["rows"]), int(grid_layout["columns"])
+    if cells.min() < 0 or cells.max() >= rows * columns or len(set(cells.tolist())) != len(cells):
+        raise ValueError("electrode cells must be distinct and inside the grid")
+    return Probes(grid_layout["grid"], origins, directions, cells,
+                  [e["id"] for e in electrodes], rows, columns, float(tolerance), float(behind))
+
+
+def _check_mesh(vertices, triangles):
+    v = np.asarray(vertices, dtype=np.float64)
+    t = np.asarray(triangles)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError(f"vertices must have shape (n, 3), got {v.shape}")
+    if not np.all(np.isfinite(v)):
+        raise ValueError("vertices must be finite numbers")
+    if t.ndim != 2 or t.shape[1] != 3 or not np.issubdtype(t.dtype, np.integer):
+        raise ValueError(f"triangles must be (m, 3) integers, got {t.shape} {t.dtype}")
+    if len(t) and (t.min() < 0 or t.max() >= len(v)):
+        raise ValueError("triangles refer to vertices that do not exist")
+    return v, t.astype(np.int64)
+
+
+def probe_hits(origin, direction, a, b, c, tolerance, behind):
+    """Which triangles (a, b, c each (m, 3) float64) the probe crosses: (m,) bool.
+
+    Two-sided Moller-Trumbore (1997) from ``origin`` along ``direction``, written operation by
+    operation as in epgContacts.js so both round alike.
+    """
+    dx, dy, dz = direction
+    ax, ay, az = a.T
+    e1x, e1y, e1z = b[:, 0] - ax, b[:, 1] - ay, b[:, 2] - az
+    e2x, e2y, e2z = c[:, 0] - ax, c[:, 1] - ay, c[:, 2] - az
+    hx = dy * e2z - dz * e2y
+    hy = dz * e2x - dx * e2z
+    hz = dx * e2y - dy * e2x
+    det = e1x * hx + e1y * hy + e1z * hz
+    sx, sy, sz = origin[0] - ax, origin[1] - ay, origin[2] - az
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 1.0 / det
+        u = (sx * hx + sy * hy + sz * hz) * inv
+        qx = sy * e1z - sz * e1y
+        qy = sz * e1x - sx * e1z
+        qz = sx * e1y - sy * e1x
+        v = (dx * qx + dy * qy + dz * qz) * inv
+        t = (e2x * qx + e2y * qy + e2z * qz) * inv
+    eps = BARYCENTRIC_SLACK
+    return ((det != 0.0) & (u >= -eps) & (v >= -eps) & (u + v <= 1.0 + eps)
+            & (t >= -behind) & (t <= tolerance))
+
+
+def electrode_contacts(vertices, triangles, probes: Probes) -> np.ndarray:
+    """Contact (1) or not (0) of each electrode: (k,) uint8.
+
+    vertices : (n, 3) float, the corrected tongue, project frame (mm). triangles : (m, 3) int.
+    """
+    v, t = _check_mesh(vertices, triangles)
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    out = np.zeros(probes.count, dtype=np.uint8)
+    for k in range(probes.count):
+        out[k] = probe_hits(probes.origins[k], probes.directions[k], a, b, c,
+                            probes.tolerance, probes.behind).any()
+    return out
+
+
+def contact_grid(contacts, probes: Probes) -> np.ndarray:
+    """Electrode contacts (k,) laid out on the grid: (rows, columns) uint8, 0 where a cell has
+    no electrode (the R1 corners of the Reading palate)."""
+    contacts = np.asarray(contacts, dtype=np.uint8)
+    if contacts.shape != (probes.count,):
+        raise ValueError(f"expected {probes.count} contacts, got shape {contacts.shape}")
+    grid = np.zeros(probes.rows * probes.columns, dtype=np.uint8)
+    grid[probes.cells] = contacts
+    return grid.reshape(probes.rows, probes.columns)
