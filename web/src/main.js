@@ -13,6 +13,7 @@ installDebug( window );
 const router = new Router( document.getElementById( 'app' ) );
 
 router.register( '/', async ( container ) => ( await import( './ui/HeadView.js' ) ).mountHeadView( container ), { title: 'Glasshead' } );
+router.register( '/workbench', async ( container ) => ( await import( './ui/WorkbenchView.js' ) ).mountWorkbenchView( container ), { title: 'Glasshead workbench' } );
 
 registerDebug( 'route', () => router.currentPath );
 registerDebug( 'routes', () => router.paths );

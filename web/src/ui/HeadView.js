@@ -4,6 +4,7 @@ import { getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { Head } from '../scene/Head.js';
 import { loadAnatomy } from '../scene/loadAnatomy.js';
+import { loadArticulation } from '../scene/Articulation.js';
 import { Viewer } from '../scene/Viewer.js';
 import { Vector3 } from 'three';
 import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
@@ -110,6 +111,8 @@ export class HeadView {
 
 		if ( ! this.viewer ) return; // unmounted while loading
 		this.state.meshes = this.head.meshInfo();
+		this.articulation = await loadArticulation( this.head, this.viewer ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
+		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
 		this.head.setTransparency( this.state.transparency );
 		this.head.setCutaway( this.state.cutaway );
 		this.fitViews();
@@ -174,6 +177,7 @@ export class HeadView {
 	unmount() {
 
 		for ( const unregister of this.unregister ) unregister();
+		this.articulation?.dispose();
 		this.viewer?.dispose();
 		this.head?.dispose();
 		this.viewer = null;

@@ -1,0 +1,404 @@
+// The per-frame articulation pipeline (the data flow of the design: parameters -> jaw, lips,
+// tongue surface -> collision correction -> hooks (EPG contacts) -> render).
+//
+// For the current parameters (a ParamState: one Float32Array in the rigs' order):
+//   1. jaw: the mandible's Object3D matrix is the rig's jaw pose (the lower teeth are part of it);
+//   2. tongue: the rig's JS evaluator writes the surface into preallocated arrays;
+//   3. collision: the JS kernel corrects the vertices that went into the palate or teeth
+//      (counts screened / tested / corrected), normals are recomputed when any moved;
+//   4. the scene's tongue mesh (the parametric tongue replaces `tongue_rest`) shows them;
+//   5. face: the face rig poses the skin and lips when one is given; without it the lower lip
+//      rides on the jaw; the lips' mid-sagittal gap is measured either way;
+//   6. hooks: onCorrected( fn ) gets the corrected Float32Array (EPG contacts read it).
+// Nothing is recomputed while the parameters stay the same, and nothing is allocated per frame.
+
+import { BufferAttribute, BufferGeometry, Matrix4 } from 'three';
+import { jawPose, POSE_LENGTH } from '../core/jaw.js';
+import { meshVolume, TongueRig, vertexNormals } from '../core/tongue.js';
+import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../core/collision.js';
+import { fetchCollisionTables } from '../core/tables.js';
+import { ParamState } from '../core/paramState.js';
+import { fetchJson } from '../api.js';
+import { registerDebug } from '../debug.js';
+
+/** The scene mesh the parametric tongue replaces. */
+export const TONGUE_PART = 'tongue_rest';
+
+/** Vertices reported in window.glasshead.tongue.samples: the poles and a spread of ring vertices. */
+const SAMPLE_COUNT = 8;
+
+export class Articulation {
+
+	/**
+	 * @param {TongueRig} rig the real-time tongue evaluator
+	 * @param {ParamState} state its parameters first, in the rig's order (more may follow: lips)
+	 * @param {{ tables?: object|null, faceRig?: object|null }} options parsed collision tables
+	 *   (null: no correction) and a face rig (see setFaceRig)
+	 */
+	constructor( rig, state, { tables = null, faceRig = null } = {} ) {
+
+		rig.parameters.forEach( ( p, k ) => {
+
+			if ( state.names[ k ] !== p.name ) throw new Error( `parameter ${ k } is "${ state.names[ k ] }" in the state but "${ p.name }" in the tongue rig` );
+
+		} );
+		this.rig = rig;
+		this.state = state;
+		this.tables = tables;
+		this.faceRig = faceRig;
+		this.jawIndex = rig.jawParameter;
+
+		const count = rig.vertexCount;
+		this.vertexCount = count;
+		this.surface = rig.createSurface();
+		/** Corrected positions (Float32Array, xyz per vertex): the tongue the scene shows. */
+		this.positions = new Float32Array( 3 * count );
+		this.normals = new Float32Array( 3 * count );
+		this.normalSums = new Float64Array( 3 * count );
+		/** Per-vertex FLAG_SCREENED / FLAG_TESTED / FLAG_CORRECTED of the last frame. */
+		this.flags = new Uint8Array( count );
+		/** Screened, tested, corrected counts of the last frame (STAT_* order). */
+		this.stats = new Int32Array( 3 );
+		/** Triangles of the tongue (Uint32Array, 3 per triangle); fixed. */
+		this.triangles = rig.index;
+		/** The posed sagittal control points (x y per point) and the hub of the last frame. */
+		this.sagittalPoints = new Float64Array( 2 * rig.pointCount );
+		this.hub = new Float64Array( 2 );
+		/** Per station of the last frame: page direction (x y), radial controls, sideways stretch. */
+		this.directions = new Float64Array( 2 * rig.stationCount );
+		this.controls = new Float64Array( rig.stationCount * rig.controlCount );
+		this.stationStretch = new Float64Array( rig.stationCount );
+		this.jawPose = new Float64Array( POSE_LENGTH );
+		this.jawMatrix = new Matrix4();
+		this.volume = 0;
+		this.lipGap = null;
+		this.updates = 0;
+		this.lastMs = 0;
+		this.version = - 1;
+		this.hooks = new Set();
+		this.head = null;
+		this.geometry = null;
+		this.unregister = [];
+
+	}
+
+	/**
+	 * Put the parametric tongue into the head in place of its rest tongue, and take over the
+	 * mandible and the lips. Returns this.
+	 */
+	attach( head ) {
+
+		const geometry = new BufferGeometry();
+		geometry.setAttribute( 'position', new BufferAttribute( this.positions, 3 ) );
+		geometry.setAttribute( 'normal', new BufferAttribute( this.normals, 3 ) );
+		geometry.setIndex( new BufferAttribute( this.triangles, 1 ) );
+		geometry.computeBoundingSphere();
+		const part = head.part( TONGUE_PART );
+		if ( part ) {
+
+			const old = part.geometry;
+			head.setGeometry( TONGUE_PART, geometry );
+			if ( old !== geometry ) old.dispose();
+
+		}
+
+		this.geometry = geometry;
+		this.mandible = head.part( 'mandible' ) ?? null;
+		for ( const name of [ 'mandible', 'lower_lip' ] ) {
+
+			const group = head.part( name )?.group;
+			if ( group ) group.matrixAutoUpdate = false;
+
+		}
+
+		this.lips = midlineLips( head );
+		this.head = head;
+		this.update( true );
+		return this;
+
+	}
+
+	/**
+	 * Use a face rig for the skin and lips: an object with pose( values, jawMatrix, head ) that
+	 * moves their vertices and returns the lip gap in mm. null goes back to the rigid lower lip.
+	 */
+	setFaceRig( faceRig ) {
+
+		this.faceRig = faceRig;
+		this.version = - 1;
+
+	}
+
+	/** Recompute when the parameters changed since the last call (or when forced). Returns whether it did. */
+	update( force = false ) {
+
+		if ( ! force && this.version === this.state.version ) return false;
+		const start = performance.now();
+		this.version = this.state.version;
+		const values = this.state.values;
+		const rig = this.rig;
+
+		rig.evaluate( values, this.surface );
+		this.sagittalPoints.set( rig.points );
+		this.hub.set( rig.hub );
+		this.directions.set( rig.direction );
+		this.controls.set( rig.controls );
+		this.stationStretch.set( rig.stationStretch );
+		this.positions.set( this.surface.positions );
+		if ( this.tables ) correctVertices( this.positions, this.vertexCount, this.tables, this.flags, this.stats );
+		else this.stats.fill( 0 );
+		if ( this.stats[ STAT_CORRECTED ] > 0 ) vertexNormals( this.positions, this.triangles, this.normalSums, this.normals );
+		else this.normals.set( this.surface.normals );
+		this.volume = meshVolume( this.positions, this.triangles );
+
+		jawPose( values[ this.jawIndex ], rig.jaw, this.jawPose );
+		const p = this.jawPose;
+		this.jawMatrix.set( p[ 0 ], p[ 1 ], p[ 2 ], p[ 3 ], p[ 4 ], p[ 5 ], p[ 6 ], p[ 7 ], p[ 8 ], p[ 9 ], p[ 10 ], p[ 11 ], 0, 0, 0, 1 );
+		if ( this.head ) this.pose();
+
+		for ( const hook of this.hooks ) hook( this.positions, this );
+		this.updates ++;
+		this.lastMs = performance.now() - start;
+		return true;
+
+	}
+
+	/** Steps 1, 4 and 5 in the scene. */
+	pose() {
+
+		setMatrix( this.mandible?.group, this.jawMatrix );
+		if ( this.faceRig ) {
+
+			setMatrix( this.head.part( 'lower_lip' )?.group, IDENTITY );
+			this.lipGap = this.faceRig.pose( this.state.values, this.jawMatrix, this.head );
+
+		} else {
+
+			setMatrix( this.head.part( 'lower_lip' )?.group, this.jawMatrix );
+			this.lipGap = this.lips ? lipGap( this.lips, this.jawPose ) : null;
+
+		}
+
+		const geometry = this.geometry;
+		if ( ! geometry ) return;
+		geometry.attributes.position.needsUpdate = true;
+		geometry.attributes.normal.needsUpdate = true;
+		geometry.computeBoundingSphere();
+		const part = this.head.part( TONGUE_PART );
+		if ( part?.geometry === geometry ) {
+
+			// As Head.updateVertices: the section outline follows now if it shows, else when it does.
+			if ( this.head.cutaway ) part.outline.update( geometry );
+			else part.outlineStale = true;
+
+		}
+
+	}
+
+	/**
+	 * Call fn( correctedPositions, articulation ) after every recompute, with the corrected
+	 * Float32Array (xyz per vertex; the same array every time, `triangles` its index). Returns a
+	 * function that removes the hook.
+	 */
+	onCorrected( fn ) {
+
+		this.hooks.add( fn );
+		return () => this.hooks.delete( fn );
+
+	}
+
+	/** Recompute from the viewer's loop; the scene is drawn only in frames that changed. */
+	attachViewer( viewer ) {
+
+		this.unregister.push( viewer.onFrame( () => this.update() ) );
+		return this;
+
+	}
+
+	/** What window.glasshead reports about the tongue: sizes, volume, a checksum and samples. */
+	tongueReport() {
+
+		const positions = this.positions;
+		let checksum = 0;
+		let tip = 0;
+		let top = 0;
+		for ( let v = 0; v < this.vertexCount; v ++ ) {
+
+			const o = 3 * v;
+			checksum += ( 1 + ( v % 7 ) ) * ( positions[ o ] + 2 * positions[ o + 1 ] + 3 * positions[ o + 2 ] );
+			if ( positions[ o ] > positions[ 3 * tip ] ) tip = v;
+			if ( positions[ o + 1 ] > positions[ 3 * top + 1 ] ) top = v;
+
+		}
+
+		const vertex = ( v ) => Array.from( positions.subarray( 3 * v, 3 * v + 3 ), round3 );
+		const samples = [];
+		for ( let s = 0; s < SAMPLE_COUNT; s ++ ) {
+
+			const v = Math.round( s * ( this.vertexCount - 1 ) / ( SAMPLE_COUNT - 1 ) );
+			samples.push( { vertex: v, position: vertex( v ) } );
+
+		}
+
+		return {
+			vertexCount: this.vertexCount,
+			triangleCount: this.triangles.length / 3,
+			volumeMm3: round3( this.volume ),
+			checksum: round3( checksum ),
+			tip: vertex( tip ),
+			top: vertex( top ),
+			samples,
+		};
+
+	}
+
+	/** Add params, tongue, collision and lipGap to window.glasshead (removed by dispose()). */
+	registerDebugFields() {
+
+		const fields = {
+			params: () => this.state.toObject(),
+			tongue: () => this.tongueReport(),
+			collision: () => ( {
+				enabled: this.tables !== null,
+				screened: this.stats[ STAT_SCREENED ],
+				tested: this.stats[ STAT_TESTED ],
+				corrected: this.stats[ STAT_CORRECTED ],
+				updates: this.updates,
+				ms: round3( this.lastMs ),
+			} ),
+			lipGap: () => ( this.lipGap === null ? null : round3( this.lipGap ) ),
+		};
+		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
+		return this;
+
+	}
+
+	dispose() {
+
+		for ( const unregister of this.unregister ) unregister();
+		this.unregister = [];
+		this.hooks.clear();
+
+	}
+
+}
+
+const IDENTITY = new Matrix4();
+
+function setMatrix( group, matrix ) {
+
+	if ( ! group ) return;
+	group.matrix.copy( matrix );
+	group.matrixWorldNeedsUpdate = true;
+
+}
+
+function round3( value ) {
+
+	return Math.round( value * 1000 ) / 1000;
+
+}
+
+/**
+ * The mid-sagittal crossings of the lips at rest: for each edge of a lip mesh with one end at
+ * z <= 0 and the other at z > 0, the point where it crosses z = 0 (Float64Array, x y per point).
+ * The jaw turns about a z-parallel axis, so a posed crossing is the posed rest crossing.
+ * Returns { upper, lower } or null when a lip is missing.
+ */
+export function midlineLips( head ) {
+
+	const upper = head.part( 'upper_lip' );
+	const lower = head.part( 'lower_lip' );
+	if ( ! upper || ! lower ) return null;
+	return { upper: midlineCrossings( upper.geometry ), lower: midlineCrossings( lower.geometry ) };
+
+}
+
+/** Crossings of the plane z = 0 by the edges of a geometry's triangles (x y per crossing). */
+export function midlineCrossings( geometry ) {
+
+	const positions = geometry.getAttribute( 'position' );
+	const index = geometry.index;
+	const corner = ( t, k ) => ( index ? index.getX( 3 * t + k ) : 3 * t + k );
+	const triangles = index ? index.count / 3 : positions.count / 3;
+	const seen = new Set();
+	const points = [];
+	for ( let t = 0; t < triangles; t ++ ) {
+
+		for ( let k = 0; k < 3; k ++ ) {
+
+			let a = corner( t, k );
+			let b = corner( t, ( k + 1 ) % 3 );
+			if ( positions.getZ( a ) > 0 ) [ a, b ] = [ b, a ];
+			if ( ! ( positions.getZ( a ) <= 0 && positions.getZ( b ) > 0 ) ) continue;
+			const key = a * 4294967296 + b;
+			if ( seen.has( key ) ) continue;
+			seen.add( key );
+			const za = positions.getZ( a );
+			const s = za / ( za - positions.getZ( b ) );
+			points.push( positions.getX( a ) + s * ( positions.getX( b ) - positions.getX( a ) ) );
+			points.push( positions.getY( a ) + s * ( positions.getY( b ) - positions.getY( a ) ) );
+
+		}
+
+	}
+
+	return Float64Array.from( points );
+
+}
+
+/**
+ * The lips' mid-sagittal gap, mm: the lowest midline point of the upper lip above the highest of
+ * the lower lip, which rides on the jaw (pose from jawPose()); 0 when they touch.
+ */
+export function lipGap( lips, pose ) {
+
+	let upperLowest = Infinity;
+	for ( let k = 1; k < lips.upper.length; k += 2 ) upperLowest = Math.min( upperLowest, lips.upper[ k ] );
+	let lowerHighest = - Infinity;
+	const lower = lips.lower;
+	for ( let k = 0; k < lower.length; k += 2 ) {
+
+		lowerHighest = Math.max( lowerHighest, pose[ 4 ] * lower[ k ] + pose[ 5 ] * lower[ k + 1 ] + pose[ 7 ] );
+
+	}
+
+	return Math.max( 0, upperLowest - lowerHighest );
+
+}
+
+/**
+ * Parameter definitions of the tongue rig followed by those of the face rig (its lips), the
+ * tongue's first so that its evaluator reads the same array.
+ */
+export function parameterDefinitions( rigDefinition, faceRigDefinition = null ) {
+
+	const tongue = rigDefinition.parameters;
+	const names = new Set( tongue.map( ( p ) => p.name ) );
+	const lips = ( faceRigDefinition?.parameters ?? [] ).filter( ( p ) => ! names.has( p.name ) );
+	return [ ...tongue, ...lips ];
+
+}
+
+/**
+ * Load the tongue rig and the collision tables from the API and put a parametric, collision
+ * corrected tongue into `head`, driven from `viewer`'s loop. Tables that cannot be loaded leave
+ * the tongue uncorrected (collision.enabled false) with `tablesError` saying why.
+ * Returns the Articulation, its debug fields registered.
+ */
+export async function loadArticulation( head, viewer, { fetchImpl = globalThis.fetch } = {} ) {
+
+	const [ definition, tables ] = await Promise.all( [
+		fetchJson( '/tongue/rig', { fetchImpl } ),
+		fetchCollisionTables( '/api/v1', fetchImpl ).catch( ( error ) => error ),
+	] );
+	const rig = new TongueRig( definition );
+	const state = new ParamState( parameterDefinitions( definition ) );
+	const tablesError = tables instanceof Error ? tables.message : null;
+	const articulation = new Articulation( rig, state, { tables: tablesError ? null : tables } );
+	articulation.tablesError = tablesError;
+	articulation.attach( head ).registerDebugFields();
+	if ( viewer ) articulation.attachViewer( viewer );
+	return articulation;
+
+}
