@@ -12,10 +12,9 @@ them). The tongue has been corrected against the palate first, so a touching ton
 palate's surface, where the electrodes are (Cohen, Beskow and Massaro 1998, part 6: "an
 electrode is contacted when the tongue reaches it").
 
-This module tests every probe against every triangle (the exact reference); the JS twin finds the
-same answer with a broad phase that only skips triangles that cannot reach any probe. Both do the
-same float64 operations in the same order on the same values, so they agree bit for bit on the
-same vertices.
+Both twins test a probe only against triangles whose bounding boxes meet its own (a test that
+can only skip triangles the probe cannot hit), and do the same float64 operations in the same
+order on the same values, so they agree bit for bit on the same vertices.
 """
 
 from dataclasses import dataclass
@@ -30,6 +29,8 @@ from glasshead.constants import (
 
 #: Barycentric slack of the probe test (shared with the collision kernels, for the same reason).
 BARYCENTRIC_SLACK = COLLISION_TOL.barycentric
+#: mm. Boxes are widened by this before the box test, so it never drops a hit the slack accepts.
+PAD_MM = 1e-6
 
 
 @dataclass
@@ -127,13 +128,23 @@ def electrode_contacts(vertices, triangles, probes: Probes) -> np.ndarray:
     """Contact (1) or not (0) of each electrode: (k,) uint8.
 
     vertices : (n, 3) float, the corrected tongue, project frame (mm). triangles : (m, 3) int.
+    Each probe is tested against the triangles whose boxes meet its own (widened by ``PAD_MM``,
+    so no triangle the test would accept is left out): the same answer as every triangle.
     """
     v, t = _check_mesh(vertices, triangles)
     a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    low = np.minimum(np.minimum(a, b), c)
+    high = np.maximum(np.maximum(a, b), c)
+    near = probes.origins - probes.behind * probes.directions
+    far = probes.origins + probes.tolerance * probes.directions
+    box_low = np.minimum(near, far) - PAD_MM
+    box_high = np.maximum(near, far) + PAD_MM
     out = np.zeros(probes.count, dtype=np.uint8)
     for k in range(probes.count):
-        out[k] = probe_hits(probes.origins[k], probes.directions[k], a, b, c,
-                            probes.tolerance, probes.behind).any()
+        m = np.flatnonzero(np.all((high >= box_low[k]) & (low <= box_high[k]), axis=1))
+        if len(m):
+            out[k] = probe_hits(probes.origins[k], probes.directions[k], a[m], b[m], c[m],
+                                probes.tolerance, probes.behind).any()
     return out
 
 

@@ -130,11 +130,15 @@ export function createContactModel( grid, index, vertexCount, { tolerance = EPG_
 }
 
 /**
- * Does the probe of electrode k cross the triangle (ax..cz)? Two-sided Moller-Trumbore,
- * operation for operation as probe_hits in contacts.py.
+ * Does the probe of electrode k cross the triangle whose corners start at positions[ a ], [ b ]
+ * and [ c ]? Two-sided Moller-Trumbore, operation for operation as probe_hits in contacts.py.
+ * (Offsets, not coordinates, are passed: integers travel unboxed, so a call allocates nothing.)
  */
-function probeHits( model, k, ax, ay, az, bx, by, bz, cx, cy, cz ) {
+function probeHits( model, k, positions, a, b, c ) {
 
+	const ax = positions[ a ], ay = positions[ a + 1 ], az = positions[ a + 2 ];
+	const bx = positions[ b ], by = positions[ b + 1 ], bz = positions[ b + 2 ];
+	const cx = positions[ c ], cy = positions[ c + 1 ], cz = positions[ c + 2 ];
 	const o = 3 * k;
 	const dx = model.directions[ o ], dy = model.directions[ o + 1 ], dz = model.directions[ o + 2 ];
 	const e1x = bx - ax, e1y = by - ay, e1z = bz - az;
@@ -228,7 +232,7 @@ export function epgContacts( model, positions, target ) {
 					last[ k ] = triangle;
 					const box = 6 * k;
 					if ( x1 < boxes[ box ] || x0 > boxes[ box + 3 ] || y1 < boxes[ box + 1 ] || y0 > boxes[ box + 4 ] || z1 < boxes[ box + 2 ] || z0 > boxes[ box + 5 ] ) continue;
-					if ( probeHits( model, k, ax, ay, az, bx, by, bz, cx, cy, cz ) ) {
+					if ( probeHits( model, k, positions, a, b, c ) ) {
 
 						contacted[ k ] = 1;
 						found ++;
@@ -264,7 +268,7 @@ export function epgContactsBruteForce( model, positions, target ) {
 		for ( let t = 0; t < index.length; t += 3 ) {
 
 			const a = 3 * index[ t ], b = 3 * index[ t + 1 ], c = 3 * index[ t + 2 ];
-			if ( probeHits( model, k, positions[ a ], positions[ a + 1 ], positions[ a + 2 ], positions[ b ], positions[ b + 1 ], positions[ b + 2 ], positions[ c ], positions[ c + 1 ], positions[ c + 2 ] ) ) {
+			if ( probeHits( model, k, positions, a, b, c ) ) {
 
 				target[ model.cellOf[ k ] ] = 1;
 				found ++;

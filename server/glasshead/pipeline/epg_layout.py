@@ -1,0 +1,126 @@
+"""Build step: the EPG electrode layouts on the scene maxilla, written to ``epg-layout.json``.
+
+The placement rule is in ``glasshead.epg.layout``. The file holds every grid (the Reading
+62-electrode palate and the dense 96-electrode grid), so the browser and the API read one file.
+The step is skipped when the file was built from the same maxilla by the same builder version.
+
+``current_layout()`` is what the API serves: the built file, read and checked once per version.
+"""
+
+import hashlib
+import json
+import sys
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from glasshead.constants import EPG_LAYOUT_FORMAT_VERSION
+from glasshead.epg.layout import GRIDS, layout_document
+from glasshead.pipeline.collision_tables import load_scene_maxilla
+
+LAYOUT_FILE = "epg-layout.json"
+#: Bumped whenever the placement changes for the same maxilla, so stale layouts rebuild.
+BUILDER_VERSION = 1
+
+
+class LayoutFileError(ValueError):
+    """An electrode layout file that is missing, unreadable or of another format version."""
+
+
+def _digest(vertices, faces):
+    return hashlib.sha256(np.ascontiguousarray(vertices).tobytes()
+                          + np.ascontiguousarray(faces).tobytes()).hexdigest()
+
+
+def build_epg_layout(maxilla_vertices, maxilla_faces, out_dir, source=None):
+    """Place every grid on the maxilla (vertices (n, 3) float mm, faces (m, 3) int, project
+    frame) and write ``out_dir/epg-layout.json``. Returns the document."""
+    document = layout_document(maxilla_vertices, maxilla_faces, source=source)
+    document["builder"] = BUILDER_VERSION
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / LAYOUT_FILE).write_text(json.dumps(document, indent=1) + "\n")
+    return document
+
+
+def build_step(assets_dir):
+    """The `glasshead build` step: the layout of the scene maxilla, skipped when up to date.
+
+    Returns {"step": "epg-layout", "file", "skipped", "electrodes": {grid: count}}.
+    """
+    v, f = load_scene_maxilla(assets_dir)
+    out = Path(assets_dir) / LAYOUT_FILE
+    digest = _digest(v, f)
+    if out.is_file():
+        try:
+            existing = json.loads(out.read_text())
+        except (OSError, json.JSONDecodeError):
+            existing = {}
+        if existing.get("source", {}).get("sha256") == digest \
+                and existing.get("builder") == BUILDER_VERSION \
+                and existing.get("format_version") == EPG_LAYOUT_FORMAT_VERSION:
+            return _report(out, existing, skipped=True)
+    document = build_epg_layout(v, f, assets_dir, source={"mesh": "maxilla (scene)"})
+    return _report(out, document, skipped=False)
+
+
+def _report(path, document, skipped):
+    return {"step": "epg-layout", "file": str(path), "skipped": skipped,
+            "electrodes": {name: len(grid["electrodes"])
+                           for name, grid in document.get("grids", {}).items()}}
+
+
+def read_layout(path):
+    """Read and check a layout file; LayoutFileError naming the file if it is not one."""
+    path = Path(path)
+    try:
+        document = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise LayoutFileError(f"{path} is missing: run `glasshead build`") from None
+    except (OSError, json.JSONDecodeError) as exc:
+        raise LayoutFileError(f"{path}: not an electrode layout ({exc})") from None
+    version = document.get("format_version")
+    if version != EPG_LAYOUT_FORMAT_VERSION:
+        raise LayoutFileError(f"{path}: layout format_version {version!r} is not "
+                              f"{EPG_LAYOUT_FORMAT_VERSION}; run `glasshead build`")
+    grids = document.get("grids", {})
+    missing = [name for name in GRIDS if name not in grids]
+    if missing:
+        raise LayoutFileError(f"{path}: the layout lacks the grids {', '.join(missing)}")
+    return document
+
+
+@lru_cache(maxsize=2)
+def _cached(path, modified):
+    return read_layout(path)
+
+
+def layout_path(assets_dir=None):
+    from glasshead.settings import get_settings
+
+    return Path(assets_dir or get_settings().assets_dir) / LAYOUT_FILE
+
+
+def current_layout(assets_dir=None):
+    """The built layout document (cached per file version); LayoutFileError when missing."""
+    path = layout_path(assets_dir)
+    if not path.is_file():
+        raise LayoutFileError(f"{path} is missing: run `glasshead build`")
+    return _cached(str(path), path.stat().st_mtime_ns)
+
+
+def main(argv=None):
+    """python -m glasshead.pipeline.epg_layout [assets_dir]"""
+    from glasshead.settings import get_settings
+
+    argv = sys.argv[1:] if argv is None else argv
+    assets = Path(argv[0]) if argv else get_settings().assets_dir
+    report = build_step(assets)
+    counts = ", ".join(f"{name} {n}" for name, n in report["electrodes"].items())
+    print(f"{report['file']}: {counts}" + (" (up to date)" if report["skipped"] else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
