@@ -29,11 +29,20 @@ export const STAT_CORRECTED = 2;
 const BARY = COLLISION_TOL.barycentric;
 
 /**
- * First hit t > 0 of the ray O + t (dx, dy, dz) over the triangles of one liner cell (two-sided
- * Moller-Trumbore); Infinity when none is hit.
+ * The ray's direction in, the first hit out: a called function boxes every floating-point argument
+ * and return value on the heap, so firstHit passes them here to allocate nothing per vertex.
  */
-function firstHit( dx, dy, dz, tables, cell ) {
+const RAY = new Float64Array( 4 );
+const RAY_T = 0, RAY_DX = 1, RAY_DY = 2, RAY_DZ = 3;
 
+/**
+ * First hit t > 0 of the ray O + t (dx, dy, dz) over the triangles of one liner cell (two-sided
+ * Moller-Trumbore), written to RAY[ RAY_T ]; Infinity when none is hit. (dx, dy, dz) is read from
+ * RAY[ RAY_DX .. RAY_DZ ].
+ */
+function firstHit( tables, cell ) {
+
+	const dx = RAY[ RAY_DX ], dy = RAY[ RAY_DY ], dz = RAY[ RAY_DZ ];
 	const tri = tables.triangles, list = tables.cellTriangles;
 	const end = tables.cellOffsets[ cell + 1 ];
 	let best = Infinity;
@@ -62,7 +71,7 @@ function firstHit( dx, dy, dz, tables, cell ) {
 
 	}
 
-	return best;
+	RAY[ RAY_T ] = best;
 
 }
 
@@ -141,7 +150,9 @@ export function correctVertices( positions, count, tables, flags, stats ) {
 
 		} else if ( kind === CELL_LIST ) {
 
-			t = firstHit( px, py, pz, tables, cell );
+			RAY[ RAY_DX ] = px; RAY[ RAY_DY ] = py; RAY[ RAY_DZ ] = pz;
+			firstHit( tables, cell );
+			t = RAY[ RAY_T ];
 
 		}
 
