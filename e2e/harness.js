@@ -173,7 +173,9 @@ export async function openPage( browser, { width = 1280, height = 800 } = {} ) {
 	page.problems = [];
 	page.on( 'console', ( message ) => {
 
-		if ( message.type() === 'error' ) page.problems.push( `console error: ${ message.text() }` );
+		if ( message.type() !== 'error' ) return;
+		const { url } = message.location();
+		page.problems.push( `console error: ${ message.text() }${ url ? ` (${ url })` : '' }` );
 
 	} );
 	page.on( 'pageerror', ( error ) => page.problems.push( `uncaught: ${ error.message }` ) );
