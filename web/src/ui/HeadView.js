@@ -113,6 +113,7 @@ export class HeadView {
 		this.state.meshes = this.head.meshInfo();
 		this.articulation = await loadArticulation( this.head, this.viewer ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
 		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
+		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this ); // electrodes on the palate, live palatogram
 		this.head.setTransparency( this.state.transparency );
 		this.head.setCutaway( this.state.cutaway );
 		this.fitViews();
