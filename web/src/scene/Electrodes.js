@@ -19,7 +19,7 @@ import {
 	Vector3,
 } from 'three';
 
-export const ELECTRODE_COLORS = Object.freeze( { dot: '#27313b', square: '#d1243a' } );
+export const ELECTRODE_COLORS = Object.freeze( { dot: '#4a5562', square: '#10161d' } );
 /** mm: dot radius, square side and thickness, and the lift off the palate toward the tongue. */
 export const ELECTRODE_SIZES = Object.freeze( { dot: 0.55, square: 1.9, thickness: 0.35, lift: 0.2 } );
 /** Opacity of the see-through pass. */

@@ -16,6 +16,7 @@ import { IndexPlot } from './IndexPlot.js';
 import { PALATOGRAM_COLORS, Palatogram } from './Palatogram.js';
 import { PalatogramStrip } from './PalatogramStrip.js';
 import { parseTargetName, postJson, targetSources } from './targets.js';
+import { TargetPalate3D } from './TargetPalate3D.js';
 import './epg.css';
 
 const SPEEDS = Object.freeze( [ 1, 0.5, 0.25, 0.1 ] );
@@ -30,7 +31,7 @@ export class ClinicianView {
 		this.fetchImpl = fetchImpl;
 		this.window = win;
 		this.sources = targetSources( { fetchImpl } );
-		this.state = { loaded: false, error: null, frame: 0, playing: false, speed: 1, target: null, recording: null, comparison: null };
+		this.state = { loaded: false, error: null, frame: 0, playing: false, speed: 1, target: null, recording: null, comparison: null, target3d: null };
 		this.unregister = [];
 		this.loadVersion = 0;
 
@@ -63,11 +64,11 @@ export class ClinicianView {
 		this.slider = h( 'input', { type: 'range', className: 'cv-slider', min: '0', max: '0', value: '0', 'aria-label': 'Frame', onInput: () => this.setFrame( Number( this.slider.value ) ) } );
 		this.frameLabel = h( 'span', { className: 'cv-frame', 'aria-live': 'off' }, '' );
 		const transport = h( 'div', { className: 'cv-transport', role: 'group', 'aria-label': 'Frames' },
-			button( 'First frame', '⏮', () => this.setFrame( 0 ) ),
+			button( 'First frame', '|◀', () => this.setFrame( 0 ) ),
 			button( 'Previous frame', '◀', () => this.step( - 1 ) ),
 			this.playButton,
 			button( 'Next frame', '▶', () => this.step( 1 ) ),
-			button( 'Last frame', '⏭', () => this.setFrame( this.frameCount() - 1 ) ),
+			button( 'Last frame', '▶|', () => this.setFrame( this.frameCount() - 1 ) ),
 			this.frameLabel );
 
 		this.targetPalatogram = new Palatogram( { width: 200, height: 220, ariaLabel: 'Target palatogram (synthetic)' } );
@@ -78,7 +79,10 @@ export class ClinicianView {
 		this.agreementCaption = h( 'figcaption', {}, 'Agreement' );
 		const card = ( caption, palatogram ) => h( 'figure', { className: 'cv-card' }, caption, palatogram.element );
 		this.table = h( 'table', { className: 'cv-table', 'aria-label': 'EPG indices of this frame' } );
+		this.stage3d = h( 'div', { className: 'cv-stage3d', role: 'img', 'aria-label': 'The target on the 3D palate: electrodes as dots, contacted ones as squares' } );
+		this.caption3d = h( 'figcaption', {}, 'Target on the palate (choose a target)' );
 		const pair = h( 'div', { className: 'cv-pair' },
+			h( 'figure', { className: 'cv-card' }, this.caption3d, this.stage3d ),
 			card( this.targetCaption, this.targetPalatogram ),
 			card( this.recordingCaption, this.recordingPalatogram ),
 			card( this.agreementCaption, this.agreementPalatogram ),
@@ -181,6 +185,7 @@ export class ClinicianView {
 				if ( version !== this.loadVersion ) return null;
 				this.state.target = { name, ...target, frames: framesFromRows( target.rows ), count: target.rows.length };
 				this.state.target.indices = indexTracks( this.state.target.frames, this.state.target.count );
+				this.showTarget3d( this.state.target );
 
 			} catch ( error ) {
 
@@ -221,6 +226,25 @@ export class ClinicianView {
 		}
 
 		return this.compareAndRender( version, keepFrame );
+
+	}
+
+	/** The target's tongue and electrodes in 3D (targets with parameters; one static frame). */
+	async showTarget3d( target ) {
+
+		if ( ! target.params ) return;
+		try {
+
+			this.palate3d ??= new TargetPalate3D( this.stage3d );
+			this.caption3d.textContent = `${ target.label } on the palate`;
+			this.state.target3d = await this.palate3d.showParams( target.params );
+
+		} catch ( error ) {
+
+			this.caption3d.textContent = `No 3D view: ${ error.message }`;
+			console.warn( `Glasshead: ${ error.message }` );
+
+		}
 
 	}
 
@@ -453,6 +477,7 @@ export class ClinicianView {
 			target: target ? { name: target.name, label: target.label, frames: target.count, frame: this.targetFrameIndex() } : null,
 			recording: recording ? { id: recording.id, name: recording.name, frames: recording.count, frameRateHz: recording.frameRateHz } : null,
 			agreement: comparison ? comparison.agreement[ frame ] : null,
+			target3d: this.state.target3d ? { rows: this.state.target3d.rows, contacted: this.state.target3d.contacted, squares: this.palate3d?.electrodes?.contacted ?? null } : null,
 			meanAgreement: comparison ? comparison.summary.mean_agreement : null,
 		};
 
@@ -508,6 +533,7 @@ export class ClinicianView {
 		this.loadVersion ++;
 		this.window.removeEventListener( 'keydown', this.onKey );
 		this.resizeObserver?.disconnect();
+		this.palate3d?.dispose();
 		for ( const unregister of this.unregister ) unregister();
 		this.root.remove();
 

@@ -32,8 +32,9 @@ export const READING_GRID = Object.freeze( { rows: 8, columns: 8, missing: Objec
  */
 export function palatogramLayout( box, grid = READING_GRID ) {
 
-	const pad = Math.min( box.width, box.height ) * 0.06;
-	const pitch = Math.min( ( box.width - 2 * pad ) / grid.columns, ( box.height - 2 * pad ) / grid.rows );
+	// Room around the grid for the outline of the palate (a quarter of a cell) and a margin.
+	const pad = Math.min( box.width, box.height ) * 0.04;
+	const pitch = Math.min( ( box.width - 2 * pad ) / ( grid.columns + 0.6 ), ( box.height - 2 * pad ) / ( grid.rows + 0.6 ) );
 	const x0 = box.x + ( box.width - pitch * grid.columns ) / 2;
 	const y0 = box.y + ( box.height - pitch * grid.rows ) / 2;
 	return {
