@@ -10,11 +10,13 @@
 //
 // The probes never move, so everything about them is built once (createContactModel): their
 // boxes, the lowest height any of them reaches, and a uniform grid over them whose cells list
-// the probes that cross them. Per frame (epgContacts), a triangle is skipped at once when all its
-// corners are below every probe (most of the tongue); the others are boxed, looked up in the
-// grid, and tested only against the few probes whose boxes meet theirs and that are not already
-// contacted. Skipping never removes a triangle that could hit (boxes are widened by PAD_MM), so
-// the answer is the brute force's, bit for bit: the arithmetic of the test is the Python twin's.
+// the probes that cross them. Per frame (epgContacts), only triangles with a corner at or above
+// that height are visited (through the triangles around each vertex); each corner is placed in
+// the grid once per frame, a triangle whose corners all lie beyond one side of the grid is
+// skipped, and the others are tested only against the probes listed in the cells they span,
+// not yet contacted, whose boxes meet theirs. Skipping never removes a triangle that could hit
+// (boxes are widened by PAD_MM), so the answer is the brute force's, bit for bit: the arithmetic
+// of the test is the Python twin's.
 
 import { COLLISION_TOL, EPG_CONTACT_BEHIND_MM, EPG_CONTACT_TOLERANCE_MM } from './constants.js';
 
@@ -73,7 +75,9 @@ export function createContactModel( grid, index, vertexCount, { tolerance = EPG_
 	} );
 
 	// The probe grid: cell lists in CSR form (cellStart[c] .. cellStart[c + 1] in cellItems).
-	const shape = lo.map( ( l, a ) => Math.max( 1, Math.ceil( ( hi[ a ] - l ) / cellSize ) ) );
+	// One cell more than the probes need, so that every probe box ends strictly inside the grid:
+	// a point in no cell along an axis is then beyond every probe on that axis.
+	const shape = lo.map( ( l, a ) => Math.max( 1, Math.ceil( ( hi[ a ] - l ) / cellSize ) ) + 1 );
 	const gridCells = shape[ 0 ] * shape[ 1 ] * shape[ 2 ];
 	const lists = Array.from( { length: gridCells }, () => [] );
 	for ( let k = 0; k < count; k ++ ) {
@@ -117,6 +121,11 @@ export function createContactModel( grid, index, vertexCount, { tolerance = EPG_
 	return {
 		index, vertexCount, triangleCount, aroundStart, around,
 		triangleStamp: new Uint32Array( triangleCount ), stamp: 0,
+		// Per vertex and frame: its grid cell (clamped to the grid) and which sides of the grid
+		// it is beyond (bits: x low, x high, y low, y high, z low, z high), when vertexStamp matches.
+		vertexStamp: new Uint32Array( vertexCount ),
+		vertexCell: new Int32Array( 3 * vertexCount ),
+		vertexOut: new Uint8Array( vertexCount ),
 		grid: grid.grid, rows: grid.rows, columns: grid.columns, cells, count,
 		ids: Object.freeze( electrodes.map( ( e ) => e.id ) ),
 		tolerance, behind, origins, directions, cellOf, boxes, yLow,
@@ -180,25 +189,26 @@ export function epgContacts( model, positions, target ) {
 	contacted.fill( 0 );
 	last.fill( - 1 );
 	const index = model.index, aroundStart = model.aroundStart, around = model.around;
-	const triangleStamp = model.triangleStamp;
+	const triangleStamp = model.triangleStamp, vertexStamp = model.vertexStamp;
 	if ( model.stamp === 0xFFFFFFFF ) {
 
 		triangleStamp.fill( 0 );
+		vertexStamp.fill( 0 );
 		model.stamp = 0;
 
 	}
 
 	const stamp = ++ model.stamp;
 	const yLow = model.yLow, boxes = model.boxes;
-	const gx = model.gridMin[ 0 ], gy = model.gridMin[ 1 ], gz = model.gridMin[ 2 ];
-	const nx = model.gridShape[ 0 ], ny = model.gridShape[ 1 ], nz = model.gridShape[ 2 ];
-	const inv = model.invCell, start = model.cellStart, items = model.cellItems;
-	const maxX = gx + nx / inv, maxY = gy + ny / inv, maxZ = gz + nz / inv;
+	const cellOfVertex = model.vertexCell, out = model.vertexOut;
+	const start = model.cellStart, items = model.cellItems;
+	const ny = model.gridShape[ 1 ], nz = model.gridShape[ 2 ];
 	let found = 0;
 
 	for ( let vertex = 0; vertex < model.vertexCount; vertex ++ ) {
 
-		// A triangle with every corner below every probe cannot reach one.
+		// A triangle with every corner below every probe cannot reach one: start from the corners
+		// that are not.
 		if ( positions[ 3 * vertex + 1 ] < yLow ) continue;
 		for ( let r = aroundStart[ vertex ], rEnd = aroundStart[ vertex + 1 ]; r < rEnd; r ++ ) {
 
@@ -206,22 +216,20 @@ export function epgContacts( model, positions, target ) {
 			if ( triangleStamp[ triangle ] === stamp ) continue;
 			triangleStamp[ triangle ] = stamp;
 			const t = 3 * triangle;
-			const a = 3 * index[ t ], b = 3 * index[ t + 1 ], c = 3 * index[ t + 2 ];
-			const ax = positions[ a ], ay = positions[ a + 1 ], az = positions[ a + 2 ];
-			const bx = positions[ b ], by = positions[ b + 1 ], bz = positions[ b + 2 ];
-			const cx = positions[ c ], cy = positions[ c + 1 ], cz = positions[ c + 2 ];
-			const x0 = ax < bx ? ( ax < cx ? ax : cx ) : ( bx < cx ? bx : cx );
-			const x1 = ax > bx ? ( ax > cx ? ax : cx ) : ( bx > cx ? bx : cx );
-			if ( x1 < gx || x0 > maxX ) continue;
-			const z0 = az < bz ? ( az < cz ? az : cz ) : ( bz < cz ? bz : cz );
-			const z1 = az > bz ? ( az > cz ? az : cz ) : ( bz > cz ? bz : cz );
-			if ( z1 < gz || z0 > maxZ ) continue;
-			const y0 = ay < by ? ( ay < cy ? ay : cy ) : ( by < cy ? by : cy );
-			const y1 = ay > by ? ( ay > cy ? ay : cy ) : ( by > cy ? by : cy );
-			if ( y0 > maxY ) continue;
-			const i0 = x0 > gx ? ( ( x0 - gx ) * inv ) | 0 : 0, i1 = Math.min( nx - 1, ( ( x1 - gx ) * inv ) | 0 );
-			const j0 = y0 > gy ? ( ( y0 - gy ) * inv ) | 0 : 0, j1 = Math.min( ny - 1, ( ( y1 - gy ) * inv ) | 0 );
-			const l0 = z0 > gz ? ( ( z0 - gz ) * inv ) | 0 : 0, l1 = Math.min( nz - 1, ( ( z1 - gz ) * inv ) | 0 );
+			const va = index[ t ], vb = index[ t + 1 ], vc = index[ t + 2 ];
+			if ( vertexStamp[ va ] !== stamp ) placeVertex( model, positions, va, stamp );
+			if ( vertexStamp[ vb ] !== stamp ) placeVertex( model, positions, vb, stamp );
+			if ( vertexStamp[ vc ] !== stamp ) placeVertex( model, positions, vc, stamp );
+			if ( ( out[ va ] & out[ vb ] & out[ vc ] ) !== 0 ) continue; // all beyond one side of the grid
+			const a3 = 3 * va, b3 = 3 * vb, c3 = 3 * vc;
+			const ia = cellOfVertex[ a3 ], ib = cellOfVertex[ b3 ], ic = cellOfVertex[ c3 ];
+			const ja = cellOfVertex[ a3 + 1 ], jb = cellOfVertex[ b3 + 1 ], jc = cellOfVertex[ c3 + 1 ];
+			const la = cellOfVertex[ a3 + 2 ], lb = cellOfVertex[ b3 + 2 ], lc = cellOfVertex[ c3 + 2 ];
+			const i0 = ia < ib ? ( ia < ic ? ia : ic ) : ( ib < ic ? ib : ic ), i1 = ia > ib ? ( ia > ic ? ia : ic ) : ( ib > ic ? ib : ic );
+			const j0 = ja < jb ? ( ja < jc ? ja : jc ) : ( jb < jc ? jb : jc ), j1 = ja > jb ? ( ja > jc ? ja : jc ) : ( jb > jc ? jb : jc );
+			const l0 = la < lb ? ( la < lc ? la : lc ) : ( lb < lc ? lb : lc ), l1 = la > lb ? ( la > lc ? la : lc ) : ( lb > lc ? lb : lc );
+			let boxReady = false;
+			let x0 = 0, x1 = 0, y0 = 0, y1 = 0, z0 = 0, z1 = 0;
 			for ( let i = i0; i <= i1; i ++ ) for ( let j = j0; j <= j1; j ++ ) for ( let l = l0; l <= l1; l ++ ) {
 
 				const cell = ( i * ny + j ) * nz + l;
@@ -230,9 +238,21 @@ export function epgContacts( model, positions, target ) {
 					const k = items[ m ];
 					if ( contacted[ k ] === 1 || last[ k ] === triangle ) continue;
 					last[ k ] = triangle;
+					if ( ! boxReady ) {
+
+						const ax = positions[ a3 ], ay = positions[ a3 + 1 ], az = positions[ a3 + 2 ];
+						const bx = positions[ b3 ], by = positions[ b3 + 1 ], bz = positions[ b3 + 2 ];
+						const cx = positions[ c3 ], cy = positions[ c3 + 1 ], cz = positions[ c3 + 2 ];
+						x0 = ax < bx ? ( ax < cx ? ax : cx ) : ( bx < cx ? bx : cx ); x1 = ax > bx ? ( ax > cx ? ax : cx ) : ( bx > cx ? bx : cx );
+						y0 = ay < by ? ( ay < cy ? ay : cy ) : ( by < cy ? by : cy ); y1 = ay > by ? ( ay > cy ? ay : cy ) : ( by > cy ? by : cy );
+						z0 = az < bz ? ( az < cz ? az : cz ) : ( bz < cz ? bz : cz ); z1 = az > bz ? ( az > cz ? az : cz ) : ( bz > cz ? bz : cz );
+						boxReady = true;
+
+					}
+
 					const box = 6 * k;
 					if ( x1 < boxes[ box ] || x0 > boxes[ box + 3 ] || y1 < boxes[ box + 1 ] || y0 > boxes[ box + 4 ] || z1 < boxes[ box + 2 ] || z0 > boxes[ box + 5 ] ) continue;
-					if ( probeHits( model, k, positions, a, b, c ) ) {
+					if ( probeHits( model, k, positions, a3, b3, c3 ) ) {
 
 						contacted[ k ] = 1;
 						found ++;
@@ -251,6 +271,28 @@ export function epgContacts( model, positions, target ) {
 	const cellOf = model.cellOf;
 	for ( let k = 0; k < model.count; k ++ ) if ( contacted[ k ] === 1 ) target[ cellOf[ k ] ] = 1;
 	return found;
+
+}
+
+/**
+ * Grid cell of a vertex (clamped into the grid) and the sides of the grid it lies beyond, for
+ * this frame. A triangle whose corners all lie beyond one side meets no probe box; otherwise the
+ * clamped cells of its corners span every cell its box meets.
+ */
+function placeVertex( model, positions, v, stamp ) {
+
+	const o = 3 * v;
+	const inv = model.invCell, min = model.gridMin, shape = model.gridShape;
+	const i = Math.floor( ( positions[ o ] - min[ 0 ] ) * inv );
+	const j = Math.floor( ( positions[ o + 1 ] - min[ 1 ] ) * inv );
+	const l = Math.floor( ( positions[ o + 2 ] - min[ 2 ] ) * inv );
+	const nx = shape[ 0 ], ny = shape[ 1 ], nz = shape[ 2 ];
+	model.vertexOut[ v ] = ( i < 0 ? 1 : 0 ) | ( i >= nx ? 2 : 0 ) | ( j < 0 ? 4 : 0 ) | ( j >= ny ? 8 : 0 ) | ( l < 0 ? 16 : 0 ) | ( l >= nz ? 32 : 0 );
+	const cells = model.vertexCell;
+	cells[ o ] = i < 0 ? 0 : ( i >= nx ? nx - 1 : i );
+	cells[ o + 1 ] = j < 0 ? 0 : ( j >= ny ? ny - 1 : j );
+	cells[ o + 2 ] = l < 0 ? 0 : ( l >= nz ? nz - 1 : l );
+	model.vertexStamp[ v ] = stamp;
 
 }
 
