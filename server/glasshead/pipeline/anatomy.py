@@ -1,0 +1,107 @@
+"""The anatomy step of `glasshead build`: every mesh of the head, in the project frame, as GLB.
+
+Writes into a staging directory (see ``build.py``): one GLB per mesh (smooth vertex normals,
+outward winding), ``face_skin_nodes.json`` (the face.node id of each skin vertex, for the jaw
+skinning), and returns the manifest entries and the report items.
+"""
+
+import hashlib
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from glasshead.geometry.meshio import read_face_elems, read_face_nodes
+from glasshead.pipeline import sources
+from glasshead.pipeline.face_skin import extract_face_skin, head_centre
+from glasshead.pipeline.head_shell import build_head_shell
+from glasshead.pipeline.maxilla_lods import build_lods, choose_scene_maxilla, mouth_point
+from glasshead.pipeline.register_cbct import register_cbct
+
+
+def write_glb(path, vertices, faces):
+    """Write a smooth-shaded mesh (vertex normals from its outward faces) as GLB; its sha256."""
+    mesh = trimesh.Trimesh(np.asarray(vertices, dtype=np.float64), np.asarray(faces), process=False)
+    mesh.vertex_normals  # computed from the faces' winding, exported with the positions
+    data = mesh.export(file_type="glb", include_normals=True)
+    Path(path).write_bytes(data)
+    return hashlib.sha256(data).hexdigest()
+
+
+class Timer:
+    """Collects the time of each named stage and prints progress as it goes."""
+
+    def __init__(self, log):
+        self.log, self.times = log, {}
+
+    def run(self, name, fn, *args):
+        started = time.perf_counter()
+        result = fn(*args)
+        self.times[name] = round(time.perf_counter() - started, 3)
+        self.log(f"    {name}: {self.times[name]:.1f} s")
+        return result
+
+
+def build_anatomy(data_dir, stage_dir, log=print):
+    """Build every anatomy mesh into ``stage_dir``; returns (manifest entries, report dict)."""
+    timer = Timer(log)
+    entries, report = [], {}
+
+    def emit(name, vertices, faces, role, source, lod="full", scene=True):
+        file = f"{name}.glb"
+        digest = write_glb(Path(stage_dir) / file, vertices, faces)
+        entries.append({"name": name, "file": file, "sha256": digest, "triangles": int(len(faces)),
+                        "vertices": int(len(vertices)), "lod": str(lod), "frame": "project-mm",
+                        "scene": scene, "role": role, "source": source})
+
+    badin = {}
+    for stem, (name, _role) in sources.BADIN_MESHES.items():
+        badin[name] = timer.run(f"read {stem}.obj", sources.read_badin_mesh, data_dir, stem)
+    cranium_vertices = badin["cranium"][0]
+
+    face_dir = Path(data_dir) / sources.BADIN
+    node_ids, nodes = read_face_nodes(face_dir / "face.node")
+    elems = read_face_elems(face_dir / "face.elem", node_ids)
+    skin = timer.run("face skin", extract_face_skin, node_ids, nodes, elems,
+                     head_centre(cranium_vertices))
+    emit("face_skin", skin.vertices, skin.faces, "skin", "artisynth-badin/face.node+face.elem")
+    (Path(stage_dir) / "face_skin_nodes.json").write_text(
+        json.dumps({"mesh": "face_skin", "node_ids": skin.node_ids.tolist()}))
+    shell = timer.run("head shell", build_head_shell, skin.vertices, skin.faces, cranium_vertices)
+    emit("head_shell", shell.vertices, shell.faces, "shell", "built: closes the face skin")
+    report["face_skin"] = {k: v for k, v in skin.stats.items()}
+    report["head_shell"] = {"method": build_head_shell.__module__ + " (see its docstring)",
+                            "triangles": int(len(shell.faces))}
+
+    cbct_vertices, cbct_faces = sources.read_cbct_maxilla(data_dir)
+    placed, placed_faces, registration = timer.run(
+        "register CBCT maxilla", register_cbct, cbct_vertices, cbct_faces, *badin["maxilla"])
+    point = mouth_point(badin["maxilla"][0])
+    levels = timer.run("CBCT levels of detail", build_lods, placed, placed_faces, point)
+    choice = choose_scene_maxilla(registration, levels)
+    log(f"    scene maxilla: {choice['mesh']} ({choice['level']})")
+
+    for stem, (name, role) in sources.BADIN_MESHES.items():
+        # When a CBCT level is chosen, the Badin maxilla stays available under another name.
+        replaced = name == "maxilla" and choice["mesh"] != "badin"
+        emit("maxilla_badin" if replaced else name, *badin[name], role,
+             f"artisynth-badin/{stem}.obj", scene=not replaced)
+    emit("maxilla_cbct_full", placed, placed_faces, "bone", "artisynth-dynjaw/maxilla.obj",
+         lod="full", scene=False)
+    for lod in levels:
+        chosen = choice["mesh"] == "cbct" and choice["level"] == lod["level"]
+        emit("maxilla" if chosen else f"maxilla_cbct_lod{lod['level']}", lod["vertices"],
+             lod["faces"], "bone", "artisynth-dynjaw/maxilla.obj", lod=lod["level"], scene=chosen)
+
+    report["cbct_registration"] = registration
+    report["cbct_lods"] = [{k: v for k, v in lod.items() if k not in ("vertices", "faces")}
+                           | {"vertices": lod["vertices_count"]} for lod in levels]
+    for item in report["cbct_lods"]:
+        item.pop("vertices_count", None)
+    report["cbct_full_triangles"] = int(len(cbct_faces))
+    report["mouth_point_mm"] = point.round(3).tolist()
+    report["scene_maxilla"] = choice
+    report["timings_s"] = timer.times
+    return entries, report
