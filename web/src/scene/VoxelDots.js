@@ -7,7 +7,7 @@ import { VOXEL_BORDER, VOXEL_NOT_OK, VOXEL_OK } from '../core/constants.js';
 
 /** Dot colour, size (px) and opacity per class: the certain-outside dots stay in the background. */
 export const VOXEL_STYLES = Object.freeze( {
-	[ VOXEL_OK ]: Object.freeze( { name: 'ok', color: '#2f9e5a', size: 2, opacity: 0.35 } ),
+	[ VOXEL_OK ]: Object.freeze( { name: 'ok', color: '#2f9e5a', size: 2, opacity: 0.5 } ),
 	[ VOXEL_BORDER ]: Object.freeze( { name: 'borderline', color: '#e39a12', size: 3, opacity: 0.85 } ),
 	[ VOXEL_NOT_OK ]: Object.freeze( { name: 'not ok', color: '#c62f2f', size: 3.5, opacity: 0.95 } ),
 } );

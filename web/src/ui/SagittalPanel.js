@@ -5,7 +5,7 @@
 // recording context; the data are plain typed arrays read from the articulation.
 
 /** The panel's window on the mid-sagittal plane, mm (project frame): mouth, tongue and jaw. */
-export const SAGITTAL_BOX = Object.freeze( { xMin: - 62, xMax: 46, yMin: - 50, yMax: 28 } );
+export const SAGITTAL_BOX = Object.freeze( { xMin: - 62, xMax: 46, yMin: - 58, yMax: 32 } );
 
 export const PANEL_COLORS = Object.freeze( {
 	background: '#fbfaf8',
@@ -238,6 +238,9 @@ export function drawSagittalPanel( ctx, scene, { width, height, box = SAGITTAL_B
 	drawMark( ctx, view.x( scene.hub[ 0 ] ), view.y( scene.hub[ 1 ] ), 'H', PANEL_COLORS.control );
 	if ( scene.origin ) drawMark( ctx, view.x( scene.origin[ 0 ] ), view.y( scene.origin[ 1 ] ), 'O', PANEL_COLORS.muted );
 
+	// The title on a band of its own: the raised tongue's letters may reach the top edge.
+	ctx.fillStyle = PANEL_COLORS.background;
+	ctx.fillRect( 0, 0, width, 22 );
 	ctx.fillStyle = PANEL_COLORS.ink;
 	ctx.font = '600 12px system-ui, sans-serif';
 	ctx.textAlign = 'left';

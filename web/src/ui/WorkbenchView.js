@@ -24,7 +24,7 @@ import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, 
 import './workbench.css';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
-const FOCUS = Object.freeze( { center: [ - 8, - 6, 0 ], radius: 58 } );
+const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
 /** The head view's views, and one from above the front of the mouth onto the tongue's back. */
 const VIEWS = Object.freeze( [ ...VIEW_NAMES, 'above' ] );
 const VIEW_LABELS = Object.freeze( { front: 'Front', profile: 'Profile', 'three-quarter': 'Three-quarter', above: 'Above' } );
@@ -33,11 +33,11 @@ const ABOVE_DIRECTION = Object.freeze( [ 0.55, 0.78, - 0.3 ] );
 /** Meshes the workbench never shows (the skull above the palate hides the mouth from above). */
 const HIDDEN_PARTS = Object.freeze( [ 'cranium' ] );
 /** Meshes of the toggles that uncover the tongue: the jaw and lips around it, the palate over it. */
-const TOGGLED_PARTS = Object.freeze( { jaw: [ 'mandible', 'upper_lip', 'lower_lip' ], palate: [ 'maxilla' ] } );
+const TOGGLED_PARTS = Object.freeze( { jaw: [ 'mandible', 'upper_lip', 'lower_lip' ], palate: [ 'maxilla' ], tongue: [ 'tongue_rest' ] } );
 const PANEL_SIZE = Object.freeze( { sagittal: [ 380, 290 ], sections: [ 380, 330 ] } );
 const CONTACT_COLOR = '#3d0710';
 
-export const WORKBENCH_DEFAULTS = Object.freeze( { skin: false, jaw: true, palate: true, cutaway: true, liner: false, voxels: false, contacts: true, view: 'three-quarter' } );
+export const WORKBENCH_DEFAULTS = Object.freeze( { skin: false, jaw: true, palate: true, tongue: true, cutaway: true, liner: false, voxels: false, contacts: true, view: 'three-quarter' } );
 
 export class WorkbenchView {
 
@@ -84,7 +84,7 @@ export class WorkbenchView {
 			error: () => this.state.error,
 			view: () => this.state.view,
 			workbench: () => ( {
-				skin: this.state.skin, jaw: this.state.jaw, palate: this.state.palate, cutaway: this.state.cutaway, liner: this.state.liner, voxels: this.state.voxels,
+				skin: this.state.skin, jaw: this.state.jaw, palate: this.state.palate, tongue: this.state.tongue, cutaway: this.state.cutaway, liner: this.state.liner, voxels: this.state.voxels,
 				contacts: this.state.contacts, pasteError: this.poseBox?.pasteError ?? null, poseStatus: this.poseBox?.poseStatus ?? null,
 				linerSegments: this.liner?.segmentCount ?? 0, voxelCounts: this.voxels?.counts ?? null,
 				tablesError: this.articulation?.tablesError ?? null, panelDraws: this.panelDraws ?? 0,
@@ -206,7 +206,7 @@ export class WorkbenchView {
 		this.sagittalCanvas = canvas( PANEL_SIZE.sagittal, 'Mid-sagittal section: the tongue curve with its lettered control points' );
 		this.sectionsCanvas = canvas( PANEL_SIZE.sections, 'The front, middle and back coronal sections and the blending functions' );
 
-		this.toggles = new Map( [ [ 'skin', 'Skin' ], [ 'jaw', 'Jaw & lips' ], [ 'palate', 'Palate' ], [ 'cutaway', 'Cutaway' ], [ 'contacts', 'Contacts' ], [ 'liner', 'Liner' ], [ 'voxels', 'Voxels' ] ].map( ( [ key, label ] ) => [ key, h( 'button', {
+		this.toggles = new Map( [ [ 'skin', 'Skin' ], [ 'jaw', 'Jaw & lips' ], [ 'palate', 'Palate' ], [ 'tongue', 'Tongue' ], [ 'cutaway', 'Cutaway' ], [ 'contacts', 'Contacts' ], [ 'liner', 'Liner' ], [ 'voxels', 'Voxels' ] ].map( ( [ key, label ] ) => [ key, h( 'button', {
 			type: 'button', className: 'toggle wb-toggle', 'aria-pressed': String( this.state[ key ] ),
 			onClick: () => this.toggle( key ),
 		}, label ) ] ) );
