@@ -5,7 +5,7 @@
 // recording context; the data are plain typed arrays read from the articulation.
 
 /** The panel's window on the mid-sagittal plane, mm (project frame): mouth, tongue and jaw. */
-export const SAGITTAL_BOX = Object.freeze( { xMin: - 62, xMax: 46, yMin: - 58, yMax: 32 } );
+export const SAGITTAL_BOX = Object.freeze( { xMin: - 70, xMax: 46, yMin: - 62, yMax: 32 } );
 
 export const PANEL_COLORS = Object.freeze( {
 	background: '#fbfaf8',
