@@ -71,27 +71,31 @@ export class ClinicianView {
 			button( 'Last frame', '▶|', () => this.setFrame( this.frameCount() - 1 ) ),
 			this.frameLabel );
 
-		this.targetPalatogram = new Palatogram( { width: 200, height: 220, ariaLabel: 'Target palatogram (synthetic)' } );
-		this.recordingPalatogram = new Palatogram( { width: 200, height: 220, ariaLabel: 'Recording palatogram (real)' } );
-		this.agreementPalatogram = new Palatogram( { width: 200, height: 220, ariaLabel: 'Agreement, electrode by electrode' } );
-		this.targetCaption = h( 'figcaption', {}, 'Target (synthetic)' );
-		this.recordingCaption = h( 'figcaption', {}, 'Recording (real)' );
-		this.agreementCaption = h( 'figcaption', {}, 'Agreement' );
-		const card = ( caption, palatogram ) => h( 'figure', { className: 'cv-card' }, caption, palatogram.element );
+		const size = { width: 176, height: 196 };
+		this.targetPalatogram = new Palatogram( { ...size, ariaLabel: 'Target palatogram (synthetic)' } );
+		this.recordingPalatogram = new Palatogram( { ...size, ariaLabel: 'Recording palatogram (real)' } );
+		this.agreementPalatogram = new Palatogram( { ...size, ariaLabel: 'Agreement, electrode by electrode' } );
+		this.targetCaption = h( 'span', { className: 'cv-sub' }, 'none chosen' );
+		this.recordingCaption = h( 'span', { className: 'cv-sub' }, 'none chosen' );
+		this.agreementCaption = h( 'span', { className: 'cv-sub' }, 'choose both' );
+		const card = ( title, caption, palatogram ) => h( 'figure', { className: 'cv-card cv-narrow' }, h( 'figcaption', {}, title, caption ), palatogram.element );
 		this.table = h( 'table', { className: 'cv-table', 'aria-label': 'EPG indices of this frame' } );
 		this.stage3d = h( 'div', { className: 'cv-stage3d', role: 'img', 'aria-label': 'The target on the 3D palate: electrodes as dots, contacted ones as squares' } );
-		this.caption3d = h( 'figcaption', {}, 'Target on the palate (choose a target)' );
+		this.caption3d = h( 'figcaption', {}, 'Target on the palate' );
 		const pair = h( 'div', { className: 'cv-pair' },
-			h( 'figure', { className: 'cv-card' }, this.caption3d, this.stage3d ),
-			card( this.targetCaption, this.targetPalatogram ),
-			card( this.recordingCaption, this.recordingPalatogram ),
-			card( this.agreementCaption, this.agreementPalatogram ),
-			h( 'figure', { className: 'cv-card' }, h( 'figcaption', {}, 'Indices of this frame' ), this.table ) );
-		this.plot = new IndexPlot( { width: 760, height: 300 } );
+			h( 'figure', { className: 'cv-card cv-wide' }, this.caption3d, this.stage3d ),
+			card( 'Target (synthetic)', this.targetCaption, this.targetPalatogram ),
+			card( 'Recording (real)', this.recordingCaption, this.recordingPalatogram ),
+			card( 'Agreement', this.agreementCaption, this.agreementPalatogram ) );
+		this.plot = new IndexPlot( { width: 640, height: 270 } );
 		this.strip = new PalatogramStrip( { width: 760, height: 92, onSelect: ( i ) => this.setFrame( i ) } );
-		this.main = h( 'section', { className: 'cv-main', 'aria-label': 'Frames' }, transport, this.slider, pair,
-			h( 'figure', { className: 'cv-card' }, h( 'figcaption', {}, 'Recording over time (click a frame)' ), this.strip.element ),
-			h( 'figure', { className: 'cv-card' }, h( 'figcaption', {}, 'Indices over time: recording solid, target dashed' ), this.plot.element ) );
+		this.stripCaption = h( 'figcaption', {}, 'Over time (click a frame)' );
+		this.plotCard = h( 'figure', { className: 'cv-card cv-grow' }, h( 'figcaption', {}, 'Indices over time: recording solid, target dashed' ), this.plot.element );
+		const curves = h( 'div', { className: 'cv-pair' },
+			h( 'figure', { className: 'cv-card' }, h( 'figcaption', {}, 'Indices of this frame' ), this.table ),
+			this.plotCard );
+		this.stripCard = h( 'figure', { className: 'cv-card' }, this.stripCaption, this.strip.element );
+		this.main = h( 'section', { className: 'cv-main', 'aria-label': 'Frames' }, transport, this.slider, pair, curves, this.stripCard );
 		this.root = h( 'div', { className: 'clinician', tabindex: '-1' }, side, this.main );
 		container.append( this.root );
 
@@ -99,6 +103,7 @@ export class ClinicianView {
 		this.window.addEventListener( 'keydown', this.onKey );
 		this.resizeObserver = new ResizeObserver( () => this.fit() );
 		this.resizeObserver.observe( this.main );
+		this.resizeObserver.observe( this.plotCard );
 		this.registerDebugFields();
 		this.render();
 		this.load();
@@ -236,7 +241,7 @@ export class ClinicianView {
 		try {
 
 			this.palate3d ??= new TargetPalate3D( this.stage3d );
-			this.caption3d.textContent = `${ target.label } on the palate`;
+			this.caption3d.textContent = `${ target.label }, palate seen from below`;
 			this.state.target3d = await this.palate3d.showParams( target.params );
 
 		} catch ( error ) {
@@ -387,9 +392,8 @@ export class ClinicianView {
 
 	fit() {
 
-		const width = Math.max( 320, Math.min( 1100, this.main.clientWidth - 56 ) );
-		this.plot.resize( width );
-		this.strip.resize( width );
+		this.plot.resize( Math.max( 320, Math.min( 900, this.plotCard.clientWidth - 22 ) ) );
+		this.strip.resize( Math.max( 320, Math.min( 1400, this.stripCard.clientWidth - 22 ) ) );
 		this.render();
 
 	}
@@ -405,18 +409,18 @@ export class ClinicianView {
 		this.frameLabel.textContent = `Frame ${ frame + 1 } of ${ count }${ times ? ` · ${ ms } ms` : '' }`;
 
 		const t = this.targetFrameIndex();
-		this.targetCaption.textContent = target ? `Target: ${ target.label } (synthetic)` : 'Target (none chosen)';
+		this.targetCaption.textContent = target ? target.label : 'none chosen';
 		this.targetPalatogram.set( target ? target.frames : null, { offset: Math.max( 0, t ) * EPG_CELLS } );
-		this.recordingCaption.textContent = recording ? `Recording: ${ recording.name } (real)` : 'Recording (none chosen)';
+		this.recordingCaption.textContent = recording ? recording.name : 'none chosen';
 		this.recordingPalatogram.set( recording ? recording.frames : null, { offset: frame * EPG_CELLS } );
 		if ( comparison ) {
 
-			this.agreementCaption.textContent = `Agreement ${ Math.round( comparison.agreement[ frame ] * 100 ) }% (mean ${ Math.round( comparison.summary.mean_agreement * 100 ) }%)`;
+			this.agreementCaption.textContent = `${ Math.round( comparison.agreement[ frame ] * 100 ) }% agree (mean ${ Math.round( comparison.summary.mean_agreement * 100 ) }%)`;
 			this.agreementPalatogram.set( null, { codes: comparison.codeFrames, offset: frame * EPG_CELLS } );
 
 		} else {
 
-			this.agreementCaption.textContent = 'Agreement (choose both)';
+			this.agreementCaption.textContent = 'choose both';
 			this.agreementPalatogram.set( null );
 
 		}
@@ -438,6 +442,7 @@ export class ClinicianView {
 			}
 
 			this.plot.set( { t_s: baseTimes, tracks, current: recording || target.count > 1 ? frame : null } );
+			this.stripCaption.textContent = comparison ? 'Agreement over time (click a frame)' : recording ? 'Recording over time (click a frame)' : 'Target over time';
 			if ( recording ) this.strip.set( recording.frames, recording.count, frame, recording.t_s, comparison ? comparison.codeFrames : null );
 			else this.strip.set( target.frames, target.count, frame, target.t_s );
 

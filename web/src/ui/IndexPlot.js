@@ -1,6 +1,7 @@
 // EPG index curves over time: one panel per index (percent contact, centre of gravity,
 // anteriority, centrality, dorsopalatal), each with its fixed range, a shared time axis, one line
-// per track (the recording solid, the target dashed) and a cursor at the current time.
+// per track (the recording solid, the target dashed: the caption around the canvas says so) and a
+// cursor at the current time.
 //
 // Drawing goes through an injected 2D context (drawIndexPlot), so it can be tested without a
 // browser; scaleLinear is the one mapping every line and the cursor use.
@@ -106,21 +107,6 @@ export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = DEFAU
 		ctx.moveTo( x( t_s[ current ] ), 0 );
 		ctx.lineTo( x( t_s[ current ] ), height - bottom );
 		ctx.stroke();
-
-	}
-
-	let legend = LEFT;
-	ctx.textAlign = 'left';
-	for ( const track of tracks ) {
-
-		ctx.strokeStyle = track.color;
-		ctx.setLineDash( track.dash ?? [] );
-		ctx.beginPath();
-		ctx.moveTo( legend + 90, height - bottom / 2 );
-		ctx.lineTo( legend + 118, height - bottom / 2 );
-		ctx.stroke();
-		ctx.fillText( track.label, legend + 122, height - bottom / 2 );
-		legend += 130 + 7 * track.label.length;
 
 	}
 
