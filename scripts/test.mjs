@@ -12,7 +12,7 @@ function testFiles( dir ) {
 }
 
 const suites = [
-	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-q', '-p', 'no:cacheprovider' ] },
+	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-p', 'no:cacheprovider' ] },
 	{ name: 'javascript', command: process.execPath, args: [ '--test', '--test-reporter=spec', ...testFiles( 'tests/js' ) ] },
 	{ name: 'end-to-end', command: process.execPath, args: [ '--test', '--test-concurrency=1', '--test-reporter=spec', ...testFiles( 'e2e' ) ] },
 ];
