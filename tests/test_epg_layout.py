@@ -4,6 +4,7 @@ Everything is measured against the mesh itself (closest points, exact sections, 
 never against numbers copied from the layout code.
 """
 
+import hashlib
 import itertools
 import json
 
@@ -208,3 +209,19 @@ def test_the_build_step_places_the_scene_maxilla_and_skips_when_up_to_date(maxil
     second = build_step(tmp_path)
     assert second["skipped"] is True and (tmp_path / LAYOUT_FILE).stat().st_mtime_ns == modified
     assert epg_layout.current_layout(tmp_path)["source"]["faces"] == len(f)
+
+
+def test_the_built_layout_is_the_placement_rule_on_the_scene_maxilla():
+    from collision_support import built, scene_maxilla
+
+    v, f = scene_maxilla()
+    document = read_layout(built(LAYOUT_FILE))
+    digest = hashlib.sha256(np.ascontiguousarray(v).tobytes()
+                            + np.ascontiguousarray(f).tobytes()).hexdigest()
+    assert document["source"]["sha256"] == digest, "the layout is stale: run `glasshead build`"
+    fresh = layout_document(v, f)
+    mesh = trimesh.Trimesh(v, f, process=False)
+    for name in GRIDS:
+        assert document["grids"][name]["electrodes"] == fresh["grids"][name]["electrodes"]
+        _, distance, _ = trimesh.proximity.closest_point(mesh, _positions(document, name))
+        assert distance.max() < 1e-6
