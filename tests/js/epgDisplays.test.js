@@ -188,3 +188,48 @@ test( 'the live EPG of a corrected tongue reports its rows, percent and indices 
 	assert.equal( debugObject().epg, undefined );
 
 } );
+
+test( 'the 3D electrodes draw contacted ones as squares on the palate and the others as dots', async () => {
+
+	const { Electrodes } = await import( '../../web/src/scene/Electrodes.js' );
+	const { Matrix4, Plane, Vector3 } = await import( 'three' );
+	const grid = CONTACTS.layout.grids.reading62;
+	const clip = new Plane( new Vector3( 0, 0, 1 ), 0 );
+	const electrodes = new Electrodes( grid, { clippingPlanes: [ clip ] } );
+	assert.equal( electrodes.dots.count, 62 );
+	assert.equal( electrodes.squares.count, 0 );
+	const frame = framesFromRows( [ ROWS_T ] );
+	electrodes.show( frame );
+	assert.equal( electrodes.squares.count, 10 );
+	assert.equal( electrodes.dots.count, 52 );
+	assert.equal( electrodes.ghostSquares.count, 10 );
+	// Each square sits on its electrode, lifted toward the tongue, its face along the normal.
+	const m = new Matrix4();
+	const placed = [];
+	for ( let s = 0; s < 10; s ++ ) {
+
+		electrodes.squares.getMatrixAt( s, m );
+		placed.push( new Vector3().setFromMatrixPosition( m ) );
+
+	}
+
+	const contacted = grid.electrodes.filter( ( e ) => frame[ e.cell ] === 1 );
+	contacted.forEach( ( e, s ) => {
+
+		const expected = new Vector3().fromArray( e.position ).addScaledVector( new Vector3().fromArray( e.normal ), 0.2 );
+		assert.ok( placed[ s ].distanceTo( expected ) < 1e-4, e.id );
+
+	} );
+	electrodes.squares.getMatrixAt( 0, m );
+	const axis = new Vector3().setFromMatrixColumn( m, 2 ).normalize();
+	assert.ok( axis.dot( new Vector3().fromArray( contacted[ 0 ].normal ) ) > 0.9999 );
+	assert.deepEqual( electrodes.dots.material.clippingPlanes, [ clip ] );
+	assert.equal( electrodes.ghostDots.visible, false );
+	assert.equal( electrodes.setXray( true ), true );
+	assert.equal( electrodes.setXray( true ), false );
+	assert.equal( electrodes.ghostDots.material.depthTest, false );
+	electrodes.show( null );
+	assert.equal( electrodes.squares.count, 0 );
+	electrodes.dispose();
+
+} );
