@@ -95,7 +95,7 @@ def main(argv):
     for k in range(poses):
         points = rig.vertices(values[k])
         started = time.perf_counter()
-        out, flags, counts = correct_vertices(points, tables)
+        out, _, counts = correct_vertices(points, tables)
         seconds.append(time.perf_counter() - started)
         first = first_hit_radius(mesh, origin, points)
         r = np.linalg.norm(points - origin, axis=1)
