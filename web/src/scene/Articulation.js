@@ -70,7 +70,8 @@ export class Articulation {
 		this.stationStretch = new Float64Array( rig.stationCount );
 		this.jawPose = new Float64Array( POSE_LENGTH );
 		this.jawMatrix = new Matrix4();
-		this.volume = 0;
+		this.volumeVersion = - 1;
+		this.volumeMm3 = 0;
 		this.lipGap = null;
 		this.updates = 0;
 		this.lastMs = 0;
@@ -149,7 +150,6 @@ export class Articulation {
 		else this.stats.fill( 0 );
 		if ( this.stats[ STAT_CORRECTED ] > 0 ) vertexNormals( this.positions, this.triangles, this.normalSums, this.normals );
 		else this.normals.set( this.surface.normals );
-		this.volume = meshVolume( this.positions, this.triangles );
 
 		jawPose( values[ this.jawIndex ], rig.jaw, this.jawPose );
 		const p = this.jawPose;
@@ -160,6 +160,20 @@ export class Articulation {
 		this.updates ++;
 		this.lastMs = performance.now() - start;
 		return true;
+
+	}
+
+	/** Volume of the corrected tongue, mm^3 (computed when asked, once per frame at most). */
+	get volume() {
+
+		if ( this.volumeVersion !== this.version ) {
+
+			this.volumeMm3 = meshVolume( this.positions, this.triangles );
+			this.volumeVersion = this.version;
+
+		}
+
+		return this.volumeMm3;
 
 	}
 
