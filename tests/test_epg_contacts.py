@@ -139,7 +139,9 @@ def test_the_vectors_hold_100_or_more_poses_with_the_jaw_and_record_their_inputs
 
 
 def test_the_vector_layout_is_the_placement_rule_on_the_vector_maxilla():
-    v, f = contact_vectors.reduced_maxilla()
+    v = np.array(VECTORS["maxilla"]["vertices"], dtype=np.float64)
+    f = np.array(VECTORS["maxilla"]["faces"], dtype=np.int64)
+    assert len(f) == VECTORS["tables"]["maxilla_triangles"]
     layout = layout_document(v, f)
     for name, grid in layout["grids"].items():
         assert grid["electrodes"] == VECTORS["layout"]["grids"][name]["electrodes"], name

@@ -232,6 +232,8 @@ def build_documents():
         "draws": {"drawn": drawn, "dropped_near_a_boundary": dropped},
         "tables": {"file": TABLES_NAME, "sha256": hashlib.sha256(tables_bytes).hexdigest(),
                    "maxilla_triangles": len(maxilla_f)},
+        "maxilla": {"description": "the reduced maxilla the tables and the layout were built on",
+                    "vertices": maxilla_v.tolist(), "faces": maxilla_f.tolist()},
         "rig": definition,
         "layout": layout,
         "kernel_cases": kernel_cases,
