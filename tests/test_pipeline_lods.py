@@ -1,5 +1,7 @@
 """The CBCT maxilla: registration, levels of detail and the scene maxilla's error bound."""
 
+from itertools import pairwise
+
 from glasshead.pipeline.maxilla_lods import LOD_TARGETS, MOUTH_FACING_BOUND_MM
 
 
@@ -14,7 +16,7 @@ def test_every_level_records_its_count_errors_and_time(build_report):
 
 def test_coarser_levels_are_not_closer_to_the_full_mesh(build_report):
     whole = [lod["hausdorff_mm"] for lod in build_report["anatomy"]["cbct_lods"]]
-    assert all(a <= b + 0.25 for a, b in zip(whole, whole[1:]))
+    assert all(a <= b + 0.25 for a, b in pairwise(whole))
     assert whole[-1] > whole[0]
 
 

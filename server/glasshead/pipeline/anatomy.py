@@ -24,7 +24,8 @@ from glasshead.pipeline.register_cbct import register_cbct
 def write_glb(path, vertices, faces):
     """Write a smooth-shaded mesh (vertex normals from its outward faces) as GLB; its sha256."""
     mesh = trimesh.Trimesh(np.asarray(vertices, dtype=np.float64), np.asarray(faces), process=False)
-    mesh.vertex_normals  # computed from the faces' winding, exported with the positions
+    # Normals come from the faces' (outward) winding and are exported with the positions.
+    assert len(mesh.vertex_normals) == len(mesh.vertices)
     data = mesh.export(file_type="glb", include_normals=True)
     Path(path).write_bytes(data)
     return hashlib.sha256(data).hexdigest()
@@ -52,8 +53,8 @@ def build_anatomy(data_dir, stage_dir, log=print):
     def emit(name, vertices, faces, role, source, lod="full", scene=True):
         file = f"{name}.glb"
         digest = write_glb(Path(stage_dir) / file, vertices, faces)
-        entries.append({"name": name, "file": file, "sha256": digest, "triangles": int(len(faces)),
-                        "vertices": int(len(vertices)), "lod": str(lod), "frame": "project-mm",
+        entries.append({"name": name, "file": file, "sha256": digest, "triangles": len(faces),
+                        "vertices": len(vertices), "lod": str(lod), "frame": "project-mm",
                         "scene": scene, "role": role, "source": source})
 
     badin = {}
@@ -73,7 +74,7 @@ def build_anatomy(data_dir, stage_dir, log=print):
     emit("head_shell", shell.vertices, shell.faces, "shell", "built: closes the face skin")
     report["face_skin"] = {k: v for k, v in skin.stats.items()}
     report["head_shell"] = {"method": build_head_shell.__module__ + " (see its docstring)",
-                            "triangles": int(len(shell.faces))}
+                            "triangles": len(shell.faces)}
 
     cbct_vertices, cbct_faces = sources.read_cbct_maxilla(data_dir)
     placed, placed_faces, registration = timer.run(
@@ -100,7 +101,7 @@ def build_anatomy(data_dir, stage_dir, log=print):
                            | {"vertices": lod["vertices_count"]} for lod in levels]
     for item in report["cbct_lods"]:
         item.pop("vertices_count", None)
-    report["cbct_full_triangles"] = int(len(cbct_faces))
+    report["cbct_full_triangles"] = len(cbct_faces)
     report["mouth_point_mm"] = point.round(3).tolist()
     report["scene_maxilla"] = choice
     report["timings_s"] = timer.times

@@ -67,7 +67,7 @@ def build_lods(vertices, faces, point):
         reduced = SampledSurface(v, f)
         whole, mouth = hausdorff(full, reduced, full_mask, mouth_facing(v, f, point))
         levels.append({
-            "level": level, "target": target, "triangles": int(len(f)), "vertices_count": int(len(v)),
+            "level": level, "target": target, "triangles": len(f), "vertices_count": len(v),
             "hausdorff_mm": round(whole, 3), "mouth_hausdorff_mm": round(mouth, 3),
             "seconds": round(time.perf_counter() - started, 3), "vertices": v, "faces": f,
         })

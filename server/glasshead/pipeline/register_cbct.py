@@ -55,9 +55,9 @@ def similarity(src, dst):
     return scale, rot, mu_d - scale * rot @ mu_s
 
 
-def icp(src, target_tree, target_points, iterations, start=(1.0, np.eye(3), np.zeros(3))):
+def icp(src, target_tree, target_points, iterations, start=None):
     """Trimmed similarity ICP of src (k, 3) onto target points; returns (s, R, t, trimmed rms)."""
-    scale, rot, shift = start
+    scale, rot, shift = start if start is not None else (1.0, np.eye(3), np.zeros(3))
     rms = np.inf
     for _ in range(iterations):
         moved = scale * src @ rot.T + shift
