@@ -4,12 +4,13 @@ The placement rule (Cohen, Beskow and Massaro 1998 place the electrodes "on the 
 the Reading palate runs its rows from just behind the upper incisors to the junction of the hard
 and soft palate, Hardcastle, Gibbon and Jones 1991). It is measured on the maxilla the scene shows:
 
-1. **Midline.** The mid-sagittal section (z = 0) of the maxilla, followed from the incisal edge of
-   the central incisors (its lowest point) up their lingual face and back along the palate to its
-   most posterior point: the posterior edge of the hard palate in the mesh, taken as the junction
-   of the hard and soft palate. The midline starts at the lingual gingival margin of the
-   incisors: where the tooth weight of ``epg.dental`` (the head view's own tooth rule) falls
-   below one half.
+1. **Midline.** The mid-sagittal section (z = 0) of the maxilla, found from the vault (its lowest
+   crossing with the vertical line through the middle of the dental arch) and followed forward
+   to the lingual gingival margin of the incisors, where the tooth weight of ``epg.dental`` (the
+   head view's own tooth rule) reaches one half (or where the gum's curve ends against teeth
+   that are separate shells of the mesh), and backward to its most posterior point: the
+   posterior edge of the hard palate in the mesh, taken as the junction of the hard and soft
+   palate.
 2. **Rows.** The midline from that margin to the posterior edge is cut into ``rows`` intervals
    of equal arc length; row r sits at the middle of interval r (R1 at the front). The Reading
    palate has 8 rows; the dense grid 12.
@@ -59,6 +60,11 @@ NORMAL_RADIUS_MM = 1.5
 #: A point this far into the mouth from a row's midline point is used to turn normals toward the
 #: tongue, mm.
 INSIDE_DEPTH_MM = 20.0
+#: The vault is looked for this far above the lowest point of the maxilla (the incisal edges), mm.
+VAULT_CLEARANCE_MM = 4.0
+#: Where the gum's midline curve ends (teeth that are separate shells of the mesh), its front end
+#: is the margin if a tooth lies within this distance of it, mm.
+SEPARATE_TOOTH_MM = 3.0
 
 
 class LayoutError(ValueError):
@@ -80,37 +86,70 @@ def _check_mesh(vertices, faces):
 def midline(vertices, faces, teeth=None):
     """The palate's midline (step 1 of the rule).
 
-    Returns a dict: ``polyline`` (the lingual profile, ordered from the incisal edge backward),
+    Returns a dict: ``polyline`` (the oral profile at z = 0, ordered from front to back),
     ``arc`` (its cumulative arc lengths), ``start_s`` (arc length at the incisors' lingual gingival
     margin) and ``end_s`` (at the posterior edge of the hard palate).
+
+    The profile is found from the vault: the lowest crossing of the mid-sagittal section with the
+    vertical line through the middle of the dental arch (the palate, seen from the mouth). From
+    there it is followed forward to the gingival margin (tooth weight one half; or the front end
+    of the curve, where the gum meets teeth that are separate shells of the mesh) and backward to
+    its most posterior point.
     """
     v, f = _check_mesh(vertices, faces)
     teeth = tooth_weights(v, tip_band=LAYOUT_TIP_BAND_MM) if teeth is None else teeth
     section = Section(v, f, origin=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0))
     if section.empty:
         raise LayoutError("the maxilla does not cross the mid-sagittal plane z = 0")
-    lowest = int(np.argmin(section.node_points[:, 1]))
-    segment = section.neighbours[lowest][0][1]
+    is_tooth = teeth > MARGIN_WEIGHT
+    if not is_tooth.any():
+        raise LayoutError("no teeth found on the maxilla (is it upside down?)")
+    arch_x = 0.5 * (v[is_tooth, 0].min() + v[is_tooth, 0].max())
+    segment = _vault_segment(section, arch_x, v[:, 1].min() + VAULT_CLEARANCE_MM)
     profile = section.polyline_through(segment)
-    edge = int(np.argmin(profile.points[:, 1]))
-    if profile.closed:
-        profile, edge = _rotate_loop(profile, edge), 0
-    # Walk backward (lingually) from the incisal edge: toward smaller x.
+    vault = np.array([arch_x, 0.0, 0.0])
+    vault[1] = section.node_points[section.links[segment], 1].mean()
+    if profile.closed:  # open the loop opposite the vault
+        k = len(profile.points)
+        profile = _rotate_loop(profile, (_nearest(profile, vault) + k // 2) % k)
     arc = profile.arc_lengths()
-    back = arc[-1] - 5.0 if profile.closed else arc[edge] - 5.0
-    if _x_at(profile, arc, arc[edge] + 5.0) >= _x_at(profile, arc, back):
+    here = _nearest(profile, vault)
+    # Orient the curve front to back: x falls along it at the vault.
+    if _x_at(profile, arc, arc[here] + TANGENT_HALF_SPAN_MM) > \
+            _x_at(profile, arc, arc[here] - TANGENT_HALF_SPAN_MM):
         profile = profile.reversed()
-        edge = len(profile.points) - 1 - edge
-        if profile.closed:
-            profile, edge = _rotate_loop(profile, edge), 0
-    arc = profile.arc_lengths()
-    lingual = profile.points[edge:]
-    end = edge + int(np.argmin(lingual[:, 0]))
+        arc = profile.arc_lengths()
+        here = _nearest(profile, vault)
     weights = profile.interpolate(teeth)
-    start_s = crossing_arc(arc, weights, MARGIN_WEIGHT, start=edge, step=1)
-    if start_s is None or start_s >= arc[end]:
-        raise LayoutError("no lingual gingival margin found behind the incisors on the midline")
-    return {"polyline": profile, "arc": arc, "start_s": start_s, "end_s": float(arc[end])}
+    start_s = crossing_arc(arc, weights, MARGIN_WEIGHT, start=here, step=-1)
+    if start_s is None:
+        front = profile.points[0]
+        if np.min(np.linalg.norm(v[is_tooth] - front, axis=1)) > SEPARATE_TOOTH_MM:
+            raise LayoutError("no lingual gingival margin found behind the incisors on the "
+                              "midline")
+        start_s = 0.0
+    end = here + int(np.argmin(profile.points[here:, 0]))
+    if not start_s < arc[end]:
+        raise LayoutError("the midline from the incisors to the back of the palate is empty")
+    return {"polyline": profile, "arc": arc, "start_s": float(start_s), "end_s": float(arc[end])}
+
+
+def _vault_segment(section, x, above_y):
+    """The section segment crossing the vertical line at ``x`` lowest above ``above_y``."""
+    a = section.node_points[section.links[:, 0]]
+    b = section.node_points[section.links[:, 1]]
+    crosses = (a[:, 0] - x) * (b[:, 0] - x) <= 0.0
+    span = np.where(a[:, 0] != b[:, 0], b[:, 0] - a[:, 0], 1.0)
+    y = a[:, 1] + (x - a[:, 0]) / span * (b[:, 1] - a[:, 1])
+    candidates = np.flatnonzero(crosses & (y > above_y))
+    if not len(candidates):
+        raise LayoutError(f"no palate above the middle of the dental arch (x = {x:.1f} mm) on "
+                          "the midline")
+    return int(candidates[np.argmin(y[candidates])])
+
+
+def _nearest(polyline, point):
+    return int(np.argmin(np.linalg.norm(polyline.points - point, axis=1)))
 
 
 def _rotate_loop(polyline, start):

@@ -18,6 +18,9 @@ import numpy as np
 
 #: mm. Section points closer than this are the same point (parts of a mesh that meet at a seam).
 SEAM_MM = 1e-6
+#: mm. An open end of a section curve is joined to the nearest open end of another within this
+#: distance: meshes stitched from scans leave seams whose two sides do not share vertices.
+BRIDGE_MM = 0.75
 
 
 @dataclass
@@ -26,7 +29,7 @@ class Polyline:
 
     points (k, 3) float64 mm; edges (k, 2) int64 mesh vertex pairs the points lie on; weights
     (k,) float64, the point is ``(1 - w) * v[a] + w * v[b]``; triangles (k - 1,) int64, the mesh
-    triangle of each segment; closed: True when the curve is a loop (the last point joins the
+    triangle of each segment (-1 for a bridge across a seam, see BRIDGE_MM); closed: True when the curve is a loop (the last point joins the
     first through ``triangles[-1]``, which then has k entries).
     """
 
@@ -110,6 +113,32 @@ class Section:
                 continue
             self.neighbours[p].append((q, s))
             self.neighbours[q].append((p, s))
+        self._bridge_open_ends()
+
+    def _bridge_open_ends(self):
+        """Join each open end to the nearest open end of another curve within BRIDGE_MM, by a
+        segment of triangle -1 (closest pairs first, each end at most once)."""
+        ends = np.array([k for k, n in enumerate(self.neighbours) if len(n) == 1], dtype=np.int64)
+        if len(ends) < 2:
+            return
+        d = np.linalg.norm(self.node_points[ends][:, None] - self.node_points[ends][None], axis=2)
+        d[np.arange(len(ends)), np.arange(len(ends))] = np.inf
+        pairs = np.argwhere(np.triu(d <= BRIDGE_MM, 1))
+        pairs = pairs[np.argsort(d[pairs[:, 0], pairs[:, 1]])]
+        used = set()
+        links, triangles = [self.links], [self.link_triangles]
+        for i, j in pairs:
+            a, b = int(ends[i]), int(ends[j])
+            if a in used or b in used or self.neighbours[a][0][0] == b:
+                continue
+            used.update((a, b))
+            segment = sum(len(x) for x in links)
+            links.append(np.array([[a, b]]))
+            triangles.append(np.array([-1]))
+            self.neighbours[a].append((b, segment))
+            self.neighbours[b].append((a, segment))
+        self.links = np.concatenate(links)
+        self.link_triangles = np.concatenate(triangles)
 
     @property
     def empty(self) -> bool:
