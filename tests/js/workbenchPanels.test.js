@@ -11,7 +11,8 @@ import { Articulation, parameterDefinitions } from '../../web/src/scene/Articula
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import { ParamState } from '../../web/src/core/paramState.js';
-import { drawSagittalPanel, fitTransform, PANEL_COLORS, sagittalCurve, SAGITTAL_BOX } from '../../web/src/ui/SagittalPanel.js';
+import { drawSagittalPanel, fitTransform, MidlineOutline, PANEL_COLORS, sagittalCurve, SAGITTAL_BOX } from '../../web/src/ui/SagittalPanel.js';
+import { BoxGeometry, Matrix4 } from 'three';
 import {
 	blendingFunctions, coronalSection, drawSectionsPanel, SECTION_NAMES, sectionControls, sectionStations,
 } from '../../web/src/ui/SectionsPanel.js';
@@ -259,5 +260,30 @@ test( 'the sections panel draws three labelled sections and a groove deepens the
 	for ( const letter of LETTERS ) assert.ok( textAt( flat.ctx, letter ), `${ letter } is not on the blending axis` );
 	assert.ok( Math.abs( flat.midlineZ ) < 1e-4, 'the middle sample is the midline' );
 	assert.ok( grooved.midlineY - flat.midlineY > 2, `a 5 mm groove moved the midline down ${ grooved.midlineY - flat.midlineY } px` );
+
+} );
+
+test( 'a part\'s mid-sagittal outline is its cut by z = 0, posed by its group\'s matrix', () => {
+
+	// A 10 x 6 x 40 mm box centred at ( 30, -2, 0 ): its cut is a 10 x 6 rectangle.
+	const box = new BoxGeometry( 10, 6, 40, 1, 1, 2 ).translate( 30, - 2, 0 );
+	const outline = new MidlineOutline( '#000000' );
+	const matrix = new Matrix4().set( ...jawPose( 15, RIG.jaw, new Float64Array( POSE_LENGTH ) ), 0, 0, 0, 1 );
+	outline.update( box.attributes.position.array, box.index.array, matrix.elements );
+	assert.ok( outline.count >= 4, `${ outline.count } segments` );
+	const xs = [], ys = [];
+	for ( let k = 0; k < 4 * outline.count; k += 2 ) {
+
+		xs.push( outline.segments[ k ] );
+		ys.push( outline.segments[ k + 1 ] );
+
+	}
+
+	assert.deepEqual( [ Math.min( ...xs ), Math.max( ...xs ), Math.min( ...ys ), Math.max( ...ys ) ], [ 25, 35, - 5, 1 ] );
+	const pose = jawPose( 15, RIG.jaw, new Float64Array( POSE_LENGTH ) );
+	outline.pose.forEach( ( value, k ) => assert.ok( Math.abs( value - pose[ k ] ) < 1e-6, `pose entry ${ k }` ) );
+	const scratch = outline.scratch;
+	outline.update( box.attributes.position.array, box.index.array, null );
+	assert.equal( outline.scratch, scratch, 'the same part again needs no new arrays' );
 
 } );

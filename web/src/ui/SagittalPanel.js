@@ -4,6 +4,8 @@
 // Drawing goes through an injected canvas 2D context, so it runs (and is tested) in Node with a
 // recording context; the data are plain typed arrays read from the articulation.
 
+import { planeSectionSegments } from '../core/section.js';
+
 /** The panel's window on the mid-sagittal plane, mm (project frame): mouth, tongue and jaw. */
 export const SAGITTAL_BOX = Object.freeze( { xMin: - 70, xMax: 46, yMin: - 62, yMax: 32 } );
 
@@ -151,6 +153,62 @@ export function midlinePage( rig ) {
 	let best = 0;
 	for ( let j = 1; j < rig.pageCount; j ++ ) if ( rig.pageCos[ j ] > rig.pageCos[ best ] ) best = j;
 	return best;
+
+}
+
+/**
+ * The cut of one anatomy part by the mid-sagittal plane, for the panel: x y segments in the
+ * part's own frame and the pose (3 x 4, row-major) of its group. Parts that move only about a
+ * z-parallel axis (the jaw) or are deformed in place (the lips) keep their cut in z = 0.
+ * Reallocates only when the part has more triangles than before.
+ */
+export class MidlineOutline {
+
+	constructor( color ) {
+
+		this.color = color;
+		this.scratch = new Float32Array( 0 );
+		this.segments = new Float64Array( 0 );
+		this.count = 0;
+		this.pose = Float64Array.of( 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 );
+
+	}
+
+	/**
+	 * @param {Float32Array} positions xyz per vertex, the part's frame
+	 * @param {Uint16Array|Uint32Array|null} index
+	 * @param {ArrayLike<number>|null} matrix the group's 4 x 4 matrix, column-major (three.js
+	 *   Matrix4.elements), or null for none
+	 */
+	update( positions, index, matrix = null ) {
+
+		const triangles = index ? index.length / 3 : positions.length / 9;
+		if ( this.scratch.length < 6 * triangles ) {
+
+			this.scratch = new Float32Array( 6 * triangles );
+			this.segments = new Float64Array( 4 * triangles );
+
+		}
+
+		this.count = planeSectionSegments( positions, index, 0, this.scratch );
+		for ( let s = 0; s < this.count; s ++ ) {
+
+			this.segments[ 4 * s ] = this.scratch[ 6 * s ];
+			this.segments[ 4 * s + 1 ] = this.scratch[ 6 * s + 1 ];
+			this.segments[ 4 * s + 2 ] = this.scratch[ 6 * s + 3 ];
+			this.segments[ 4 * s + 3 ] = this.scratch[ 6 * s + 4 ];
+
+		}
+
+		if ( matrix ) {
+
+			for ( let row = 0; row < 3; row ++ ) for ( let column = 0; column < 4; column ++ ) this.pose[ 4 * row + column ] = matrix[ 4 * column + row ];
+
+		}
+
+		return this;
+
+	}
 
 }
 

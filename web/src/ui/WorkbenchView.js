@@ -8,7 +8,6 @@ import { Box3, BufferAttribute, BufferGeometry, Points, PointsMaterial } from 't
 import { getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { FLAG_CORRECTED } from '../core/constants.js';
-import { planeSectionSegments } from '../core/section.js';
 import { Head } from '../scene/Head.js';
 import { loadAnatomy } from '../scene/loadAnatomy.js';
 import { loadArticulation } from '../scene/Articulation.js';
@@ -19,7 +18,7 @@ import { fitDistance, VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { h } from './Controls.js';
 import { ParameterPanel } from './ParameterPanel.js';
 import { PoseBox } from './PoseBox.js';
-import { drawSagittalPanel, PANEL_COLORS, sagittalCurve } from './SagittalPanel.js';
+import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from './SagittalPanel.js';
 import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, sectionStations } from './SectionsPanel.js';
 import './workbench.css';
 
@@ -221,26 +220,13 @@ export class WorkbenchView {
 			this.poseBox.element,
 		);
 
-		// Fixed data of the panels: the palate's section, the rest tongue, the blending functions.
-		const section2d = ( name ) => {
-
-			const part = this.head.part( name );
-			if ( ! part ) return null;
-			const geometry = part.geometry;
-			const segments3d = new Float32Array( 6 * ( geometry.index ? geometry.index.count / 3 : geometry.attributes.position.count / 3 ) );
-			const count = planeSectionSegments( geometry.attributes.position.array, geometry.index?.array ?? null, 0, segments3d );
-			const segments = new Float64Array( 4 * count );
-			for ( let s = 0; s < count; s ++ ) segments.set( [ segments3d[ 6 * s ], segments3d[ 6 * s + 1 ], segments3d[ 6 * s + 3 ], segments3d[ 6 * s + 4 ] ], 4 * s );
-			return { segments, count };
-
-		};
-
+		// The anatomy cut at z = 0: the palate once, the jaw and lips again with every frame (the
+		// jaw moves; a face rig deforms the lips).
 		this.outlines = [
-			[ 'maxilla', PANEL_COLORS.palate, null ],
-			[ 'mandible', PANEL_COLORS.jaw, articulation.jawPose ],
-			[ 'upper_lip', PANEL_COLORS.lip, null ],
-			[ 'lower_lip', PANEL_COLORS.lip, articulation.faceRig ? null : articulation.jawPose ],
-		].map( ( [ name, color, pose ] ) => ( { ...section2d( name ), color, pose } ) ).filter( ( outline ) => outline.segments );
+			[ 'maxilla', PANEL_COLORS.palate ], [ 'mandible', PANEL_COLORS.jaw ],
+			[ 'upper_lip', PANEL_COLORS.lip ], [ 'lower_lip', PANEL_COLORS.lip ],
+		].filter( ( [ name ] ) => this.head.part( name ) ).map( ( [ name, color ] ) => Object.assign( new MidlineOutline( color ), { part: this.head.part( name ) } ) );
+		this.updateOutlines( true );
 
 		const surface = rig.createSurface();
 		rig.evaluate( state.neutral, surface );
@@ -262,9 +248,23 @@ export class WorkbenchView {
 
 	}
 
+	/** Recut the parts that move (all of them when `all`). */
+	updateOutlines( all = false ) {
+
+		for ( const outline of this.outlines ) {
+
+			const { part } = outline;
+			if ( ! all && part.name === 'maxilla' ) continue;
+			outline.update( part.geometry.attributes.position.array, part.geometry.index?.array ?? null, part.group.matrixAutoUpdate ? null : part.group.matrix.elements );
+
+		}
+
+	}
+
 	/** Redraw the 2D panels from the articulation's last frame. */
 	drawPanels() {
 
+		this.updateOutlines();
 		const a = this.articulation;
 		const rig = a.rig;
 		sagittalCurve( rig, a.positions, this.curve );
