@@ -225,3 +225,28 @@ def test_the_built_layout_is_the_placement_rule_on_the_scene_maxilla():
         assert document["grids"][name]["electrodes"] == fresh["grids"][name]["electrodes"]
         _, distance, _ = trimesh.proximity.closest_point(mesh, _positions(document, name))
         assert distance.max() < 1e-6
+
+
+def test_a_maxilla_stitched_from_two_halves_with_a_seam_keeps_whole_row_arcs(
+        maxilla, document, monkeypatch):
+    from glasshead.epg import palate_section
+
+    v, f = maxilla
+    # The left half on vertices of its own, moved 0.2 mm further left: the halves share no
+    # vertex and their sections no longer meet at the midline.
+    left = v[f].mean(axis=1)[:, 2] > 0
+    copies = np.unique(f[left])
+    remap = np.arange(len(v))
+    remap[copies] = len(v) + np.arange(len(copies))
+    moved = np.concatenate([v, v[copies] + [0.0, 0.0, 0.2]])
+    stitched = np.where(left[:, None], remap[f], f)
+    whole = np.array([r["arc_mm"] for r in document["grids"]["reading62"]["rows_detail"]])
+    layout = build_layout(moved, stitched, "reading62")
+    assert len(layout["electrodes"]) == 62
+    arcs = np.array([r["arc_mm"] for r in layout["rows_detail"]])
+    np.testing.assert_allclose(arcs, whole, rtol=0.1)
+    # Without the bridge across the seam each row would stop at the midline.
+    monkeypatch.setattr(palate_section, "BRIDGE_MM", 0.0)
+    broken = np.array([r["arc_mm"] for r in build_layout(moved, stitched, "reading62")
+                       ["rows_detail"]])
+    assert (broken < 0.75 * whole).any()
