@@ -12,20 +12,25 @@ shell closes the head so that it reads as a head from every side. It is built li
    closes under the jaw like a short rounded neck. The target radius along a ray from the centre
    H (the cranium ellipsoid's centre) is the smooth maximum (p-norm, ``UNION_POWER``) of the two
    far intersections.
-2. Parameterisation. Directions from H are written in spherical coordinates about the back
-   pole b = -x: alpha (angle from b) and psi (azimuth about b). The rim, seen from H, is a
-   closed curve going once around b; each rim vertex i starts a meridian from (alpha_i, psi_i)
-   to the back pole, sampled at ``RINGS`` rings. Where the rim's azimuth briefly turns back (the
-   flaps at the temples) later rings use its running maximum, so no ring folds.
+2. Parameterisation. Directions from H are written in spherical coordinates about a pole b in
+   the mid-sagittal plane, behind and above H: alpha (angle from b) and psi (azimuth about b).
+   The rim, seen from H, is a closed curve going once around b; each rim vertex i starts a
+   meridian from (alpha_i, psi_i) to the pole, sampled at ``RINGS`` rings. The pole's tilt above
+   -x (searched over ``POLE_TILT_DEG``) is the one whose meridians cross the rim most steeply:
+   with b = -x the hairline, which runs from the forehead back past the temples at about the
+   height of H, lay almost along the meridians, so the first strips were slivers that folded
+   over (a crease across the forehead). Where the rim's azimuth still turns back, later rings
+   use its running maximum, so no ring folds.
 3. Radius. Ring 0 is the rim vertices themselves, so shell and skin share their border vertices
    exactly (no gap, no overlap). Along a meridian the radius is the target plus an offset
    delta(beta) = (delta0 + delta0' beta) * (1 - s)^2 (1 + 2 s), s = beta / BLEND_RAD, beta the
    angle travelled from the rim: delta0 makes the shell start on the rim, delta0' makes its slope
    there match the skin's (from the skin's vertex normal), and the Hermite factor fades both out
-   by BLEND_RAD, after which the shell is the target surface. From ring 1 on, delta0 and delta0'
-   are averaged over ``RIM_SMOOTHING`` rim neighbours each side, so the rim's small jags stay in
-   the first strip instead of running down the meridians.
-4. Triangles: quads between rings (split in two), a fan at the back pole; wound so normals point
+   by BLEND_RAD, after which the shell is the target surface. delta0 and delta0' hand over, over
+   ``RIM_HANDOVER_RINGS`` rings, to their averages over ``RIM_SMOOTHING`` rim neighbours each
+   side, so the rim's small jags fade out within a few rings instead of running down the
+   meridians as ridges or standing as a step next to the rim.
+4. Triangles: quads between rings (split in two), a fan at the pole; wound so normals point
    away from H.
 """
 
@@ -44,8 +49,12 @@ UNION_POWER = 6.0
 BLEND_RAD = np.radians(30.0)
 #: Rim vertices on each side averaged when the rim offsets are carried along the meridians.
 RIM_SMOOTHING = 3
-#: Rings of vertices from the rim to the back pole.
+#: Rings of vertices from the rim to the pole.
 RINGS = 40
+#: Rings over which the rim's own offsets hand over to their smoothed values.
+RIM_HANDOVER_RINGS = 4
+#: Range searched for the pole's tilt above -x in the mid-sagittal plane, degrees.
+POLE_TILT_DEG = (0.0, 75.0)
 
 
 @dataclass
@@ -104,10 +113,44 @@ def _far_radius(origin, dirs, centre, axes):
     return np.maximum((-b + root) / (2.0 * a), 0.0)
 
 
-def _directions(alpha, psi):
-    """Unit vectors at angle alpha from the back pole (-x) and azimuth psi about it; (k, 3)."""
+def _pole_axes(tilt):
+    """Rows: the pole b = (-cos t, sin t, 0), behind and above the centre for tilt t > 0, and
+    two unit axes u, w = +z completing an orthonormal frame; u is +y when t = 0. (3, 3)."""
+    c, s = np.cos(tilt), np.sin(tilt)
+    return np.array([[-c, s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _directions(alpha, psi, axes):
+    """Unit vectors at angle alpha from the pole axes[0] and azimuth psi about it; (k, 3)."""
     s = np.sin(alpha)
-    return np.stack([-np.cos(alpha), s * np.cos(psi), s * np.sin(psi)], axis=1)
+    return np.stack([np.cos(alpha), s * np.cos(psi), s * np.sin(psi)], axis=1) @ axes
+
+
+def _spherical(rays, axes):
+    """(alpha, psi) of unit rays (k, 3) about the pole axes[0]; psi unwrapped along the rim."""
+    local = rays @ axes.T
+    alpha = np.arccos(np.clip(local[:, 0], -1.0, 1.0))
+    return alpha, np.unwrap(np.arctan2(local[:, 2], local[:, 1]))
+
+
+def _rim_crossing_deg(rays, axes):
+    """Smallest angle, degrees, between a rim edge and the meridian through it (negative where
+    the rim's azimuth turns back); meridians must cross the rim, not run along it."""
+    alpha, psi = _spherical(rays, axes)
+    if psi[-1] < psi[0]:
+        psi = -psi
+    d_psi = np.diff(np.append(psi, psi[0] + 2.0 * np.pi))
+    d_alpha = np.diff(np.append(alpha, alpha[0]))
+    mid = (alpha + np.roll(alpha, -1)) / 2.0
+    return float(np.degrees(np.arctan2(np.sin(mid) * d_psi, np.abs(d_alpha))).min())
+
+
+def _choose_pole(rays):
+    """Pole tilt (radians, in the mid-sagittal plane) whose meridians cross the rim most steeply."""
+    tilts = np.radians(np.arange(POLE_TILT_DEG[0], POLE_TILT_DEG[1] + 0.5, 1.0))
+    crossing = [_rim_crossing_deg(rays, _pole_axes(t)) for t in tilts]
+    best = int(np.argmax(crossing))
+    return tilts[best], crossing[best]
 
 
 def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
@@ -151,29 +194,30 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     ray = rim - centre
     r0 = np.linalg.norm(ray, axis=1)
     ray /= r0[:, None]
-    psi = np.unwrap(np.arctan2(ray[:, 2], ray[:, 1]))
+    tilt, crossing = _choose_pole(ray)
+    axes = _pole_axes(tilt)
+    alpha, psi = _spherical(ray, axes)
     if psi[-1] < psi[0]:  # walk the rim with increasing azimuth
-        rim_ids, rim, ray, r0, psi = rim_ids[::-1], rim[::-1], ray[::-1], r0[::-1], -psi[::-1]
-        psi = np.unwrap(np.arctan2(ray[:, 2], ray[:, 1]))
+        rim_ids, rim, ray, r0 = rim_ids[::-1], rim[::-1], ray[::-1], r0[::-1]
+        alpha, psi = _spherical(ray, axes)
     if abs(psi[-1] - psi[0]) < np.pi:
         raise ValueError("the face rim does not go around the head centre; cannot close the head")
     psi_mono = np.maximum.accumulate(psi)
-    alpha = np.arccos(np.clip(-ray[:, 0], -1.0, 1.0))
 
     # Slope of the skin across the rim, from its normal: dr/dbeta = -r (n.e) / (n.ray), with e
-    # the unit tangent toward the back pole along the meridian.
+    # the unit tangent toward the pole along the meridian.
     normals = _vertex_normals(skin_vertices, np.asarray(skin_faces))[rim_ids]
-    toward_pole = -np.stack(
-        [np.sin(alpha), np.cos(alpha) * np.cos(psi), np.cos(alpha) * np.sin(psi)], axis=1
-    )
+    toward_pole = np.stack(
+        [np.sin(alpha), -np.cos(alpha) * np.cos(psi), -np.cos(alpha) * np.sin(psi)], axis=1
+    ) @ axes
     facing = np.maximum(np.einsum("ij,ij->i", normals, ray), 0.2)
     skin_slope = np.clip(-r0 * np.einsum("ij,ij->i", normals, toward_pole) / facing, -r0, r0)
     step = 1e-3
-    t0 = target(_directions(alpha, psi))
-    target_slope = (target(_directions(alpha - step, psi)) - t0) / step
+    t0 = target(_directions(alpha, psi, axes))
+    target_slope = (target(_directions(alpha - step, psi, axes)) - t0) / step
     delta0, delta_slope = r0 - t0, skin_slope - target_slope
-    # Beyond ring 0 the offsets are smoothed along the rim, so its jags do not run down the
-    # meridians as ridges.
+    # Away from the rim the offsets are smoothed along it, so its jags do not run down the
+    # meridians as ridges; the hand-over over a few rings keeps them from standing as a step.
     smooth0, smooth_slope = _smooth_loop(delta0), _smooth_loop(delta_slope)
 
     rings = [rim]
@@ -181,11 +225,14 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
         a = alpha * (1.0 - k / RINGS)
         beta = alpha - a
         ring_psi = psi + (psi_mono - psi) * min(1.0, k / 3.0)
-        dirs = _directions(a, ring_psi)
+        dirs = _directions(a, ring_psi, axes)
         s = np.clip(beta / BLEND_RAD, 0.0, 1.0)
-        offset = (smooth0 + smooth_slope * np.minimum(beta, BLEND_RAD)) * (1 - s) ** 2 * (1 + 2 * s)
+        w = min(1.0, k / RIM_HANDOVER_RINGS)
+        d0 = (1.0 - w) * delta0 + w * smooth0
+        d1 = (1.0 - w) * delta_slope + w * smooth_slope
+        offset = (d0 + d1 * np.minimum(beta, BLEND_RAD)) * (1 - s) ** 2 * (1 + 2 * s)
         rings.append(centre + dirs * (target(dirs) + offset)[:, None])
-    pole_dir = np.array([[-1.0, 0.0, 0.0]])
+    pole_dir = axes[:1]
     vertices = np.vstack(rings + [centre + pole_dir * target(pole_dir)[:, None]])
 
     n = len(rim)
@@ -208,7 +255,7 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     params = {
         "method": (
             "radial shell about the cranium ellipsoid centre: meridians from each face-rim vertex "
-            "to the back pole, radius = smooth max of a cranium ellipsoid (scalp "
+            "to a pole tilted to cross the rim steeply, radius = smooth max of a cranium ellipsoid (scalp "
             f"{SCALP_MM} mm) and a lower jaw/neck ellipsoid fitted to the rim below the cheeks, "
             f"plus a Hermite offset matching the rim's position and slope, faded over "
             f"{np.degrees(BLEND_RAD):.0f} degrees; ring 0 is the rim itself (shared vertices)"
@@ -218,6 +265,8 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
         "lower_ellipsoid": {"centre_mm": c_lo.round(3).tolist(), "semi_axes_mm": a_lo.round(3).tolist(), "fit_rms_mm": round(rms_lo, 3)},
         "rim_vertices": int(n),
         "rings": RINGS,
+        "pole_direction": axes[0].round(4).tolist(),
+        "rim_meridian_crossing_min_deg": round(crossing, 2),
         "rim_azimuth_turnbacks": int(np.sum(np.diff(psi) < 0)),
     }
     return HeadShell(vertices, faces, rim_ids, params)
