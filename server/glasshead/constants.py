@@ -124,3 +124,13 @@ EPG_CONTACT_BEHIND_MM = 0.5
 #: Electrode grids: the Reading 62-electrode palate and a dense grid of 12 rows of 8.
 EPG_GRIDS = ("reading62", "dense96")
 EPG_DENSE_ROWS = 12
+
+# --- Face rig: skin and lips on the jaw, lip parameters ------------------------------------------
+# The rig definition (assets/build/face-rig.json) is built by glasshead.pipeline.face_rig and read
+# by geometry.face_rig and web/src/core/faceRig.js; tests/vectors/face-rig.json asserts both pose
+# the face alike.
+
+#: Format version of the face rig definition; both evaluators refuse any other version.
+FACE_RIG_FORMAT_VERSION = 1
+#: mm. Largest difference allowed between the Python and JavaScript face vertices.
+FACE_VERTEX_TOLERANCE_MM = 1e-3

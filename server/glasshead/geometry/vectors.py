@@ -30,6 +30,7 @@ VECTOR_FILES = {
     "tongue-surface.json": "glasshead.geometry.tongue_vectors:surface_document",
     "tongue-jaw.json": "glasshead.geometry.tongue_vectors:jaw_document",
     "tongue-bspline.json": "glasshead.geometry.tongue_vectors:bspline_document",
+    "face-rig.json": "glasshead.geometry.face_vectors:face_document",
 }
 
 

@@ -97,12 +97,18 @@ def epg_layout_step(ctx):
     return build_step(ctx.assets_dir)
 
 
+def face_rig_step(ctx):
+    from glasshead.pipeline.face_rig import build_step
+    return build_step(ctx)
+
+
 #: (name, step) in the order they run.
 STEPS = [
     ("anatomy", anatomy_step),
     ("tongue-rig", tongue_rig_step),
     ("collision-tables", collision_tables_step),
     ("epg-layout", epg_layout_step),
+    ("face-rig", face_rig_step),
 ]
 
 

@@ -95,3 +95,10 @@ export const EPG_CONTACT_BEHIND_MM = 0.5;
 /** Electrode grids: the Reading 62-electrode palate and a dense grid of 12 rows of 8. */
 export const EPG_GRIDS = Object.freeze( [ 'reading62', 'dense96' ] );
 export const EPG_DENSE_ROWS = 12;
+
+// --- Face rig: skin and lips on the jaw, lip parameters (mirrors server/glasshead/constants.py) --
+
+/** Format version of the face rig definition; the evaluator refuses any other version. */
+export const FACE_RIG_FORMAT_VERSION = 1;
+/** mm. Largest difference allowed between the Python and JavaScript face vertices. */
+export const FACE_VERTEX_TOLERANCE_MM = 1e-3;

@@ -1,0 +1,221 @@
+// The real-time face rig against the shared vectors written by the Python reference
+// (tests/vectors/face-rig.json), plus its own guarantees: closure closes, the jaw opens the mouth,
+// still vertices stay put, bad input is refused, and posing allocates nothing.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { PerformanceObserver, performance } from 'node:perf_hooks';
+
+import {
+	applyFaceRig, createFaceRig, FACE_MESHES, GAP_LIPS, GAP_NATURAL, jawScrew, LIP_PARAMETER_NAMES, lipGap, lipValues, restFaceRig, teethBound,
+} from '../../web/src/core/faceRig.js';
+import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
+import { FACE_VERTEX_TOLERANCE_MM } from '../../web/src/core/constants.js';
+
+const HERE = dirname( fileURLToPath( import.meta.url ) );
+const VECTORS = JSON.parse( readFileSync( join( HERE, '..', 'vectors', 'face-rig.json' ), 'utf8' ) );
+const REST = Object.fromEntries( FACE_MESHES.map( ( name ) => [ name, Float32Array.from( VECTORS.rest[ name ] ) ] ) );
+
+function setup() {
+
+	const rig = createFaceRig( VECTORS.rig, REST );
+	const out = Object.fromEntries( FACE_MESHES.map( ( name ) => [ name, new Float32Array( REST[ name ].length ) ] ) );
+	restFaceRig( rig, out );
+	return { rig, out, values: new Float64Array( LIP_PARAMETER_NAMES.length ), pose: new Float64Array( POSE_LENGTH ) };
+
+}
+
+function poseCase( context, params ) {
+
+	const { rig, out, values, pose } = context;
+	const { jaw_opening: opening = 0, ...lips } = params;
+	lipValues( rig, lips, values );
+	jawPose( opening, VECTORS.jaw, pose );
+	return applyFaceRig( rig, values, pose, out ).gaps[ GAP_LIPS ];
+
+}
+
+test( 'the vectors hold 100 or more seeded random sets, the jaw among them, with unique descriptions', () => {
+
+	const random = VECTORS.cases.filter( ( c ) => c.description.startsWith( 'random set' ) );
+	assert.ok( random.length >= 100, `${ random.length } random sets` );
+	assert.ok( random.every( ( c ) => c.description.includes( `seed ${ VECTORS.seed }` ) ) );
+	const openings = random.map( ( c ) => c.input.params.jaw_opening );
+	assert.ok( Math.max( ...openings ) - Math.min( ...openings ) > 20, 'the jaw opening spans its range' );
+	assert.ok( random.some( ( c ) => c.input.params.lip_opening === 0 ), 'some sets close the lips' );
+	assert.equal( new Set( VECTORS.cases.map( ( c ) => c.description ) ).size, VECTORS.cases.length );
+	assert.equal( VECTORS.tolerance.vertex_mm, FACE_VERTEX_TOLERANCE_MM );
+
+} );
+
+test( 'every vector case gives the Python gaps, closure and probe positions', () => {
+
+	const context = setup();
+	let worst = 0;
+	for ( const vector of VECTORS.cases ) {
+
+		const gap = poseCase( context, vector.input.params );
+		const expected = vector.expected;
+		const message = vector.description;
+		assert.ok( Math.abs( gap - expected.lip_gap_mm ) <= 1e-4, `${ message }: lip gap ${ gap } vs ${ expected.lip_gap_mm }` );
+		assert.ok( Math.abs( context.rig.gaps[ GAP_NATURAL ] - expected.natural_gap_mm ) <= 1e-4, `${ message }: natural gap` );
+		expected.closure_mm.forEach( ( c, i ) => assert.ok( Math.abs( context.rig.closure[ i ] - c ) <= 1e-4, `${ message }: closure ${ i }` ) );
+		assert.equal( context.rig.counts[ 0 ], expected.teeth_clamped, `${ message }: points moved by the teeth` );
+		for ( const name of FACE_MESHES ) {
+
+			VECTORS.probe_vertices[ name ].forEach( ( v, k ) => {
+
+				for ( let i = 0; i < 3; i ++ ) {
+
+					const error = Math.abs( context.out[ name ][ 3 * v + i ] - expected.probe_positions[ name ][ k ][ i ] );
+					worst = Math.max( worst, error );
+					assert.ok( error <= FACE_VERTEX_TOLERANCE_MM, `${ message }: ${ name } vertex ${ v } off by ${ error } mm` );
+
+				}
+
+			} );
+
+		}
+
+	}
+
+	assert.ok( worst < 1e-4, `float32 rounding only, got ${ worst } mm` );
+
+} );
+
+test( 'closing the lips leaves no gap at any jaw opening; open lips part wider as the jaw opens', () => {
+
+	const context = setup();
+	let previous = - 1;
+	for ( const opening of [ 0, 5, 10, 15, 20, 25 ] ) {
+
+		assert.ok( poseCase( context, { jaw_opening: opening, lip_opening: 0 } ) <= 0.5, `closed at ${ opening } deg` );
+		const open = poseCase( context, { jaw_opening: opening } );
+		assert.ok( open > previous, `gap ${ open } at ${ opening } deg after ${ previous }` );
+		previous = open;
+
+	}
+
+	assert.ok( previous > 20, `the mouth opens wide at 25 deg: ${ previous } mm` );
+
+} );
+
+test( 'a pose of the jaw alone moves the lower lip with the mandible and leaves still vertices at rest', () => {
+
+	const context = setup();
+	poseCase( context, { jaw_opening: 20 } );
+	const { rig, out } = context;
+	for ( const name of FACE_MESHES ) {
+
+		const mesh = rig.meshes[ name ];
+		const moving = new Set( mesh.moving );
+		for ( let v = 0; v < mesh.count; v ++ ) {
+
+			if ( moving.has( v ) ) continue;
+			for ( let i = 0; i < 3; i ++ ) assert.equal( out[ name ][ 3 * v + i ], REST[ name ][ 3 * v + i ], `${ name } vertex ${ v }` );
+
+		}
+
+	}
+
+	assert.ok( rig.meshes.head_shell.moving.length < rig.meshes.head_shell.count / 2, 'most of the shell never moves' );
+	// The lower lip's reference vertex (its top at the midline) goes down with the chin.
+	const low = rig.meshes.lower_lip.reference;
+	assert.ok( out.lower_lip[ 3 * low + 1 ] < REST.lower_lip[ 3 * low + 1 ] - 10 );
+
+} );
+
+test( 'the jaw screw of a pure rotation has no slide and reproduces the pose', () => {
+
+	const pose = jawPose( 0, { pivot: [ 0, 0 ], translation_per_degree: [ 0, 0 ] }, new Float64Array( POSE_LENGTH ) );
+	const screw = jawScrew( pose, new Float64Array( 11 ) );
+	assert.equal( screw[ 3 ], 0, 'identity: no angle' );
+	const turned = jawPose( 20, { pivot: [ - 50, 40 ], translation_per_degree: [ 0, 0 ] }, new Float64Array( POSE_LENGTH ) );
+	jawScrew( turned, screw );
+	assert.ok( Math.abs( screw[ 3 ] - 20 * Math.PI / 180 ) < 1e-12 );
+	assert.deepEqual( Array.from( screw.subarray( 0, 3 ) ), [ 0, 0, - 1 ] );
+	assert.ok( Math.abs( screw[ 4 ] ) < 1e-12, 'a rotation about a z-parallel axis does not slide along it' );
+
+} );
+
+test( 'the incisor face recedes quadratically outside its table, with the matching slope', () => {
+
+	const table = { y0: 0, z0: 0, step_y: 1, step_z: 1, rows: 2, cols: 2, x: [ 10, 10, 10, 10 ], recession: 4 };
+	const bound = new Float64Array( 3 );
+	teethBound( table, 0.5, 0.5, bound );
+	assert.deepEqual( Array.from( bound ), [ 10, 0, 0 ] );
+	teethBound( table, - 0.5, 0.5, bound );
+	assert.deepEqual( Array.from( bound ), [ 9, 4, 0 ], '0.5 mm below: 4 * 0.25 mm back, rising toward the table' );
+
+} );
+
+test( 'bad input is refused: parameters out of range, other meshes, another format', () => {
+
+	const { rig } = setup();
+	assert.throws( () => lipValues( rig, { lip_rounding: 99 } ), /lip_rounding = 99 is outside \[-4, 10\] mm/ );
+	assert.throws( () => lipValues( rig, { lip_opening: Number.NaN } ), /lip_opening = NaN/ );
+	const shifted = { ...REST, upper_lip: REST.upper_lip.map( ( x ) => x + 1 ) };
+	assert.throws( () => createFaceRig( VECTORS.rig, shifted ), /the rig was built for other meshes/ );
+	assert.throws( () => createFaceRig( VECTORS.rig, { ...REST, lower_lip: REST.lower_lip.subarray( 3 ) } ), /"lower_lip" has 515 vertices; the face rig was built for 516/ );
+	assert.throws( () => createFaceRig( { ...VECTORS.rig, format_version: 99 }, REST ), /format_version 99 is not 1/ );
+
+} );
+
+test( 'lipGap measures the midline crossings of any posed lips', () => {
+
+	const { rig } = setup();
+	const lowered = REST.lower_lip.map( ( x, k ) => ( k % 3 === 1 ? x - 4 : x ) );
+	const rest = lipGap( rig, REST.upper_lip, REST.lower_lip );
+	assert.ok( Math.abs( lipGap( rig, REST.upper_lip, lowered ) - rest - 4 ) < 1e-4 );
+	const raised = REST.lower_lip.map( ( x, k ) => ( k % 3 === 1 ? x + 30 : x ) );
+	assert.equal( lipGap( rig, REST.upper_lip, raised ), 0 );
+
+} );
+
+async function garbageCollections( run ) {
+
+	let count = 0;
+	let start = 0;
+	let end = Infinity;
+	const observer = new PerformanceObserver( ( list ) => {
+
+		for ( const entry of list.getEntries() ) if ( entry.startTime >= start && entry.startTime <= end ) count ++;
+
+	} );
+	observer.observe( { entryTypes: [ 'gc' ] } );
+	start = performance.now();
+	run();
+	end = performance.now();
+	await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
+	observer.disconnect();
+	return count;
+
+}
+
+test( 'posing allocates nothing: thousands of poses trigger no garbage collection', async () => {
+
+	const { rig, out, values, pose } = setup();
+	lipValues( rig, { lip_opening: 0, lip_rounding: 4 }, values );
+	for ( let k = 0; k < 2000; k ++ ) applyFaceRig( rig, values, jawPose( k % 25, VECTORS.jaw, pose ), out ); // let the JIT settle
+	const calls = 3000;
+	const quiet = await garbageCollections( () => {
+
+		for ( let k = 0; k < calls; k ++ ) {
+
+			values[ 0 ] = ( k % 10 ) / 10;
+			applyFaceRig( rig, values, jawPose( k % 25, VECTORS.jaw, pose ), out );
+
+		}
+
+	} );
+	const noisy = await garbageCollections( () => {
+
+		for ( let k = 0; k < calls; k ++ ) applyFaceRig( rig, values, pose, Object.fromEntries( FACE_MESHES.map( ( n ) => [ n, new Float32Array( out[ n ].length ) ] ) ) );
+
+	} );
+	assert.equal( quiet, 0, `${ quiet } collections during ${ calls } poses` );
+	assert.ok( noisy > 0, 'allocating outputs per pose should trigger collections' );
+
+} );
