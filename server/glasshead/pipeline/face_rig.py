@@ -180,16 +180,20 @@ DATA_FILES = ("face.node", "face.elem", "face_jaw_attachments.txt", "cranium.obj
 
 
 def input_key(data_dir, assets_dir):
-    """sha256 over the data files, the build's meshes (its manifest) and the code."""
+    """sha256 over the data files, the code and the digests of the built meshes it reads (from
+    the manifest's entries: the manifest's other fields change with every build)."""
     digest = hashlib.sha256(f"{BUILD_REVISION} {FACE_RIG_FORMAT_VERSION}".encode())
     base = Path(data_dir) / face_rig_sources.sources.BADIN
     files = [base / name for name in DATA_FILES] + [Path(__file__)]
     files += [Path(module.__file__) for module in CODE]
-    manifest = Path(assets_dir) / face_rig_sources.MANIFEST
-    if manifest.is_file():
-        files.append(manifest)
     for path in files:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    manifest = Path(assets_dir) / face_rig_sources.MANIFEST
+    if manifest.is_file():
+        entries = json.loads(manifest.read_text()).get("meshes", [])
+        for entry in entries:
+            if entry.get("name") in face_rig_sources.SCENE_MESHES and entry.get("scene", True):
+                digest.update(f"{entry['name']} {entry.get('sha256')}".encode())
     return digest.hexdigest()
 
 
