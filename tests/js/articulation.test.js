@@ -11,7 +11,8 @@ import { PerformanceObserver, performance } from 'node:perf_hooks';
 import { BoxGeometry, Matrix4 } from 'three';
 
 import { Head } from '../../web/src/scene/Head.js';
-import { Articulation, lipGap, midlineCrossings, parameterDefinitions, TONGUE_PART } from '../../web/src/scene/Articulation.js';
+import { Articulation, parameterDefinitions, TONGUE_PART } from '../../web/src/scene/Articulation.js';
+import { lipGap, midlineCrossings } from '../../web/src/scene/FacePose.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import { ParamState } from '../../web/src/core/paramState.js';

@@ -98,5 +98,6 @@ test( 'values read out with their unit, a true minus sign and no float noise', (
 	assert.equal( formatValue( - 0.001, 'mm' ), '0.0 mm' );
 	assert.equal( formatValue( 12, 'deg' ), '12.0°' );
 	assert.equal( formatValue( 0.5, '' ), '0.5' );
+	assert.equal( formatValue( 0.75, 'ratio' ), '0.75' );
 
 } );

@@ -20,6 +20,7 @@ import { fetchCollisionTables } from '../core/tables.js';
 import { ParamState } from '../core/paramState.js';
 import { fetchJson } from '../api.js';
 import { registerDebug } from '../debug.js';
+import { FacePose, lipGap, midlineLips } from './FacePose.js';
 
 /** The scene mesh the parametric tongue replaces. */
 export const TONGUE_PART = 'tongue_rest';
@@ -120,8 +121,9 @@ export class Articulation {
 	}
 
 	/**
-	 * Use a face rig for the skin and lips: an object with pose( values, jawMatrix, head ) that
-	 * moves their vertices and returns the lip gap in mm. null goes back to the rigid lower lip.
+	 * Use a face rig for the skin and lips: an object with pose( values, jawPose ) (the state's
+	 * values, the row-major 3 x 4 jaw pose) that moves their vertices and returns the lip gap in
+	 * mm, such as a FacePose. null goes back to the rigid lower lip.
 	 */
 	setFaceRig( faceRig ) {
 
@@ -184,7 +186,7 @@ export class Articulation {
 		if ( this.faceRig ) {
 
 			setMatrix( this.head.part( 'lower_lip' )?.group, IDENTITY );
-			this.lipGap = this.faceRig.pose( this.state.values, this.jawMatrix, this.head );
+			this.lipGap = this.faceRig.pose( this.state.values, this.jawPose );
 
 		} else {
 
@@ -314,74 +316,6 @@ function round3( value ) {
 }
 
 /**
- * The mid-sagittal crossings of the lips at rest: for each edge of a lip mesh with one end at
- * z <= 0 and the other at z > 0, the point where it crosses z = 0 (Float64Array, x y per point).
- * The jaw turns about a z-parallel axis, so a posed crossing is the posed rest crossing.
- * Returns { upper, lower } or null when a lip is missing.
- */
-export function midlineLips( head ) {
-
-	const upper = head.part( 'upper_lip' );
-	const lower = head.part( 'lower_lip' );
-	if ( ! upper || ! lower ) return null;
-	return { upper: midlineCrossings( upper.geometry ), lower: midlineCrossings( lower.geometry ) };
-
-}
-
-/** Crossings of the plane z = 0 by the edges of a geometry's triangles (x y per crossing). */
-export function midlineCrossings( geometry ) {
-
-	const positions = geometry.getAttribute( 'position' );
-	const index = geometry.index;
-	const corner = ( t, k ) => ( index ? index.getX( 3 * t + k ) : 3 * t + k );
-	const triangles = index ? index.count / 3 : positions.count / 3;
-	const seen = new Set();
-	const points = [];
-	for ( let t = 0; t < triangles; t ++ ) {
-
-		for ( let k = 0; k < 3; k ++ ) {
-
-			let a = corner( t, k );
-			let b = corner( t, ( k + 1 ) % 3 );
-			if ( positions.getZ( a ) > 0 ) [ a, b ] = [ b, a ];
-			if ( ! ( positions.getZ( a ) <= 0 && positions.getZ( b ) > 0 ) ) continue;
-			const key = a * 4294967296 + b;
-			if ( seen.has( key ) ) continue;
-			seen.add( key );
-			const za = positions.getZ( a );
-			const s = za / ( za - positions.getZ( b ) );
-			points.push( positions.getX( a ) + s * ( positions.getX( b ) - positions.getX( a ) ) );
-			points.push( positions.getY( a ) + s * ( positions.getY( b ) - positions.getY( a ) ) );
-
-		}
-
-	}
-
-	return Float64Array.from( points );
-
-}
-
-/**
- * The lips' mid-sagittal gap, mm: the lowest midline point of the upper lip above the highest of
- * the lower lip, which rides on the jaw (pose from jawPose()); 0 when they touch.
- */
-export function lipGap( lips, pose ) {
-
-	let upperLowest = Infinity;
-	for ( let k = 1; k < lips.upper.length; k += 2 ) upperLowest = Math.min( upperLowest, lips.upper[ k ] );
-	let lowerHighest = - Infinity;
-	const lower = lips.lower;
-	for ( let k = 0; k < lower.length; k += 2 ) {
-
-		lowerHighest = Math.max( lowerHighest, pose[ 4 ] * lower[ k ] + pose[ 5 ] * lower[ k + 1 ] + pose[ 7 ] );
-
-	}
-
-	return Math.max( 0, upperLowest - lowerHighest );
-
-}
-
-/**
  * Parameter definitions of the tongue rig followed by those of the face rig (its lips), the
  * tongue's first so that its evaluator reads the same array.
  */
@@ -395,23 +329,43 @@ export function parameterDefinitions( rigDefinition, faceRigDefinition = null ) 
 }
 
 /**
- * Load the tongue rig and the collision tables from the API and put a parametric, collision
- * corrected tongue into `head`, driven from `viewer`'s loop. Tables that cannot be loaded leave
- * the tongue uncorrected (collision.enabled false) with `tablesError` saying why.
- * Returns the Articulation, its debug fields registered.
+ * Load the tongue rig, the collision tables and the face rig from the API and put a parametric,
+ * collision corrected tongue into `head`, with the face following the jaw and the lip
+ * parameters, driven from `viewer`'s loop. Tables or a face rig that cannot be had leave the
+ * tongue uncorrected (collision.enabled false) or the lower lip riding rigidly on the jaw, with
+ * `tablesError` or `faceRigError` saying why. Returns the Articulation, its debug fields registered.
  */
 export async function loadArticulation( head, viewer, { fetchImpl = globalThis.fetch } = {} ) {
 
-	const [ definition, tables ] = await Promise.all( [
+	const [ definition, tables, face ] = await Promise.all( [
 		fetchJson( '/tongue/rig', { fetchImpl } ),
 		fetchCollisionTables( '/api/v1', fetchImpl ).catch( ( error ) => error ),
+		fetchJson( '/face/rig', { fetchImpl } ).catch( ( error ) => error ),
 	] );
 	const rig = new TongueRig( definition );
-	const state = new ParamState( parameterDefinitions( definition ) );
+	const faceDefinition = face instanceof Error ? null : face;
+	const state = new ParamState( parameterDefinitions( definition, faceDefinition ) );
 	const tablesError = tables instanceof Error ? tables.message : null;
 	const articulation = new Articulation( rig, state, { tables: tablesError ? null : tables } );
 	articulation.tablesError = tablesError;
-	articulation.attach( head ).registerDebugFields();
+	articulation.faceRigError = face instanceof Error ? face.message : null;
+	articulation.attach( head );
+	if ( faceDefinition ) {
+
+		try {
+
+			articulation.setFaceRig( new FacePose( faceDefinition, head, state ) );
+			articulation.update( true );
+
+		} catch ( error ) {
+
+			articulation.faceRigError = error.message;
+
+		}
+
+	}
+
+	articulation.registerDebugFields();
 	if ( viewer ) articulation.attachViewer( viewer );
 	return articulation;
 

@@ -42,13 +42,13 @@ export function sliderStep( p ) {
 
 }
 
-/** A value for display, one or two decimals: "2.5 mm", "2.25 mm", "12.0°", "−0.4 mm" (a true minus). */
+/** A value for display, one or two decimals: "2.5 mm", "2.25 mm", "12.0°", "−0.4 mm" (a true minus), "0.75" (a ratio). */
 export function formatValue( value, unit ) {
 
 	const text = roundValue( value ).toFixed( 2 ).replace( /(\.\d)0$/, '$1' );
 	const signed = text === '-0.0' ? '0.0' : text.replace( /^-/, '\u2212' );
 	if ( unit === 'deg' ) return `${ signed }°`;
-	return unit ? `${ signed } ${ unit }` : signed;
+	return unit && unit !== 'ratio' ? `${ signed } ${ unit }` : signed;
 
 }
 
