@@ -124,6 +124,13 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 
 		assert.ok( gaps[ 1 ] > gaps[ 0 ] + 2 && gaps[ 2 ] > gaps[ 1 ] + 2, `lip gaps ${ gaps } mm at 0, 8 and 16 degrees` );
 		await saveScreenshot( page, 'workbench-jaw-open' );
+		// The face rig's lips close over the open jaw (p, b, m) when their opening goes to 0.
+		await slider( 'Lip opening' ).fill( '0' );
+		await settle( page );
+		assert.ok( ( await readDebug( page ) ).lipGap < 0.5, `lip gap ${ ( await readDebug( page ) ).lipGap } mm with the lips closed` );
+		await show( { view: 'Front', skin: true, cutaway: false } );
+		await saveScreenshot( page, 'workbench-lips-closed' );
+		await show( { view: 'Profile', skin: false, cutaway: true } );
 
 	} );
 

@@ -213,3 +213,46 @@ test( 'without a face rig, or without the meshes it poses, the lower lip rides o
 	}
 
 } );
+
+test( 'posing the face allocates nothing: a thousand poses trigger no garbage collection', async () => {
+
+	const { PerformanceObserver } = await import( 'node:perf_hooks' );
+	const collections = async ( run ) => {
+
+		let count = 0;
+		const observer = new PerformanceObserver( ( list ) => ( count += list.getEntries().length ) );
+		observer.observe( { entryTypes: [ 'gc' ] } );
+		run();
+		await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
+		observer.disconnect();
+		return count;
+
+	};
+
+	const head = faceHead();
+	const state = lipState();
+	const face = new FacePose( FACE.rig, head, state );
+	const poses = [ 0, 5, 10, 15, 20 ].map( jaw );
+	const k = state.index.get( 'lip_rounding' );
+	const frame = ( i ) => {
+
+		state.values[ k ] = i % 7;
+		face.pose( state.values, poses[ i % poses.length ] );
+
+	};
+
+	for ( let i = 0; i < 500; i ++ ) frame( i ); // let the JIT settle
+	let quiet = Infinity;
+	for ( let run = 0; run < 3 && quiet > 0; run ++ ) {
+
+		quiet = Math.min( quiet, await collections( () => {
+
+			for ( let i = 0; i < 1000; i ++ ) frame( i );
+
+		} ) );
+
+	}
+
+	assert.equal( quiet, 0, `${ quiet } collections during 1,000 face poses` );
+
+} );
