@@ -80,7 +80,8 @@ def build_anatomy(data_dir, stage_dir, log=print):
     placed, placed_faces, registration = timer.run(
         "register CBCT maxilla", register_cbct, cbct_vertices, cbct_faces, *badin["maxilla"])
     point = mouth_point(badin["maxilla"][0])
-    levels = timer.run("CBCT levels of detail", build_lods, placed, placed_faces, point)
+    arch = (badin["maxilla"][0].min(axis=0), badin["maxilla"][0].max(axis=0))
+    levels = timer.run("CBCT levels of detail", build_lods, placed, placed_faces, point, arch)
     choice = choose_scene_maxilla(registration, levels)
     log(f"    scene maxilla: {choice['mesh']} ({choice['level']})")
 
@@ -103,6 +104,9 @@ def build_anatomy(data_dir, stage_dir, log=print):
         item.pop("vertices_count", None)
     report["cbct_full_triangles"] = len(cbct_faces)
     report["mouth_point_mm"] = point.round(3).tolist()
+    report["mouth_facing"] = (
+        "faces seen first from the mouth point, facing it, no higher than the palate vault above "
+        "it + 1 mm, within the Badin maxilla's x and |z| extent (see pipeline/maxilla_lods.py)")
     report["scene_maxilla"] = choice
     report["timings_s"] = timer.times
     return entries, report
