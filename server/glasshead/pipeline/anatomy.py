@@ -17,7 +17,12 @@ from glasshead.geometry.meshio import read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre
 from glasshead.pipeline.head_shell import build_head_shell
-from glasshead.pipeline.maxilla_lods import build_lods, choose_scene_maxilla, mouth_point
+from glasshead.pipeline.maxilla_lods import (
+    build_lods,
+    choose_scene_maxilla,
+    mouth_point,
+    mouth_residual,
+)
 from glasshead.pipeline.register_cbct import register_cbct
 
 
@@ -74,7 +79,7 @@ def build_anatomy(data_dir, stage_dir, log=print):
     emit("head_shell", shell.vertices, shell.faces, "shell", "built: closes the face skin")
     report["face_skin"] = {k: v for k, v in skin.stats.items()}
     report["head_shell"] = {"method": build_head_shell.__module__ + " (see its docstring)",
-                            "triangles": len(shell.faces)}
+                            "triangles": len(shell.faces)} | shell.params
 
     cbct_vertices, cbct_faces = sources.read_cbct_maxilla(data_dir)
     placed, placed_faces, registration = timer.run(
@@ -82,6 +87,7 @@ def build_anatomy(data_dir, stage_dir, log=print):
     point = mouth_point(badin["maxilla"][0])
     arch = (badin["maxilla"][0].min(axis=0), badin["maxilla"][0].max(axis=0))
     levels = timer.run("CBCT levels of detail", build_lods, placed, placed_faces, point, arch)
+    registration["mouth_facing"] = mouth_residual(*badin["maxilla"], placed, placed_faces, point, arch)
     choice = choose_scene_maxilla(registration, levels)
     log(f"    scene maxilla: {choice['mesh']} ({choice['level']})")
 

@@ -29,7 +29,7 @@ import fast_simplification
 import numpy as np
 import trimesh
 
-from glasshead.pipeline.surface_distance import SampledSurface, hausdorff
+from glasshead.pipeline.surface_distance import SampledSurface, hausdorff, summarise
 
 #: Target triangle counts, from near-full to the paper's 1,600.
 LOD_TARGETS = (12000, 8000, 5000, 3200, 1600)
@@ -145,9 +145,26 @@ def build_lods(vertices, faces, point, arch=None):
     return levels
 
 
+def mouth_residual(badin_vertices, badin_faces, cbct_vertices, cbct_faces, point, arch):
+    """Registration residual on the mouth-facing surfaces, both directions (summaries in mm):
+    the error a CBCT maxilla would bring to the palate the tongue touches."""
+    badin = SampledSurface(badin_vertices, badin_faces)
+    cbct = SampledSurface(cbct_vertices, cbct_faces)
+    b_mask = mouth_facing(badin_vertices, badin_faces, point, arch)[badin.face_of]
+    c_mask = mouth_facing(cbct_vertices, cbct_faces, point, arch)[cbct.face_of]
+    return {
+        "badin_to_cbct": summarise(cbct.query.distance(badin.points[b_mask])),
+        "cbct_to_badin": summarise(badin.query.distance(cbct.points[c_mask])),
+    }
+
+
 def choose_scene_maxilla(registration, levels):
     """Which maxilla the scene shows, and why: {"mesh": "badin"|"cbct", "level", "reason"}."""
     residual = registration["badin_to_cbct"]["mean_mm"]
+    mouth = registration.get("mouth_facing", {}).get("badin_to_cbct")
+    mouth_text = (f" On the mouth-facing surface alone the residual is {mouth['mean_mm']} mm mean, "
+                  f"{mouth['p95_mm']} mm 95th percentile, already over the "
+                  f"{MOUTH_FACING_BOUND_MM} mm budget before any simplification." if mouth else "")
     within = [lod for lod in levels if lod["mouth_hausdorff_mm"] <= MOUTH_FACING_BOUND_MM]
     if residual > MAX_REGISTRATION_MEAN_MM:
         return {"mesh": "badin", "level": "full", "reason": (
@@ -156,7 +173,8 @@ def choose_scene_maxilla(registration, levels):
             f"{registration['badin_to_cbct']['p95_mm']} mm), so the Badin tongue, jaw, lips and "
             f"face would not fit it; the Badin maxilla (same speaker, full resolution, 0 mm from "
             f"itself) is shown. CBCT levels within {MOUTH_FACING_BOUND_MM} mm on the mouth-facing "
-            f"surface: {[lod['triangles'] for lod in within] or 'none'}.")}
+            f"surface (against the full CBCT): {[lod['triangles'] for lod in within] or 'none'}."
+            + mouth_text)}
     if not within:
         return {"mesh": "badin", "level": "full",
                 "reason": f"no CBCT level stays within {MOUTH_FACING_BOUND_MM} mm mouth-facing"}
