@@ -4,10 +4,10 @@
 // lips -> hooks, recomputed only when the parameters change, without allocating.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { fewestGarbageCollections, garbageCollections } from './support/garbage.js';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { PerformanceObserver, performance } from 'node:perf_hooks';
 import { BoxGeometry, Matrix4 } from 'three';
 
 import { Head } from '../../web/src/scene/Head.js';
@@ -258,26 +258,6 @@ test( 'window.glasshead reports the parameters, tongue, collision counts and lip
 
 } );
 
-async function garbageCollections( run ) {
-
-	let count = 0;
-	let start = 0;
-	let end = Infinity;
-	const observer = new PerformanceObserver( ( list ) => {
-
-		for ( const entry of list.getEntries() ) if ( entry.startTime >= start && entry.startTime <= end ) count ++;
-
-	} );
-	observer.observe( { entryTypes: [ 'gc' ] } );
-	start = performance.now();
-	run();
-	end = performance.now();
-	await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
-	observer.disconnect();
-	return count;
-
-}
-
 test( 'a frame allocates nothing: thousands of recomputes trigger no garbage collection', async () => {
 
 	const { state, articulation } = setUp();
@@ -293,18 +273,11 @@ test( 'a frame allocates nothing: thousands of recomputes trigger no garbage col
 
 	for ( let i = 0; i < 2000; i ++ ) frame( i ); // let the JIT settle (it compiles in the first thousand)
 	const frames = 3000;
-	// The test runner shares the heap and now and then collects on its own: the fewest
-	// collections of three runs is what the frames themselves cause.
-	let quiet = Infinity;
-	for ( let run = 0; run < 3 && quiet > 0; run ++ ) {
+	const quiet = await fewestGarbageCollections( () => {
 
-		quiet = Math.min( quiet, await garbageCollections( () => {
+		for ( let i = 0; i < frames; i ++ ) frame( i );
 
-			for ( let i = 0; i < frames; i ++ ) frame( i );
-
-		} ) );
-
-	}
+	} );
 
 	// The same loop with a fresh array per frame shows that the probe does see allocation.
 	const noisy = await garbageCollections( () => {

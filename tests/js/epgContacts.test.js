@@ -2,11 +2,11 @@
 // its own brute force, and its guarantees: exact probe reach, no allocation per frame.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { fewestGarbageCollections, garbageCollections } from './support/garbage.js';
 import { createHash } from 'node:crypto';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { PerformanceObserver, performance } from 'node:perf_hooks';
 
 import {
 	COLLISION_TOL, EPG_CONTACT_BEHIND_MM, EPG_CONTACT_TOLERANCE_MM, EPG_LAYOUT_FORMAT_VERSION,
@@ -175,26 +175,6 @@ test( 'the Reading frame keeps the R1 corners at 0 and fits epgIndices', () => {
 
 } );
 
-async function garbageCollections( run ) {
-
-	let count = 0;
-	let start = 0;
-	let end = Infinity;
-	const observer = new PerformanceObserver( ( list ) => {
-
-		for ( const entry of list.getEntries() ) if ( entry.startTime >= start && entry.startTime <= end ) count ++;
-
-	} );
-	observer.observe( { entryTypes: [ 'gc' ] } );
-	start = performance.now();
-	run();
-	end = performance.now();
-	await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
-	observer.disconnect();
-	return count;
-
-}
-
 test( 'a frame allocates nothing: thousands of frames trigger no garbage collection', async () => {
 
 	const model = MODELS.reading62;
@@ -202,7 +182,7 @@ test( 'a frame allocates nothing: thousands of frames trigger no garbage collect
 	const frame = new Uint8Array( 64 );
 	for ( let i = 0; i < 500; i ++ ) epgContacts( model, positions, frame ); // let the JIT settle
 	const frames = 6000;
-	const quiet = await garbageCollections( () => {
+	const quiet = await fewestGarbageCollections( () => {
 
 		for ( let i = 0; i < frames; i ++ ) epgContacts( model, positions, frame );
 

@@ -3,10 +3,10 @@
 // outward-wound mesh of fixed topology, and no allocation per evaluation.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { fewestGarbageCollections, garbageCollections } from './support/garbage.js';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { PerformanceObserver, performance } from 'node:perf_hooks';
 
 import { TongueRig, meshVolume, surfaceTriangles } from '../../web/src/core/tongue.js';
 import { applyJawPose, jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
@@ -173,33 +173,13 @@ test( 'evaluation writes into the same arrays and keeps the topology', () => {
 
 } );
 
-async function garbageCollections( run ) {
-
-	let count = 0;
-	let start = 0;
-	let end = Infinity;
-	const observer = new PerformanceObserver( ( list ) => {
-
-		for ( const entry of list.getEntries() ) if ( entry.startTime >= start && entry.startTime <= end ) count ++;
-
-	} );
-	observer.observe( { entryTypes: [ 'gc' ] } );
-	start = performance.now();
-	run();
-	end = performance.now();
-	await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
-	observer.disconnect();
-	return count;
-
-}
-
 test( 'evaluation allocates nothing: thousands of calls trigger no garbage collection', async () => {
 
 	const surface = rig.createSurface();
 	const values = rig.valuesFrom( { jaw_opening: 12, front_groove_depth: 3 } );
 	for ( let k = 0; k < 200; k ++ ) rig.evaluate( values, surface ); // let the JIT settle
 	const calls = 10000;
-	const quiet = await garbageCollections( () => {
+	const quiet = await fewestGarbageCollections( () => {
 
 		for ( let k = 0; k < calls; k ++ ) {
 
