@@ -103,12 +103,13 @@ export function createFaceRig( definition, rest ) {
 
 	}
 
-	return {
+	const rig = {
 		definition,
 		field,
 		teeth: { upper: teethTable( definition.teeth.upper ), lower: teethTable( definition.teeth.lower ) },
 		meshes,
 		screw: new Float64Array( 11 ),
+		frame: new Float64Array( FRAME_SIZE ),
 		/** The closure vector C of the last pose. */
 		closure: new Float64Array( 3 ),
 		/** Lip gaps of the last pose, mm: before closure (GAP_NATURAL), after everything (GAP_LIPS). */
@@ -116,6 +117,58 @@ export function createFaceRig( definition, rest ) {
 		/** Skin and lip points the teeth moved in the last pose. */
 		counts: new Int32Array( 1 ),
 	};
+	primeFaceRig( rig );
+	return rig;
+
+}
+
+/**
+ * Run every path of the per-vertex code on a few points, then pose the face twice, off screen,
+ * before anything is compiled: the optimising compiler then starts from complete type feedback.
+ * Code that meets a new operation after compilation falls back to the interpreter, which boxes
+ * numbers (garbage every frame) and can keep a hot loop there.
+ */
+function primeFaceRig( rig ) {
+
+	const p = new Float64Array( 3 );
+	for ( const table of [ rig.teeth.lower, rig.teeth.upper ] ) {
+
+		const { x, n } = table;
+		const middle = Math.floor( n[ T_ROWS ] / 2 ) * n[ T_COLS ] + Math.floor( n[ T_COLS ] / 2 );
+		const y = n[ T_Y0 ] + Math.floor( n[ T_ROWS ] / 2 ) * n[ T_STEP_Y ];
+		const z = n[ T_Z0 ] + Math.floor( n[ T_COLS ] / 2 ) * n[ T_STEP_Z ];
+		for ( const depth of [ - 1, 0.5, n[ T_DEPTH ] + 1, 0.5, - 1 ] ) {
+
+			p[ 0 ] = x[ middle ] - depth; p[ 1 ] = y; p[ 2 ] = z;
+			pushOut( x, n, p );
+
+		}
+
+	}
+
+	const angle = 10 * Math.PI / 180;
+	const turned = Float64Array.of( Math.cos( angle ), Math.sin( angle ), 0, 1, - Math.sin( angle ), Math.cos( angle ), 0, - 2, 0, 0, 1, 0 );
+	const still = Float64Array.of( 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 );
+	const values = lipValues( rig, { lip_opening: 0.5, lip_rounding: 2, lip_protrusion: 1, upper_lip_raise: 1, lower_lip_tuck: 1 } );
+	for ( const pose of [ still, turned ] ) {
+
+		frameNumbers( rig, values, pose );
+		for ( const name of FACE_MESHES ) {
+
+			const mesh = rig.meshes[ name ];
+			const few = mesh.moving.slice( 0, 16 );
+			shapeAndSkin( mesh.rest, mesh.weights, mesh.coeffs, few, mesh.work, rig.frame );
+			clampToTeeth( few, mesh.work, rig.teeth, pose );
+
+		}
+
+	}
+
+	const scratch = {};
+	for ( const name of FACE_MESHES ) scratch[ name ] = new Float32Array( 3 * rig.meshes[ name ].count );
+	applyFaceRig( rig, values, turned, scratch );
+	applyFaceRig( rig, values, still, scratch );
+	for ( const name of FACE_MESHES ) rig.meshes[ name ].work.set( rig.meshes[ name ].rest );
 
 }
 
@@ -135,12 +188,6 @@ function checkProbes( name, probes, positions ) {
 		}
 
 	} );
-
-}
-
-function teethTable( table ) {
-
-	return { ...table, x: Float64Array.from( table.x ) };
 
 }
 
@@ -174,6 +221,9 @@ function prepareMesh( name, spec, rest, field ) {
 
 	}
 
+	// Every mesh gets the same fields, in the same order (one hidden class for the hot loops).
+	const lip = Boolean( spec.midline_edges );
+	const crossings = lip ? spec.midline_edges.length : 0;
 	const mesh = {
 		name,
 		count,
@@ -185,16 +235,12 @@ function prepareMesh( name, spec, rest, field ) {
 		/** Posed positions, float64, xyz per vertex. */
 		work: Float64Array.from( rest ),
 		teeth: TEETH_MESHES.includes( name ),
+		/** Lips only: midline edges (vertex pairs), the reference vertex, crossing scratch. */
+		edges: Uint32Array.from( lip ? spec.midline_edges.flat() : [] ),
+		reference: lip ? spec.reference_vertex : - 1,
+		crossY: new Float64Array( crossings ),
+		crossF: new Float64Array( crossings ),
 	};
-	if ( spec.midline_edges ) {
-
-		mesh.edges = Uint32Array.from( spec.midline_edges.flat() );
-		mesh.reference = spec.reference_vertex;
-		mesh.crossY = new Float64Array( spec.midline_edges.length );
-		mesh.crossF = new Float64Array( spec.midline_edges.length );
-
-	}
-
 	return mesh;
 
 }
@@ -267,50 +313,78 @@ export function jawScrew( pose, target ) {
 
 }
 
-/** Steps 1 and 2 for one mesh's moving vertices, into mesh.work. */
-function shapeAndSkin( mesh, values, field, screw ) {
+/** Layout of rig.frame: the per-pose numbers the vertex loops read. */
+const F_ROUNDING = 0;
+const F_FORWARD = 1;
+const F_PROTRUSION = 2;
+const F_RAISE = 3;
+const F_TUCK = 4;
+const F_RAISE_DIR = 5; // 3 numbers
+const F_TUCK_DIR = 8; // 3 numbers
+const F_TURNING = 11; // 1 when the jaw turns, 0 for a pure slide
+const F_HALF_COT = 12; // cot( angle / 2 ) / 2
+const F_SCREW = 13; // the 11 numbers of jawScrew()
+const FRAME_SIZE = F_SCREW + 11;
 
-	const { rest, weights, coeffs, moving, work } = mesh;
-	const raiseDir = field.raise_direction;
-	const tuckDir = field.tuck_direction;
-	const rounding = values[ ROUNDING ];
-	const forward = rounding > 0 ? rounding : 0;
-	const protrusion = values[ PROTRUSION ];
-	const up = values[ RAISE ];
-	const tuck = values[ TUCK ];
-	const ux = screw[ 0 ];
-	const uy = screw[ 1 ];
-	const uz = screw[ 2 ];
-	const angle = screw[ 3 ];
-	const slide = screw[ 4 ];
-	const halfCot = angle > SCREW_MIN_ANGLE ? 0.5 / Math.tan( 0.5 * angle ) : 0;
+/** The per-pose numbers of steps 1 and 2, into rig.frame. */
+function frameNumbers( rig, values, pose ) {
+
+	const frame = rig.frame;
+	const field = rig.field;
+	const screw = jawScrew( pose, rig.screw );
+	frame[ F_ROUNDING ] = values[ ROUNDING ];
+	frame[ F_FORWARD ] = values[ ROUNDING ] > 0 ? values[ ROUNDING ] : 0;
+	frame[ F_PROTRUSION ] = values[ PROTRUSION ];
+	frame[ F_RAISE ] = values[ RAISE ];
+	frame[ F_TUCK ] = values[ TUCK ];
+	for ( let i = 0; i < 3; i ++ ) {
+
+		frame[ F_RAISE_DIR + i ] = field.raise_direction[ i ];
+		frame[ F_TUCK_DIR + i ] = field.tuck_direction[ i ];
+
+	}
+
+	const turning = screw[ 3 ] > SCREW_MIN_ANGLE ? 1 : 0;
+	frame[ F_TURNING ] = turning;
+	frame[ F_HALF_COT ] = 0.5 / Math.tan( 0.5 * ( turning ? screw[ 3 ] : 1 ) );
+	frame.set( screw, F_SCREW );
+
+}
+
+/**
+ * Steps 1 and 2 for one mesh's moving vertices, into work. Everything arrives as typed arrays
+ * read inside the loop: the compiled loop is entered with no property to look up, and has seen
+ * every operation (without rotation the screw is a pure slide, a = w and b = 0, written as
+ * arithmetic on F_TURNING rather than a branch first met after compilation).
+ */
+function shapeAndSkin( rest, weights, coeffs, moving, work, frame ) {
+
 	for ( let k = 0; k < moving.length; k ++ ) {
 
 		const v = moving[ k ];
 		const o = 3 * v;
 		const c6 = COEFF_COUNT * v;
-		const raise = coeffs[ c6 + COEFF_RAISE ] * up;
-		const tuckBy = coeffs[ c6 + COEFF_TUCK ] * tuck;
-		const x = rest[ o ] + ( raise * raiseDir[ 0 ] + tuckBy * tuckDir[ 0 ] ) + ( protrusion * coeffs[ c6 + COEFF_PROTRUSION ] + forward * coeffs[ c6 + COEFF_ROUND_X ] );
-		const y = rest[ o + 1 ] + ( raise * raiseDir[ 1 ] + tuckBy * tuckDir[ 1 ] );
-		const z = rest[ o + 2 ] + ( raise * raiseDir[ 2 ] + tuckBy * tuckDir[ 2 ] ) + rounding * coeffs[ c6 + COEFF_ROUND_Z ];
+		const raise = coeffs[ c6 + COEFF_RAISE ] * frame[ F_RAISE ];
+		const tuckBy = coeffs[ c6 + COEFF_TUCK ] * frame[ F_TUCK ];
+		const x = rest[ o ] + ( raise * frame[ F_RAISE_DIR ] + tuckBy * frame[ F_TUCK_DIR ] ) + ( frame[ F_PROTRUSION ] * coeffs[ c6 + COEFF_PROTRUSION ] + frame[ F_FORWARD ] * coeffs[ c6 + COEFF_ROUND_X ] );
+		const y = rest[ o + 1 ] + ( raise * frame[ F_RAISE_DIR + 1 ] + tuckBy * frame[ F_TUCK_DIR + 1 ] );
+		const z = rest[ o + 2 ] + ( raise * frame[ F_RAISE_DIR + 2 ] + tuckBy * frame[ F_TUCK_DIR + 2 ] ) + frame[ F_ROUNDING ] * coeffs[ c6 + COEFF_ROUND_Z ];
+		const ux = frame[ F_SCREW ];
+		const uy = frame[ F_SCREW + 1 ];
+		const uz = frame[ F_SCREW + 2 ];
+		const turning = frame[ F_TURNING ];
+		const halfCot = frame[ F_HALF_COT ];
 		const w = weights[ v ];
-		const phi = w * angle;
+		const phi = w * frame[ F_SCREW + 3 ];
 		const c = Math.cos( phi );
 		const s = Math.sin( phi );
-		let a = w;
-		let b = 0;
-		if ( angle > SCREW_MIN_ANGLE ) {
-
-			a = 0.5 * ( 1 - c ) + halfCot * s;
-			b = halfCot * ( 1 - c ) - 0.5 * s;
-
-		}
-
+		const a = turning * ( 0.5 * ( 1 - c ) + halfCot * s ) + ( 1 - turning ) * w;
+		const b = turning * ( halfCot * ( 1 - c ) - 0.5 * s );
+		const slide = w * frame[ F_SCREW + 4 ];
 		const dot = ( ux * x + uy * y + uz * z ) * ( 1 - c );
-		work[ o ] = x * c + ( uy * z - uz * y ) * s + dot * ux + a * screw[ 5 ] + b * screw[ 8 ] + w * slide * ux;
-		work[ o + 1 ] = y * c + ( uz * x - ux * z ) * s + dot * uy + a * screw[ 6 ] + b * screw[ 9 ] + w * slide * uy;
-		work[ o + 2 ] = z * c + ( ux * y - uy * x ) * s + dot * uz + a * screw[ 7 ] + b * screw[ 10 ] + w * slide * uz;
+		work[ o ] = x * c + ( uy * z - uz * y ) * s + dot * ux + a * frame[ F_SCREW + 5 ] + b * frame[ F_SCREW + 8 ] + slide * ux;
+		work[ o + 1 ] = y * c + ( uz * x - ux * z ) * s + dot * uy + a * frame[ F_SCREW + 6 ] + b * frame[ F_SCREW + 9 ] + slide * uy;
+		work[ o + 2 ] = z * c + ( ux * y - uy * x ) * s + dot * uz + a * frame[ F_SCREW + 7 ] + b * frame[ F_SCREW + 10 ] + slide * uz;
 
 	}
 
@@ -407,8 +481,13 @@ function solveClosure( up, low, target, iterations, closure ) {
 export function applyFaceRig( rig, values, pose, out ) {
 
 	const { field, meshes } = rig;
-	const screw = jawScrew( pose, rig.screw );
-	for ( let m = 0; m < FACE_MESHES.length; m ++ ) shapeAndSkin( meshes[ FACE_MESHES[ m ] ], values, field, screw );
+	frameNumbers( rig, values, pose );
+	for ( let m = 0; m < FACE_MESHES.length; m ++ ) {
+
+		const mesh = meshes[ FACE_MESHES[ m ] ];
+		shapeAndSkin( mesh.rest, mesh.weights, mesh.coeffs, mesh.moving, mesh.work, rig.frame );
+
+	}
 
 	const up = meshes.upper_lip;
 	const low = meshes.lower_lip;
@@ -447,7 +526,7 @@ export function applyFaceRig( rig, values, pose, out ) {
 
 		}
 
-		if ( mesh.teeth ) clamped += clampToTeeth( mesh, rig.teeth, pose );
+		if ( mesh.teeth ) clamped += clampToTeeth( mesh.moving, mesh.work, rig.teeth, pose );
 		const target32 = out[ name ];
 		for ( let k = 0; k < moving.length; k ++ ) {
 
@@ -479,30 +558,55 @@ export function restFaceRig( rig, out ) {
 
 // --- Teeth (face_teeth.py) ------------------------------------------------------------------------
 
-const scratchBound = new Float64Array( 3 );
+/** Layout of a table's numbers (table.n, Float64Array), read by the per-vertex code. */
+const T_Y0 = 0;
+const T_Z0 = 1;
+const T_STEP_Y = 2;
+const T_STEP_Z = 3;
+const T_ROWS = 4;
+const T_COLS = 5;
+const T_RECESSION = 6;
+const T_DEPTH = 7;
+const T_STEPS = 8;
+const T_X_MAX = 9;
 
-/**
- * The labial face x = F( y, z ) of a row of incisors, bilinear in its table, receding by
- * recession * ( distance outside, mm )^2 beyond it; F, dF/dy and dF/dz into target.
- */
-export function teethBound( table, y, z, target ) {
+/** A table of the definition as typed arrays: values x and numbers n (T_* layout). */
+function teethTable( table ) {
 
-	scratchQuery[ 1 ] = y;
-	scratchQuery[ 2 ] = z;
-	return teethBoundAt( table, scratchQuery, target );
+	const x = Float64Array.from( table.x );
+	// The face never lies in front of its largest table value: a cheap exact early-out.
+	const n = Float64Array.of( table.y0, table.z0, table.step_y, table.step_z, table.rows, table.cols, table.recession, table.depth ?? 0, table.steps ?? 0, Math.max( ...x ) );
+	return { x, n };
 
 }
 
+const scratchBound = new Float64Array( 3 );
 const scratchQuery = new Float64Array( 3 );
 
-/** teethBound() at the point p ( y = p[ 1 ], z = p[ 2 ] ). */
-function teethBoundAt( table, p, target ) {
+/**
+ * The labial face x = F( y, z ) of a row of incisors (a table of the definition), bilinear in
+ * its table, receding by recession * ( distance outside, mm )^2 beyond it; F, dF/dy and dF/dz
+ * into target.
+ */
+export function teethBound( table, y, z, target ) {
 
-	const { rows, cols, step_y: stepY, step_z: stepZ, recession, x } = table;
-	const y = p[ 1 ];
-	const z = p[ 2 ];
-	const fy = ( y - table.y0 ) / stepY;
-	const fz = ( z - table.z0 ) / stepZ;
+	const { x, n } = teethTable( table );
+	scratchQuery[ 1 ] = y;
+	scratchQuery[ 2 ] = z;
+	return teethBoundAt( x, n, scratchQuery, target );
+
+}
+
+/** teethBound() at the point p ( y = p[ 1 ], z = p[ 2 ] ) for table values x and numbers n. */
+function teethBoundAt( x, n, p, target ) {
+
+	const rows = n[ T_ROWS ];
+	const cols = n[ T_COLS ];
+	const stepY = n[ T_STEP_Y ];
+	const stepZ = n[ T_STEP_Z ];
+	const recession = n[ T_RECESSION ];
+	const fy = ( p[ 1 ] - n[ T_Y0 ] ) / stepY;
+	const fz = ( p[ 2 ] - n[ T_Z0 ] ) / stepZ;
 	const cy = fy < 0 ? 0 : ( fy > rows - 1 ? rows - 1 : fy );
 	const cz = fz < 0 ? 0 : ( fz > cols - 1 ? cols - 1 : fz );
 	const iy = Math.min( Math.floor( cy ), rows - 2 );
@@ -526,22 +630,33 @@ function teethBoundAt( table, p, target ) {
 
 }
 
-/** Push one point (in the table's frame, in p[ 0..2 ]) out of a face; returns whether it moved. */
-function pushOut( table, p ) {
+/**
+ * Push one point (in the table's frame, in p[ 0..2 ]) out of a face (values x, numbers n);
+ * returns 1 if it moved, else 0. Everything is read from typed arrays and the moves are written
+ * as arithmetic rather than branches (a step that does not move adds 0): the compiled code has
+ * seen every operation before its first frame.
+ */
+function pushOut( x, n, p ) {
 
-	let moved = false;
-	for ( let step = 0; step < table.steps; step ++ ) {
+	let moved = 0;
+	for ( let step = 0; step < n[ T_STEPS ]; step ++ ) {
 
-		teethBoundAt( table, p, scratchBound );
+		// F <= xMax - recession * ( distance outside the table )^2: most points are in front.
+		const fy = ( p[ 1 ] - n[ T_Y0 ] ) / n[ T_STEP_Y ];
+		const fz = ( p[ 2 ] - n[ T_Z0 ] ) / n[ T_STEP_Z ];
+		const outY = ( fy < 0 ? fy : ( fy > n[ T_ROWS ] - 1 ? fy - n[ T_ROWS ] + 1 : 0 ) ) * n[ T_STEP_Y ];
+		const outZ = ( fz < 0 ? fz : ( fz > n[ T_COLS ] - 1 ? fz - n[ T_COLS ] + 1 : 0 ) ) * n[ T_STEP_Z ];
+		if ( p[ 0 ] >= n[ T_X_MAX ] - n[ T_RECESSION ] * ( outY * outY + outZ * outZ ) ) break;
+		teethBoundAt( x, n, p, scratchBound );
 		const behind = scratchBound[ 0 ] - p[ 0 ];
-		if ( ! ( behind > 0 && behind < table.depth ) ) continue;
+		const hit = behind > 0 && behind < n[ T_DEPTH ] ? 1 : 0;
 		const dy = scratchBound[ 1 ];
 		const dz = scratchBound[ 2 ];
-		const s = behind / ( 1 + dy * dy + dz * dz );
+		const s = hit * behind / ( 1 + dy * dy + dz * dz );
 		p[ 0 ] += s;
 		p[ 1 ] -= s * dy;
 		p[ 2 ] -= s * dz;
-		moved = true;
+		moved |= hit;
 
 	}
 
@@ -552,10 +667,13 @@ function pushOut( table, p ) {
 const scratchPoint = new Float64Array( 3 );
 
 /** Step 4 for one mesh: the lower row in the rest mandible's frame, then the upper row. */
-function clampToTeeth( mesh, teeth, pose ) {
+function clampToTeeth( moving, work, teeth, pose ) {
 
-	const { moving, work } = mesh;
 	const p = scratchPoint;
+	const lowerX = teeth.lower.x;
+	const lowerN = teeth.lower.n;
+	const upperX = teeth.upper.x;
+	const upperN = teeth.upper.n;
 	let count = 0;
 	for ( let k = 0; k < moving.length; k ++ ) {
 
@@ -567,22 +685,16 @@ function clampToTeeth( mesh, teeth, pose ) {
 		p[ 0 ] = pose[ 0 ] * dx + pose[ 4 ] * dy + pose[ 8 ] * dz;
 		p[ 1 ] = pose[ 1 ] * dx + pose[ 5 ] * dy + pose[ 9 ] * dz;
 		p[ 2 ] = pose[ 2 ] * dx + pose[ 6 ] * dy + pose[ 10 ] * dz;
-		if ( pushOut( teeth.lower, p ) ) {
-
-			work[ o ] = pose[ 0 ] * p[ 0 ] + pose[ 1 ] * p[ 1 ] + pose[ 2 ] * p[ 2 ] + pose[ 3 ];
-			work[ o + 1 ] = pose[ 4 ] * p[ 0 ] + pose[ 5 ] * p[ 1 ] + pose[ 6 ] * p[ 2 ] + pose[ 7 ];
-			work[ o + 2 ] = pose[ 8 ] * p[ 0 ] + pose[ 9 ] * p[ 1 ] + pose[ 10 ] * p[ 2 ] + pose[ 11 ];
-			count ++;
-
-		}
-
+		const lower = pushOut( lowerX, lowerN, p );
+		// Back to the posed frame only when moved (lower = 1): a point left alone keeps its
+		// exact coordinates, not their round trip.
+		work[ o ] += lower * ( pose[ 0 ] * p[ 0 ] + pose[ 1 ] * p[ 1 ] + pose[ 2 ] * p[ 2 ] + pose[ 3 ] - work[ o ] );
+		work[ o + 1 ] += lower * ( pose[ 4 ] * p[ 0 ] + pose[ 5 ] * p[ 1 ] + pose[ 6 ] * p[ 2 ] + pose[ 7 ] - work[ o + 1 ] );
+		work[ o + 2 ] += lower * ( pose[ 8 ] * p[ 0 ] + pose[ 9 ] * p[ 1 ] + pose[ 10 ] * p[ 2 ] + pose[ 11 ] - work[ o + 2 ] );
 		p[ 0 ] = work[ o ]; p[ 1 ] = work[ o + 1 ]; p[ 2 ] = work[ o + 2 ];
-		if ( pushOut( teeth.upper, p ) ) {
-
-			work[ o ] = p[ 0 ]; work[ o + 1 ] = p[ 1 ]; work[ o + 2 ] = p[ 2 ];
-			count ++;
-
-		}
+		const upper = pushOut( upperX, upperN, p );
+		work[ o ] = p[ 0 ]; work[ o + 1 ] = p[ 1 ]; work[ o + 2 ] = p[ 2 ];
+		count += lower + upper;
 
 	}
 
