@@ -85,7 +85,7 @@ def test_the_skin_turns_smoothly_into_the_shell_across_the_seam(head):
 
 
 def test_the_first_shell_rings_do_not_fold(head):
-    skin, shell = head
+    _skin, shell = head
     pairs, angle = _edge_dihedrals(shell.vertices, shell.faces)
     rings = _shell_rings(shell)[pairs]
     near = rings.max(axis=1) <= NEAR_RINGS

@@ -31,7 +31,7 @@ export async function postJson( path, body, { fetchImpl = globalThis.fetch } = {
 	}
 
 	const text = await response.text();
-	let parsed = null;
+	let parsed;
 	try {
 
 		parsed = text ? JSON.parse( text ) : null;
