@@ -17,6 +17,7 @@ import { fileURLToPath } from 'node:url';
 import { applyFaceRig, createFaceRig, FACE_MESHES, lipValues, restFaceRig } from '../web/src/core/faceRig.js';
 import { jawPose, POSE_LENGTH } from '../web/src/core/jaw.js';
 import { vertexNormals } from '../web/src/core/tongue.js';
+import { median, random } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
 const REPO = resolve( HERE, '..' );
@@ -24,30 +25,6 @@ const SAMPLES = Number( process.argv[ 2 ] ?? 40 );
 const CALLS = 50; // poses per timed sample
 const SEED = 1998;
 const GOAL_MS = 1;
-
-// mulberry32: a small seeded generator, so every run draws the same sets.
-function random( seed ) {
-
-	let a = seed >>> 0;
-	return () => {
-
-		a = ( a + 0x6D2B79F5 ) >>> 0;
-		let t = a;
-		t = Math.imul( t ^ ( t >>> 15 ), t | 1 );
-		t ^= t + Math.imul( t ^ ( t >>> 7 ), t | 61 );
-		return ( ( t ^ ( t >>> 14 ) ) >>> 0 ) / 4294967296;
-
-	};
-
-}
-
-function median( values ) {
-
-	const sorted = [ ...values ].sort( ( a, b ) => a - b );
-	const mid = sorted.length >> 1;
-	return sorted.length % 2 ? sorted[ mid ] : 0.5 * ( sorted[ mid - 1 ] + sorted[ mid ] );
-
-}
 
 /** Median milliseconds per call of run( k ), over SAMPLES samples of CALLS calls each. */
 function time( run ) {

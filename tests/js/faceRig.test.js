@@ -207,15 +207,7 @@ test( 'posing allocates nothing: thousands of poses trigger no garbage collectio
 		for ( let k = 0; k < calls; k ++ ) pose( k );
 
 	};
-	// Let the JIT settle: optimising compilers run in the background, and code still running
-	// unoptimised while they finish boxes its numbers. Warm up, give them time, warm up again.
-	for ( let round = 0; round < 3; round ++ ) {
-
-		loop();
-		await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
-
-	}
-
+	loop(); // let the JIT settle
 	const quiet = await garbageCollections( loop );
 	const noisy = await garbageCollections( () => {
 
