@@ -19,6 +19,7 @@ import { TongueRig } from '../web/src/core/tongue.js';
 import { correctVertices } from '../web/src/core/collision.js';
 import { ParamState } from '../web/src/core/paramState.js';
 import { parseCollisionTables } from '../web/src/core/tables.js';
+import { median, random } from './support/stats.mjs';
 
 const REPO = resolve( dirname( fileURLToPath( import.meta.url ) ), '..' );
 const SAMPLES = Number( process.argv[ 2 ] ?? 40 );
@@ -36,30 +37,6 @@ function built( name ) {
 	}
 
 	return readFileSync( path );
-
-}
-
-// mulberry32: a small seeded generator, so every run draws the same poses.
-function random( seed ) {
-
-	let a = seed >>> 0;
-	return () => {
-
-		a = ( a + 0x6D2B79F5 ) >>> 0;
-		let t = a;
-		t = Math.imul( t ^ ( t >>> 15 ), t | 1 );
-		t ^= t + Math.imul( t ^ ( t >>> 7 ), t | 61 );
-		return ( ( t ^ ( t >>> 14 ) ) >>> 0 ) / 4294967296;
-
-	};
-
-}
-
-function median( values ) {
-
-	const sorted = [ ...values ].sort( ( a, b ) => a - b );
-	const mid = sorted.length >> 1;
-	return sorted.length % 2 ? sorted[ mid ] : 0.5 * ( sorted[ mid - 1 ] + sorted[ mid ] );
 
 }
 

@@ -27,6 +27,7 @@ import { COLLISION_TOL } from '../web/src/core/constants.js';
 import { correctVertices } from '../web/src/core/collision.js';
 import { parseCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
+import { median, random } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
 const ASSETS = process.env.GLASSHEAD_ASSETS_DIR ?? resolve( HERE, '..', 'assets', 'build' );
@@ -67,29 +68,6 @@ async function sceneMaxilla() {
 
 	} );
 	return geometry;
-
-}
-
-// mulberry32: a small seeded generator, so every run draws the same poses.
-function random( seed ) {
-
-	let a = seed >>> 0;
-	return () => {
-
-		a = ( a + 0x6D2B79F5 ) >>> 0;
-		let t = a;
-		t = Math.imul( t ^ ( t >>> 15 ), t | 1 );
-		t ^= t + Math.imul( t ^ ( t >>> 7 ), t | 61 );
-		return ( ( t ^ ( t >>> 14 ) ) >>> 0 ) / 4294967296;
-
-	};
-
-}
-
-function median( values ) {
-
-	const s = Float64Array.from( values ).sort();
-	return s.length % 2 ? s[ s.length >> 1 ] : 0.5 * ( s[ s.length / 2 - 1 ] + s[ s.length / 2 ] );
 
 }
 

@@ -18,6 +18,7 @@ import { createContactModel, epgContacts, epgContactsBruteForce } from '../web/s
 import { epgIndices, INDEX_STRIDE } from '../web/src/core/epgIndices.js';
 import { parseCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
+import { median } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
 const REPO = resolve( HERE, '..' );
@@ -53,13 +54,6 @@ const models = Object.fromEntries( [ 'reading62', 'dense96' ].map( ( g ) => [ g,
 const frame = new Uint8Array( 96 );
 const indices = new Float64Array( INDEX_STRIDE );
 let sink = 0;
-
-function median( values ) {
-
-	const sorted = [ ...values ].sort( ( a, b ) => a - b );
-	return sorted[ sorted.length >> 1 ];
-
-}
 
 /** Median over runs of the mean time per frame of one pass over `set`. */
 function perFrameMedian( set, frameFn, runs = RUNS, warmup = WARMUP ) {

@@ -11,6 +11,7 @@ import { performance } from 'node:perf_hooks';
 
 import { EPG_CELLS } from '../web/src/core/constants.js';
 import { INDEX_SLOTS, INDEX_STRIDE, epgIndicesAll, rowsToFrame } from '../web/src/core/epgIndices.js';
+import { median } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( HERE, '..', '..', 'shared', 'data' );
@@ -47,13 +48,6 @@ function naiveIndices( flat, i ) {
 		centrality: Math.log( 1 + sum( pairs.map( ( p, k ) => p * ciW[ k ] ) ) ) / Math.log( 5221 ),
 		dorsopalatal: zone( 5, 8 ) / 24,
 	};
-
-}
-
-function median( values ) {
-
-	const sorted = [ ...values ].sort( ( a, b ) => a - b );
-	return sorted[ sorted.length >> 1 ];
 
 }
 

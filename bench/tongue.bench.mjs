@@ -14,6 +14,7 @@ import { dirname, join, relative, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { TongueRig } from '../web/src/core/tongue.js';
+import { median, random } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
 const REPO = resolve( HERE, '..' );
@@ -30,30 +31,6 @@ function loadDefinition() {
 	if ( existsSync( built ) ) return [ JSON.parse( readFileSync( built, 'utf8' ) ), relative( REPO, built ) ];
 	const vectors = join( REPO, 'tests', 'vectors', 'tongue-surface.json' );
 	return [ JSON.parse( readFileSync( vectors, 'utf8' ) ).rig, `${relative( REPO, vectors )} (rig)` ];
-
-}
-
-// mulberry32: a small seeded generator, so every run draws the same sets.
-function random( seed ) {
-
-	let a = seed >>> 0;
-	return () => {
-
-		a = ( a + 0x6D2B79F5 ) >>> 0;
-		let t = a;
-		t = Math.imul( t ^ ( t >>> 15 ), t | 1 );
-		t ^= t + Math.imul( t ^ ( t >>> 7 ), t | 61 );
-		return ( ( t ^ ( t >>> 14 ) ) >>> 0 ) / 4294967296;
-
-	};
-
-}
-
-function median( values ) {
-
-	const sorted = [ ...values ].sort( ( a, b ) => a - b );
-	const mid = sorted.length >> 1;
-	return sorted.length % 2 ? sorted[ mid ] : 0.5 * ( sorted[ mid - 1 ] + sorted[ mid ] );
 
 }
 
