@@ -3,10 +3,10 @@
 // still vertices stay put, bad input is refused, and posing allocates nothing.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { garbageCollections } from './support/garbage.js';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { PerformanceObserver, performance } from 'node:perf_hooks';
 
 import {
 	applyFaceRig, createFaceRig, FACE_MESHES, GAP_LIPS, GAP_NATURAL, jawScrew, LIP_PARAMETER_NAMES, lipGap, lipValues, restFaceRig, teethBound,
@@ -173,26 +173,6 @@ test( 'lipGap measures the midline crossings of any posed lips', () => {
 	assert.equal( lipGap( rig, REST.upper_lip, raised ), 0 );
 
 } );
-
-async function garbageCollections( run ) {
-
-	let count = 0;
-	let start = 0;
-	let end = Infinity;
-	const observer = new PerformanceObserver( ( list ) => {
-
-		for ( const entry of list.getEntries() ) if ( entry.startTime >= start && entry.startTime <= end ) count ++;
-
-	} );
-	observer.observe( { entryTypes: [ 'gc' ] } );
-	start = performance.now();
-	run();
-	end = performance.now();
-	await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
-	observer.disconnect();
-	return count;
-
-}
 
 test( 'posing allocates nothing: thousands of poses trigger no garbage collection', async () => {
 
