@@ -84,10 +84,16 @@ def neighbourhood_agreement(vertices, faces):
         np.linalg.norm(around, axis=1, keepdims=True), 1e-300))
 
 
+@cache
+def _edges(faces_key):
+    faces = np.frombuffer(faces_key, dtype=np.int64).reshape(-1, 3)
+    return np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]],
+                                             faces[:, [2, 0]]]), axis=1), axis=0)
+
+
 def edge_stretch(rest, posed, faces):
     """Posed over rest length of every edge; (e,) float64."""
-    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]],
-                                              faces[:, [2, 0]]]), axis=1), axis=0)
+    edges = _edges(np.ascontiguousarray(faces, dtype=np.int64).tobytes())
     length = np.linalg.norm(rest[edges[:, 0]] - rest[edges[:, 1]], axis=1)
     return np.linalg.norm(posed[edges[:, 0]] - posed[edges[:, 1]], axis=1) / length
 
