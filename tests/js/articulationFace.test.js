@@ -4,6 +4,7 @@
 // from the API (a fake fetch) or falling back to the rigid lower lip when it cannot.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { fewestGarbageCollections } from './support/garbage.js';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -216,19 +217,6 @@ test( 'without a face rig, or without the meshes it poses, the lower lip rides o
 
 test( 'posing the face allocates nothing: a thousand poses trigger no garbage collection', async () => {
 
-	const { PerformanceObserver } = await import( 'node:perf_hooks' );
-	const collections = async ( run ) => {
-
-		let count = 0;
-		const observer = new PerformanceObserver( ( list ) => ( count += list.getEntries().length ) );
-		observer.observe( { entryTypes: [ 'gc' ] } );
-		run();
-		await new Promise( ( resolve ) => setTimeout( resolve, 100 ) );
-		observer.disconnect();
-		return count;
-
-	};
-
 	const head = faceHead();
 	const state = lipState();
 	const face = new FacePose( FACE.rig, head, state );
@@ -242,16 +230,11 @@ test( 'posing the face allocates nothing: a thousand poses trigger no garbage co
 	};
 
 	for ( let i = 0; i < 500; i ++ ) frame( i ); // let the JIT settle
-	let quiet = Infinity;
-	for ( let run = 0; run < 3 && quiet > 0; run ++ ) {
+	const quiet = await fewestGarbageCollections( () => {
 
-		quiet = Math.min( quiet, await collections( () => {
+		for ( let i = 0; i < 1000; i ++ ) frame( i );
 
-			for ( let i = 0; i < 1000; i ++ ) frame( i );
-
-		} ) );
-
-	}
+	} );
 
 	assert.equal( quiet, 0, `${ quiet } collections during 1,000 face poses` );
 
