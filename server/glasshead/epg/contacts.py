@@ -26,6 +26,7 @@ from glasshead.constants import (
     EPG_CONTACT_BEHIND_MM,
     EPG_CONTACT_TOLERANCE_MM,
 )
+from glasshead.geometry.ray_triangle import inside_triangle, ray_triangle
 
 #: Barycentric slack of the probe test (shared with the collision kernels, for the same reason).
 BARYCENTRIC_SLACK = COLLISION_TOL.barycentric
@@ -99,29 +100,15 @@ def _check_mesh(vertices, triangles):
 def probe_hits(origin, direction, a, b, c, tolerance, behind):
     """Which triangles (a, b, c each (m, 3) float64) the probe crosses: (m,) bool.
 
-    Two-sided Moller-Trumbore (1997) from ``origin`` along ``direction``, written operation by
-    operation as in epgContacts.js so both round alike.
+    Two-sided Moller-Trumbore (1997) from ``origin`` along ``direction`` (``ray_triangle``).
     """
     dx, dy, dz = direction
     ax, ay, az = a.T
     e1x, e1y, e1z = b[:, 0] - ax, b[:, 1] - ay, b[:, 2] - az
     e2x, e2y, e2z = c[:, 0] - ax, c[:, 1] - ay, c[:, 2] - az
-    hx = dy * e2z - dz * e2y
-    hy = dz * e2x - dx * e2z
-    hz = dx * e2y - dy * e2x
-    det = e1x * hx + e1y * hy + e1z * hz
-    sx, sy, sz = origin[0] - ax, origin[1] - ay, origin[2] - az
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = 1.0 / det
-        u = (sx * hx + sy * hy + sz * hz) * inv
-        qx = sy * e1z - sz * e1y
-        qy = sz * e1x - sx * e1z
-        qz = sx * e1y - sy * e1x
-        v = (dx * qx + dy * qy + dz * qz) * inv
-        t = (e2x * qx + e2y * qy + e2z * qz) * inv
-    eps = BARYCENTRIC_SLACK
-    return ((det != 0.0) & (u >= -eps) & (v >= -eps) & (u + v <= 1.0 + eps)
-            & (t >= -behind) & (t <= tolerance))
+    det, u, v, t = ray_triangle(origin[0] - ax, origin[1] - ay, origin[2] - az, dx, dy, dz,
+                                e1x, e1y, e1z, e2x, e2y, e2z)
+    return inside_triangle(det, u, v, BARYCENTRIC_SLACK) & (t >= -behind) & (t <= tolerance)
 
 
 def electrode_contacts(vertices, triangles, probes: Probes) -> np.ndarray:

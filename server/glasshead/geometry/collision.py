@@ -33,6 +33,7 @@ from glasshead.constants import (
     VOXEL_NOT_OK,
     VOXEL_OK,
 )
+from glasshead.geometry.ray_triangle import inside_triangle, ray_triangle
 
 
 def screen(points, tables):
@@ -136,19 +137,6 @@ def moller_trumbore(dx, dy, dz, tri):
     tri : (k, 9) float, rows (a, e1, e2) relative to O. Returns (k,) t, +inf on a miss.
     """
     ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z = tri.T
-    hx = dy * e2z - dz * e2y
-    hy = dz * e2x - dx * e2z
-    hz = dx * e2y - dy * e2x
-    det = e1x * hx + e1y * hy + e1z * hz
-    sx, sy, sz = -ax, -ay, -az
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = 1.0 / det
-        u = (sx * hx + sy * hy + sz * hz) * inv
-        qx = sy * e1z - sz * e1y
-        qy = sz * e1x - sx * e1z
-        qz = sx * e1y - sy * e1x
-        v = (dx * qx + dy * qy + dz * qz) * inv
-        t = (e2x * qx + e2y * qy + e2z * qz) * inv
-    eps = COLLISION_TOL.barycentric
-    hit = (det != 0.0) & (u >= -eps) & (v >= -eps) & (u + v <= 1.0 + eps) & (t > 0.0)
+    det, u, v, t = ray_triangle(-ax, -ay, -az, dx, dy, dz, e1x, e1y, e1z, e2x, e2y, e2z)
+    hit = inside_triangle(det, u, v, COLLISION_TOL.barycentric) & (t > 0.0)
     return np.where(hit, t, np.inf)

@@ -1,0 +1,35 @@
+"""Ray-triangle intersection parameters, shared by the collision and EPG contact kernels.
+
+Two-sided Moller and Trumbore (1997), "Fast, minimum storage ray-triangle intersection", written
+operation by operation as in ``web/src/core/collision.js`` and ``epgContacts.js``, so that the
+Python and JavaScript twins round alike.
+"""
+
+import numpy as np
+
+
+def ray_triangle(sx, sy, sz, dx, dy, dz, e1x, e1y, e1z, e2x, e2y, e2z):
+    """Barycentric (u, v), ray parameter t and determinant of rays against triangles.
+
+    s = ray origin minus the triangle's first corner a; d = ray direction; e1 = b - a, e2 = c - a.
+    Each argument is a float or an (m,) float64 array (broadcast together).
+    Returns (det, u, v, t), each (m,) float64; u, v and t are inf or nan where det == 0.
+    """
+    hx = dy * e2z - dz * e2y
+    hy = dz * e2x - dx * e2z
+    hz = dx * e2y - dy * e2x
+    det = e1x * hx + e1y * hy + e1z * hz
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 1.0 / det
+        u = (sx * hx + sy * hy + sz * hz) * inv
+        qx = sy * e1z - sz * e1y
+        qy = sz * e1x - sx * e1z
+        qz = sx * e1y - sy * e1x
+        v = (dx * qx + dy * qy + dz * qz) * inv
+        t = (e2x * qx + e2y * qy + e2z * qz) * inv
+    return det, u, v, t
+
+
+def inside_triangle(det, u, v, slack):
+    """(m,) bool: a non-degenerate triangle contains the hit, with ``slack`` on its edges."""
+    return (det != 0.0) & (u >= -slack) & (v >= -slack) & (u + v <= 1.0 + slack)
