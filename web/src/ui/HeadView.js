@@ -2,13 +2,12 @@
 
 import { getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
-import { Head } from '../scene/Head.js';
 import { loadAnatomy } from '../scene/loadAnatomy.js';
 import { loadArticulation } from '../scene/Articulation.js';
-import { Viewer } from '../scene/Viewer.js';
 import { Vector3 } from 'three';
 import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { Controls, h } from './Controls.js';
+import { createHeadStage } from './headStage.js';
 
 export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, view: 'three-quarter' } );
 
@@ -41,25 +40,9 @@ export class HeadView {
 
 		this.registerDebugFields();
 
-		try {
-
-			this.viewer = new Viewer( this.stage );
-
-		} catch ( error ) {
-
-			this.fail( `This browser cannot show the 3D head (WebGL2 is needed): ${ error.message }` );
-			return this;
-
-		}
-
-		this.viewer.renderer.domElement.addEventListener( 'webglcontextlost', ( event ) => {
-
-			event.preventDefault();
-			this.fail( 'The 3D view stopped because the graphics driver was reset. Reload the page to continue.' );
-
-		} );
-		this.head = new Head();
-		this.viewer.scene.add( this.head.group );
+		const stage = createHeadStage( this.stage, ( message ) => this.fail( message ) );
+		if ( ! stage ) return this;
+		( { viewer: this.viewer, head: this.head } = stage );
 		this.load();
 		return this;
 

@@ -8,12 +8,10 @@ import { Box3, BufferAttribute, BufferGeometry, Points, PointsMaterial } from 't
 import { getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { FLAG_CORRECTED } from '../core/constants.js';
-import { Head } from '../scene/Head.js';
 import { loadAnatomy } from '../scene/loadAnatomy.js';
 import { loadArticulation } from '../scene/Articulation.js';
 import { LinerWireframe } from '../scene/LinerWireframe.js';
 import { VoxelDots } from '../scene/VoxelDots.js';
-import { Viewer } from '../scene/Viewer.js';
 import { fitDistance, VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { h } from './Controls.js';
 import { ParameterPanel } from './ParameterPanel.js';
@@ -21,6 +19,7 @@ import { PoseBox } from './PoseBox.js';
 import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from './SagittalPanel.js';
 import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, sectionStations } from './SectionsPanel.js';
 import './workbench.css';
+import { createHeadStage } from './headStage.js';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
 const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
@@ -58,19 +57,9 @@ export class WorkbenchView {
 		container.append( this.root );
 		this.registerDebugFields();
 
-		try {
-
-			this.viewer = new Viewer( this.stage );
-
-		} catch ( error ) {
-
-			this.fail( `This browser cannot show the 3D view (WebGL2 is needed): ${ error.message }` );
-			return this;
-
-		}
-
-		this.head = new Head();
-		this.viewer.scene.add( this.head.group );
+		const stage = createHeadStage( this.stage, ( message ) => this.fail( message ) );
+		if ( ! stage ) return this;
+		( { viewer: this.viewer, head: this.head } = stage );
 		this.load();
 		return this;
 
