@@ -155,3 +155,39 @@ def extreme_sets(rig):
              {"lip_opening": 0.0, "upper_lip_raise": 6.0, "lower_lip_tuck": 5.0},
              {"upper_lip_raise": 6.0, "lower_lip_tuck": 5.0, "lip_rounding": -4.0}]
     return [(opening, params) for opening in (0.0, 12.5, 25.0) for params in lips]
+
+
+def skin_showing_through_lips(posed, faces, step=0.5, within=3.0):
+    """Where the skin shows through a lip, seen from the front.
+
+    Rays along -x on a ``step`` mm grid over the posed lips; a ray shows the skin through a lip
+    when the first surface it meets is the skin and a lip lies less than ``within`` mm behind it
+    (a fold of the skin in front of the lip, or the two surfaces crossing). posed : name ->
+    (n, 3) posed vertices; faces : name -> (m, 3). Returns (rays showing it, rays over the lips).
+    """
+    names = ("face_skin", "upper_lip", "lower_lip")
+    offsets = np.cumsum([0] + [len(posed[name]) for name in names])
+    mesh = trimesh.Trimesh(np.concatenate([posed[name] for name in names]),
+                           np.concatenate([faces[name] + offsets[k] for k, name in enumerate(names)]),
+                           process=False)
+    owner = np.concatenate([np.full(len(faces[name]), k) for k, name in enumerate(names)])
+    lips = np.concatenate([posed["upper_lip"], posed["lower_lip"]])
+    low, high = lips.min(axis=0), lips.max(axis=0)
+    yy, zz = np.meshgrid(np.arange(low[1], high[1], step), np.arange(low[2], high[2], step),
+                         indexing="ij")
+    origins = np.stack([np.full(yy.size, high[0] + 50.0), yy.ravel(), zz.ravel()], axis=1)
+    hits, ray, triangle = mesh.ray.intersects_location(
+        origins, np.tile([-1.0, 0.0, 0.0], (len(origins), 1)), multiple_hits=True)
+    order = np.lexsort((-hits[:, 0], ray))  # per ray, front to back
+    hits, ray, who = hits[order], ray[order], owner[triangle[order]]
+    first = np.r_[True, ray[1:] != ray[:-1]]
+    showing, over_lips = set(), set()
+    front_x = dict(zip(ray[first], hits[first, 0]))
+    front_who = dict(zip(ray[first], who[first]))
+    for x, r, k in zip(hits[:, 0], ray, who):
+        if k == 0:
+            continue
+        over_lips.add(int(r))
+        if front_who[r] == 0 and 0.0 < front_x[r] - x < within:
+            showing.add(int(r))
+    return len(showing), len(over_lips)

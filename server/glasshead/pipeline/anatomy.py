@@ -15,7 +15,7 @@ import trimesh
 
 from glasshead.geometry.meshio import read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
-from glasshead.pipeline.face_skin import extract_face_skin, head_centre
+from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
 from glasshead.pipeline.head_shell import build_head_shell
 from glasshead.pipeline.maxilla_lods import (
     build_lods,
@@ -72,6 +72,8 @@ def build_anatomy(data_dir, stage_dir, log=print):
     elems = read_face_elems(face_dir / "face.elem", node_ids)
     skin = timer.run("face skin", extract_face_skin, node_ids, nodes, elems,
                      head_centre(cranium_vertices))
+    skin = timer.run("skin off the lips", uncover_lips, skin,
+                     [badin["upper_lip"], badin["lower_lip"]])
     emit("face_skin", skin.vertices, skin.faces, "skin", "artisynth-badin/face.node+face.elem")
     (Path(stage_dir) / "face_skin_nodes.json").write_text(
         json.dumps({"mesh": "face_skin", "node_ids": skin.node_ids.tolist()}))

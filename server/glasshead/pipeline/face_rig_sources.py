@@ -19,7 +19,7 @@ from scipy.spatial import cKDTree
 from glasshead.geometry.frame import badin_to_project
 from glasshead.geometry.meshio import MeshFormatError, read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
-from glasshead.pipeline.face_skin import extract_face_skin, head_centre
+from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
 from glasshead.pipeline.head_shell import build_head_shell
 
 ATTACHMENTS_FILE = "face_jaw_attachments.txt"
@@ -30,6 +30,8 @@ SCENE_MESHES = ("face_skin", "upper_lip", "lower_lip", "head_shell", "mandible",
 
 #: A skin vertex lies on a face node when closer than this, mm (GLB positions are float32).
 ON_NODE_MM = 1e-3
+#: Largest share of skin vertices on no node (those laid onto the lips at the skin's border).
+OFF_NODE_SHARE = 0.05
 
 
 @dataclass
@@ -38,7 +40,7 @@ class FaceSources:
 
     nodes : (p, 3) face.node points in file order.  elems : (k, 8) zero-based node indices.
     jaw_attachments : (a,) zero-based node indices riding on the jaw.
-    skin_nodes : (n,) node index of each face_skin vertex.
+    skin_nodes : (n,) node index of each face_skin vertex (-1: laid onto a lip, on no node).
     head_shell : the shell closing the head, which shares the skin's rim.
     origin : where each mesh came from ("build <sha256>" or "sources").
     """
@@ -98,13 +100,17 @@ def read_scene_meshes(assets_dir):
 
 
 def skin_node_indices(skin_vertices, nodes):
-    """The face node under each skin vertex; (n,) int64. ValueError if a vertex has none."""
+    """The face node under each skin vertex, -1 for the few laid onto the lips at the skin's
+    border (``face_skin.uncover_lips``); (n,) int64. ValueError if more than OFF_NODE_SHARE of
+    the vertices lie on no node."""
     distance, nearest = cKDTree(nodes).query(skin_vertices)
-    if np.any(distance > ON_NODE_MM):
+    off = distance > ON_NODE_MM
+    if off.mean() > OFF_NODE_SHARE:
         worst = int(np.argmax(distance))
-        raise ValueError(f"face_skin vertex {worst} is {distance[worst]:.3g} mm from every face "
-                         "node: the skin was not made from this face mesh")
-    return nearest.astype(np.int64)
+        raise ValueError(f"{off.sum()} face_skin vertices lie on no face node (vertex {worst} is "
+                         f"{distance[worst]:.3g} mm from every node): the skin was not made from "
+                         "this face mesh")
+    return np.where(off, -1, nearest).astype(np.int64)
 
 
 def load_face_sources(data_dir, assets_dir=None):
@@ -122,12 +128,14 @@ def load_face_sources(data_dir, assets_dir=None):
         meshes = {name: mesh for name, (mesh, _) in built.items()}
         origin = {name: f"build {digest}" for name, (_, digest) in built.items()}
     else:
+        lips = {"upper_lip": sources.read_badin_mesh(data_dir, "upperlip"),
+                "lower_lip": sources.read_badin_mesh(data_dir, "lowerlip")}
         skin = extract_face_skin(node_ids, nodes_m, elem_ids, head_centre(cranium[0]))
+        skin = uncover_lips(skin, list(lips.values()))
         shell = build_head_shell(skin.vertices, skin.faces, cranium[0])
         meshes = {"face_skin": (skin.vertices, skin.faces),
                   "head_shell": (shell.vertices, shell.faces),
-                  "upper_lip": sources.read_badin_mesh(data_dir, "upperlip"),
-                  "lower_lip": sources.read_badin_mesh(data_dir, "lowerlip"),
+                  **lips,
                   "mandible": sources.read_badin_mesh(data_dir, "jaw"),
                   "maxilla": sources.read_badin_mesh(data_dir, "maxilla")}
         origin = {name: "sources" for name in meshes}

@@ -17,7 +17,7 @@ shares the rim, follows: its weights are harmonic over its own surface, equal to
 the rim and 0 farther than SHELL_BLEND_MM from every moving rim point.
 
 The field is carried onto each mesh by ``transfer_weights``: vertices on a node take its value,
-so the skin and the lips, which share their outer surface, move as one. The two lips share a few
+so the skin and the lips, which share the points of the skin's border, move as one. The two lips share a few
 points at the corners of the mouth that lie on no node; both lips take the mean of their
 separate values there, so the corners stay joined too.
 """
@@ -91,7 +91,8 @@ def node_jaw_weights(src: FaceSources, mouth_centre, mouth_half_width):
     to_lower_lip = SurfaceDistance(*src.lower_lip).distance(nodes)
     middle = np.abs(nodes[:, 2]) < LIP_MIDDLE_FRACTION * mouth_half_width
     still = np.zeros(len(nodes), dtype=bool)
-    still[src.skin_nodes[still_skin_vertices(src)]] = True
+    still_nodes = src.skin_nodes[still_skin_vertices(src)]
+    still[still_nodes[still_nodes >= 0]] = True
 
     attached = src.jaw_attachments
     kept = attached[(to_jaw[attached] <= to_upper[attached]) & ~still[attached]]

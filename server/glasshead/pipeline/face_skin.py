@@ -21,13 +21,17 @@ How the skin is found (Badin et al. face model, ``face.node`` / ``face.elem``):
    turned over, and the largest connected region is kept.
 4. Quads are split on their shorter diagonal; triangles are wound so that their normals point out
    of the tissue (away from the element's centre), which on the outer skin is out of the head.
+5. The lips are meshes of their own whose outer surface lies on the skin (``uncover_lips``): the
+   skin's triangles under them are dropped, so the skin ends where each lip begins. Left in, the
+   coarse skin triangles and the finer lip surface between the shared points part as the lips
+   stretch, and the skin shows through the lip in patches.
 
 Classifying by distance to the bones was tried and rejected: the forehead and the temples have no
 bone mesh beneath them (the cranium is a band above the brows), so there the inner and outer
 quads are equally far from any bone.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -40,6 +44,11 @@ from glasshead.geometry.frame import badin_to_project
 HEX_QUADS = ((0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
 OPPOSITE = (1, 0, 4, 5, 2, 3)
 CAP_QUADS = (0, 1)
+#: A skin point with a lip this close beneath it (along the skin's inward normal) lies over the
+#: lip, mm. The lips' outer surfaces lie on the skin, up to 3 mm under it at their lower edge.
+LIP_BENEATH_MM = 3.0
+#: Rays toward the lip start this far out of the skin, mm (a lip point on the skin is a hit).
+ON_LIP_MM = 1e-3
 
 
 @dataclass
@@ -47,7 +56,8 @@ class FaceSkin:
     """The outer skin in the project frame.
 
     vertices : (n, 3) float64, mm.   faces : (m, 3) int64, outward winding.
-    node_ids : (n,) int64, the face.node id of each skin vertex (for jaw attachments).
+    node_ids : (n,) int64, the face.node id of each skin vertex (for jaw attachments); -1 for
+        the border vertices laid onto a lip (``uncover_lips``).
     stats : dict of counts for the build report.
     """
 
@@ -207,3 +217,72 @@ def extract_face_skin(node_ids, nodes_m, elems, centre):
         "islands_dropped": int((~keep).sum()),
     }
     return FaceSkin(points[used], inverse.reshape(-1, 3).astype(np.int64), node_ids[used], stats)
+
+
+def _lip_beneath(lip, points, normals):
+    """How each point lies over a lip: (over (n,) bool, depth (n,) float mm, landing (n, 3)).
+
+    A point is over the lip when it lies inside the lip or on it (depth 0, landing on itself), or
+    when the lip is within LIP_BENEATH_MM beneath it along -normal (the skin's inward normal):
+    depth is then the distance down to the lip and landing the point reached there.
+    """
+    import trimesh
+
+    hit, ray, _ = lip.ray.intersects_location(points + ON_LIP_MM * normals, -normals,
+                                              multiple_hits=False)
+    depth = np.full(len(points), np.inf)
+    depth[ray] = np.linalg.norm(hit - points[ray], axis=1)
+    landing = np.array(points, dtype=np.float64)
+    landing[ray] = hit
+    # Signed distance (positive inside) rather than Trimesh.contains, whose answer for points on
+    # the surface changes from run to run.
+    inside = trimesh.proximity.signed_distance(lip, points) >= -ON_LIP_MM
+    depth[inside] = 0.0
+    landing[inside] = points[inside]
+    return inside | (depth <= LIP_BENEATH_MM), depth, landing
+
+
+def uncover_lips(skin, lips):
+    """The skin without the triangles lying over a lip, its new border laid onto the lips.
+
+    skin : ``FaceSkin``.  lips : list of closed (vertices (n, 3), faces) of the lips, project mm,
+    whose outer surfaces lie on the skin. A skin triangle is over a lip when its corners and its
+    centre each lie inside that lip or have it within LIP_BENEATH_MM beneath them: there the lip,
+    whose surface is finer than the skin's, is what shows. Where the lip runs on under the skin,
+    the skin's new border would stand clear of it, a slot through which the teeth show; so border
+    vertices over a lip are moved down onto it (their ``node_ids`` become -1: they no longer lie
+    on a face node). Vertices no triangle uses any more are dropped with their node ids.
+    Returns a new ``FaceSkin`` whose stats count the triangles dropped (``lip_faces_dropped``)
+    and the border vertices moved (``lip_border_moved``, and the largest move in mm).
+    """
+    import trimesh
+
+    mesh = trimesh.Trimesh(skin.vertices, skin.faces, process=False)
+    centres = mesh.triangles_center
+    covered = np.zeros(len(skin.faces), dtype=bool)
+    depth = np.full(len(skin.vertices), np.inf)
+    landing = np.array(skin.vertices, dtype=np.float64)
+    for vertices, faces in lips:
+        lip = trimesh.Trimesh(np.asarray(vertices, dtype=np.float64), faces, process=False)
+        if not lip.is_watertight:
+            raise ValueError("a lip mesh must be closed to tell which skin lies over it")
+        corners, corner_depth, corner_landing = _lip_beneath(lip, skin.vertices,
+                                                             mesh.vertex_normals)
+        centre_over = _lip_beneath(lip, centres, mesh.face_normals)[0]
+        covered |= corners[skin.faces].all(axis=1) & centre_over
+        nearer = corner_depth < depth
+        depth[nearer], landing[nearer] = corner_depth[nearer], corner_landing[nearer]
+    if covered.all():
+        raise ValueError("every skin triangle lies over a lip: the lips are not this face's")
+    border = np.zeros(len(skin.vertices), dtype=bool)
+    border[skin.faces[covered].ravel()] = True
+    border &= np.isin(np.arange(len(skin.vertices)), skin.faces[~covered])
+    moved = border & (depth > ON_LIP_MM) & (depth <= LIP_BENEATH_MM)
+    vertices = np.where(moved[:, None], landing, skin.vertices)
+    node_ids = np.where(moved, -1, skin.node_ids)
+    used, inverse = np.unique(skin.faces[~covered], return_inverse=True)
+    stats = skin.stats | {"lip_faces_dropped": int(covered.sum()),
+                          "lip_border_moved": int(moved.sum()),
+                          "lip_border_moved_max_mm": round(float(depth[moved].max(initial=0.0)), 3)}
+    return replace(skin, vertices=vertices[used], faces=inverse.reshape(-1, 3).astype(np.int64),
+                   node_ids=node_ids[used], stats=stats)
