@@ -19,6 +19,7 @@ import {
 import { createTissueMaterial, tissueOf, TISSUE_COLORS } from './materials.js';
 import { LIP_RENDER_ORDER, lipOpacity, SKIN_RENDER_ORDER, skinPassState } from './skinPasses.js';
 import { SectionOutline } from './SectionOutline.js';
+import { SectionCap } from './SectionCap.js';
 import { colorJawVertices, lowestY } from './jawColors.js';
 import { weldNormals } from '../core/weldNormals.js';
 import { buildOpeningMeshes } from './FaceOpenings.js';
@@ -34,6 +35,13 @@ const SKIN_DEPTH_BIAS = Object.freeze( { factor: 1, units: 2 } );
 
 /** Tissues whose meshes are open surfaces (not watertight); drawn two-sided. */
 const OPEN_TISSUES = new Set( [ 'maxilla', 'bone' ] );
+
+/** Closed tissues whose cut gets a cap on the plane (SectionCap), and their cut colours. The tongue
+ * and the lips are pressed against the teeth, which would show through their sections otherwise. */
+const CAPPED_TISSUES = Object.freeze( { tongue: TISSUE_COLORS.tongueCut, lip: TISSUE_COLORS.lipCut } );
+
+/** Render order of the first cap: after the opaque anatomy, before the section outlines (5). */
+const CAP_RENDER_ORDER = 1;
 
 export class Head {
 
@@ -78,6 +86,14 @@ export class Head {
 			mesh.name = entry.name;
 			part.meshes.push( mesh );
 			group.add( mesh );
+
+		}
+
+		if ( tissue in CAPPED_TISSUES ) {
+
+			const capped = [ ...this.parts.values() ].filter( ( other ) => other.cap ).length;
+			part.cap = new SectionCap( geometry, this.clipPlane, CAPPED_TISSUES[ tissue ], CAP_RENDER_ORDER + capped );
+			group.add( ...part.cap.meshes );
 
 		}
 
@@ -203,6 +219,7 @@ export class Head {
 		if ( ! geometry.getAttribute( 'normal' ) ) geometry.computeVertexNormals();
 		part.geometry = geometry;
 		for ( const mesh of part.meshes ) mesh.geometry = geometry;
+		part.cap?.setGeometry( geometry );
 		part.outline.update( geometry );
 
 	}
@@ -286,6 +303,8 @@ export class Head {
 			}
 
 			part.outline.visible = this.cutaway;
+			// Faded lips are seen through anyway; their cut stays as faded as they are.
+			part.cap?.setVisible( this.cutaway && ( part.tissue !== 'lip' || lipOpacity( this.transparency ) === 1 ) );
 			for ( const mesh of part.meshes ) {
 
 				const pass = mesh.userData.skinPass;
@@ -398,6 +417,7 @@ export class Head {
 			}
 
 			part.outline.geometry.dispose();
+			part.cap?.dispose();
 
 		}
 
