@@ -71,19 +71,19 @@ test( 'the cap follows a replaced geometry and lies on the cutting plane', () =>
 	const cap = head.part( 'tongue_rest' ).cap;
 	assert.ok( cap.counters.every( ( mesh ) => mesh.geometry === tongue ) );
 
-	// A tilted plane: the unit square's corners land on it, spread to the cap's size.
+	// An oblique plane: the unit square's corners land on it, spread to the cap's size.
 	const plane = new Plane( new Vector3( 1, 2, 2 ).normalize(), - 7 );
-	const tilted = new SectionCap( tongue, plane, '#ff0000', 1 );
-	tilted.placeOnPlane();
-	const corners = [ [ 0.5, 0.5 ], [ - 0.5, 0.5 ], [ 0.5, - 0.5 ] ].map( ( [ x, y ] ) => new Vector3( x, y, 0 ).applyMatrix4( tilted.cap.matrixWorld ) );
+	const oblique = new SectionCap( tongue, plane, '#ff0000', 1 );
+	oblique.alignWithCut();
+	const corners = [ [ 0.5, 0.5 ], [ - 0.5, 0.5 ], [ 0.5, - 0.5 ] ].map( ( [ x, y ] ) => new Vector3( x, y, 0 ).applyMatrix4( oblique.cap.matrixWorld ) );
 	for ( const corner of corners ) assert.ok( Math.abs( plane.distanceToPoint( corner ) ) < 1e-9, `corner ${ corner.toArray() } is off the plane` );
 	assert.ok( Math.abs( corners[ 0 ].distanceTo( corners[ 1 ] ) - CAP_SIZE_MM ) < 1e-6 );
 	// The parent's motion does not move it off the plane: it is placed in world space when drawn.
 	head.setCutaway( true );
 	head.part( 'tongue_rest' ).group.applyMatrix4( new Matrix4().makeTranslation( 0, 0, 40 ) );
 	head.group.updateMatrixWorld( true );
-	cap.placeOnPlane();
+	cap.alignWithCut();
 	assert.ok( Math.abs( new Vector3().setFromMatrixPosition( cap.cap.matrixWorld ).z ) < 1e-12 );
-	tilted.dispose();
+	oblique.dispose();
 
 } );

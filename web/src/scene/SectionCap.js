@@ -77,7 +77,7 @@ export class SectionCap {
 		this.cap.name = 'section-cap';
 		this.cap.frustumCulled = false;
 		// The cap lies on the plane whatever frame its parent moves in.
-		this.cap.onBeforeRender = () => this.placeOnPlane();
+		this.cap.onBeforeRender = () => this.alignWithCut();
 		for ( const counter of this.counters ) {
 
 			counter.name = 'section-cap-stencil';
@@ -111,7 +111,7 @@ export class SectionCap {
 	}
 
 	/** Put the cap square on the plane, centred on the plane's point nearest the origin. */
-	placeOnPlane() {
+	alignWithCut() {
 
 		scratchNormal.copy( this.plane.normal ).normalize();
 		this.plane.coplanarPoint( scratchPoint );
