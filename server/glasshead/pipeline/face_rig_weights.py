@@ -17,9 +17,9 @@ shares the rim, follows: its weights are harmonic over its own surface, equal to
 the rim and 0 farther than SHELL_BLEND_MM from every moving rim point.
 
 The field is carried onto each mesh by ``transfer_weights``: vertices on a node take its value,
-so the skin and the lips, which share the points of the skin's border, move as one. The two lips share a few
-points at the corners of the mouth that lie on no node; both lips take the mean of their
-separate values there, so the corners stay joined too.
+so the skin and the lips, which share the points of the skin's border, move as one. The two lips
+share a few points at the corners of the mouth that lie on no node; both lips take the mean of
+their separate values there, so the corners stay joined too.
 """
 
 import numpy as np

@@ -22,9 +22,9 @@ How the skin is found (Badin et al. face model, ``face.node`` / ``face.elem``):
 4. Quads are split on their shorter diagonal; triangles are wound so that their normals point out
    of the tissue (away from the element's centre), which on the outer skin is out of the head.
 5. The lips are meshes of their own whose outer surface lies on the skin (``uncover_lips``): the
-   skin's triangles under them are dropped, so the skin ends where each lip begins. Left in, the
-   coarse skin triangles and the finer lip surface between the shared points part as the lips
-   stretch, and the skin shows through the lip in patches.
+   skin's triangles over them are dropped and its new border is laid onto them, so the skin ends
+   where each lip begins. Left in, the coarse skin triangles and the finer lip surface between
+   the shared points part as the lips stretch, and the skin shows through the lip in patches.
 
 Classifying by distance to the bones was tried and rejected: the forehead and the temples have no
 bone mesh beneath them (the cranium is a band above the brows), so there the inner and outer
@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
+import trimesh
 from scipy.sparse.csgraph import connected_components
 
 from glasshead.geometry.frame import badin_to_project
@@ -226,8 +227,6 @@ def _lip_beneath(lip, points, normals):
     when the lip is within LIP_BENEATH_MM beneath it along -normal (the skin's inward normal):
     depth is then the distance down to the lip and landing the point reached there.
     """
-    import trimesh
-
     hit, ray, _ = lip.ray.intersects_location(points + ON_LIP_MM * normals, -normals,
                                               multiple_hits=False)
     depth = np.full(len(points), np.inf)
@@ -255,8 +254,6 @@ def uncover_lips(skin, lips):
     Returns a new ``FaceSkin`` whose stats count the triangles dropped (``lip_faces_dropped``)
     and the border vertices moved (``lip_border_moved``, and the largest move in mm).
     """
-    import trimesh
-
     mesh = trimesh.Trimesh(skin.vertices, skin.faces, process=False)
     centres = mesh.triangles_center
     covered = np.zeros(len(skin.faces), dtype=bool)
