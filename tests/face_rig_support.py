@@ -157,7 +157,7 @@ def extreme_sets(rig):
     return [(opening, params) for opening in (0.0, 12.5, 25.0) for params in lips]
 
 
-def skin_showing_through_lips(posed, faces, step=0.5, within=3.0):
+def skin_showing_through_lips(posed, faces, step=0.5, within=0.5):
     """Where the skin shows through a lip, seen from the front.
 
     Rays along -x on a ``step`` mm grid over the posed lips; a ray shows the skin through a lip
