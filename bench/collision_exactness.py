@@ -23,7 +23,7 @@ import trimesh
 
 from glasshead.constants import CELL_EMPTY, CELL_PLANE, COLLISION_TOL
 from glasshead.geometry.collision import correct_vertices
-from glasshead.geometry.collision_format import decode_tables
+from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.collision_tables import TABLES_FILE
 from glasshead.settings import get_settings
@@ -82,7 +82,7 @@ def liner_accuracy(tables, origin, directions, exact):
 def main(argv):
     poses = int(argv[0]) if argv else 1000
     seed = int(argv[1]) if len(argv) > 1 else 1998
-    tables = decode_tables(built(TABLES_FILE).read_bytes())
+    tables = decode_collision_tables(built(TABLES_FILE).read_bytes())
     rig = TongueRig(json.loads(built("tongue-rig.json").read_text()))
     mesh = scene_maxilla()
     origin = np.array(tables.header["origin"])

@@ -11,7 +11,7 @@ import numpy as np
 import trimesh
 
 from glasshead.constants import BADIN_TO_PROJECT_AXES
-from glasshead.geometry.collision_format import decode_tables
+from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.frame import badin_to_project, fix_winding
 from glasshead.geometry.meshio import read_obj
 from glasshead.pipeline.collision_tables import TABLES_FILE
@@ -43,7 +43,7 @@ def scene_maxilla():
 
 def scene_tables():
     """The collision tables `glasshead build` wrote."""
-    return decode_tables(built(TABLES_FILE).read_bytes())
+    return decode_collision_tables(built(TABLES_FILE).read_bytes())
 
 
 def tongue_rig():

@@ -21,11 +21,11 @@ from collision_support import (
 from glasshead.constants import COLLISION_TOL, FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED
 from glasshead.geometry import collision_vectors
 from glasshead.geometry.collision import correct_vertices
-from glasshead.geometry.collision_format import decode_tables
+from glasshead.geometry.collision_format import decode_collision_tables
 
 VECTORS = json.loads((collision_vectors.VECTORS_DIR / collision_vectors.CASES_NAME).read_text())
 TABLES_BYTES = (collision_vectors.VECTORS_DIR / collision_vectors.TABLES_NAME).read_bytes()
-VECTOR_TABLES = decode_tables(TABLES_BYTES)
+VECTOR_TABLES = decode_collision_tables(TABLES_BYTES)
 #: Seeded random poses checked here (about a second); bench/collision_exactness.py prints the
 #: figures for the same kind of run.
 POSES = 1000

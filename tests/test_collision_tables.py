@@ -20,8 +20,8 @@ from glasshead.constants import (
 )
 from glasshead.geometry.collision_format import (
     CollisionTablesError,
-    decode_tables,
-    encode_tables,
+    decode_collision_tables,
+    encode_collision_tables,
 )
 from glasshead.geometry.spherical import angles_to_direction
 from glasshead.pipeline.collision_tables import (
@@ -37,7 +37,7 @@ def built(tmp_path_factory):
     out = tmp_path_factory.mktemp("collision")
     summary = build_collision_tables(v, f, out)
     data = (out / TABLES_FILE).read_bytes()
-    tables = decode_tables(data)
+    tables = decode_collision_tables(data)
     return {"v": v, "f": f, "summary": summary, "data": data, "tables": tables,
             "rays": ExactRays(v, f, tables.header["origin"])}
 
@@ -145,8 +145,8 @@ def test_voxel_table_is_32_cubed_around_the_palate_and_mostly_decided(built):
 
 
 def test_the_file_round_trips_every_array_and_records_format_and_origin(built):
-    tables = decode_tables(built["data"])
-    again = decode_tables(encode_tables(
+    tables = decode_collision_tables(built["data"])
+    again = decode_collision_tables(encode_collision_tables(
         {k: v for k, v in tables.header.items()
          if k not in ("arrays", "payload_bytes", "payload_crc32", "format", "format_version",
                       "byte_order")},
@@ -165,7 +165,7 @@ def test_a_flat_palate_gives_not_ok_voxels_above_it_and_ok_voxels_below(tmp_path
                   [-2.0, 0.0, 25.0], [2.0, 0.0, 25.0], [0.0, 4.0, 25.0]])
     f = np.array([[0, 1, 2], [3, 4, 5]])
     build_collision_tables(v, f, tmp_path, step_deg=2.0, voxels=16)
-    tables = decode_tables((tmp_path / TABLES_FILE).read_bytes())
+    tables = decode_collision_tables((tmp_path / TABLES_FILE).read_bytes())
     vox = tables.header["voxels"]
     bmin, bmax = np.array(vox["bounds"]["min"]), np.array(vox["bounds"]["max"])
     size = (bmax - bmin) / 16
@@ -194,16 +194,16 @@ def _patched(data, offset, new):
 ])
 def test_a_damaged_or_foreign_file_is_refused_with_a_reason(built, mutate, message):
     with pytest.raises(CollisionTablesError, match=message):
-        decode_tables(mutate(built["data"]))
+        decode_collision_tables(mutate(built["data"]))
 
 
 def test_a_header_whose_shapes_disagree_with_the_grid_is_refused(built):
-    tables = decode_tables(built["data"])
+    tables = decode_collision_tables(built["data"])
     header = {k: v for k, v in tables.header.items() if k != "arrays"}
     header = json.loads(json.dumps(header))
     header["liner"]["nlon"] += 1
     with pytest.raises(CollisionTablesError, match="shape"):
-        decode_tables(encode_tables(header, tables.arrays))
+        decode_collision_tables(encode_collision_tables(header, tables.arrays))
 
 
 def test_origin_rule_takes_the_middle_in_x_and_the_lowest_point_in_y():

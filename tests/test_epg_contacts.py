@@ -29,7 +29,7 @@ from glasshead.epg.indices import epg_indices
 from glasshead.epg.layout import layout_document
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.epg.synthetic import corrected_tongue, synthetic_frame
-from glasshead.geometry.collision_format import decode_tables
+from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.collision_tables import TABLES_FILE, build_collision_tables
 
@@ -41,7 +41,7 @@ TABLES_BYTES = (VECTORS_DIR / contact_vectors.TABLES_NAME).read_bytes()
 @pytest.fixture(scope="module")
 def vector_setup():
     rig = TongueRig(VECTORS["rig"])
-    tables = decode_tables(TABLES_BYTES)
+    tables = decode_collision_tables(TABLES_BYTES)
     probes = {name: probes_from_layout(VECTORS["layout"]["grids"][name])
               for name in ("reading62", "dense96")}
     return rig, tables, probes
@@ -53,14 +53,14 @@ def badin(tmp_path_factory):
     v, f = badin_mesh("maxilla")
     out = tmp_path_factory.mktemp("epg-tables")
     build_collision_tables(v, f, out)
-    tables = decode_tables((out / TABLES_FILE).read_bytes())
+    tables = decode_collision_tables((out / TABLES_FILE).read_bytes())
     layout = layout_document(v, f)
     return tongue_rig(), tables, probes_from_layout(layout["grids"]["reading62"])
 
 
 def _frame(badin, **params):
     rig, tables, probes = badin
-    return synthetic_frame(rig, rig.values(params), tables, probes)
+    return synthetic_frame(rig, rig.values_from(params), tables, probes)
 
 
 # --- the probe test ------------------------------------------------------------------------------
@@ -150,7 +150,7 @@ def test_the_vector_layout_is_the_placement_rule_on_the_vector_maxilla():
 def test_every_vector_pose_gives_the_recorded_contacts_in_python(vector_setup):
     rig, tables, probes = vector_setup
     for case in VECTORS["cases"]:
-        vertices, counts = corrected_tongue(rig, rig.values(case["input"]["params"]), tables)
+        vertices, counts = corrected_tongue(rig, rig.values_from(case["input"]["params"]), tables)
         assert counts == case["expected"]["collision"], case["description"]
         for name, grid_probes in probes.items():
             contacts = electrode_contacts(vertices, rig.triangles, grid_probes)

@@ -109,7 +109,7 @@ def test_a_broken_definition_is_refused_with_a_message_naming_the_problem(defini
 def test_a_definition_survives_a_json_round_trip_unchanged_in_its_surface(definition):
     rig = TongueRig(definition)
     again = TongueRig(json.loads(json.dumps(definition)))
-    values = rig.values({"tip_height": 3.0, "middle_width": -2.0, "jaw_opening": 8.0})
+    values = rig.values_from({"tip_height": 3.0, "middle_width": -2.0, "jaw_opening": 8.0})
     np.testing.assert_array_equal(rig.vertices(values), again.vertices(values))
 
 

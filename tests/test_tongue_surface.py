@@ -20,7 +20,7 @@ def rig():
 
 
 def test_the_surface_has_at_least_2000_vertices_and_is_closed_and_consistently_wound(rig):
-    surface = rig.evaluate()
+    surface = rig.evaluate(rig.neutral)
     assert len(surface.vertices) >= 2000
     assert is_closed_manifold(surface.triangles)
     edges = len(surface.triangles) * 3 // 2
@@ -29,30 +29,30 @@ def test_the_surface_has_at_least_2000_vertices_and_is_closed_and_consistently_w
 
 
 def test_normals_are_unit_vectors_pointing_away_from_the_hub(rig):
-    surface = rig.evaluate({"jaw_opening": 10.0, "back_width": 4.0})
-    hub = rig.control_points(rig.values({"jaw_opening": 10.0}))[1]
+    surface = rig.evaluate(rig.values_from({"jaw_opening": 10.0, "back_width": 4.0}))
+    hub = rig.control_points(rig.values_from({"jaw_opening": 10.0}))[1]
     np.testing.assert_allclose(np.linalg.norm(surface.normals, axis=1), 1.0, atol=1e-12)
     outward = surface.vertices - np.r_[hub, 0.0]
     assert np.all(np.einsum("ij,ij->i", outward, surface.normals) > 0)
 
 
 def test_the_triangles_never_change_only_the_vertices_do(rig):
-    a = rig.evaluate()
-    b = rig.evaluate({"dorsum_height": 6.0, "front_groove_depth": 3.0})
+    a = rig.evaluate(rig.neutral)
+    b = rig.evaluate(rig.values_from({"dorsum_height": 6.0, "front_groove_depth": 3.0}))
     np.testing.assert_array_equal(a.triangles, b.triangles)
     np.testing.assert_array_equal(a.triangles, surface_triangles(rig.stations, rig.page_samples))
     assert np.abs(a.vertices - b.vertices).max() > 3
 
 
 def test_missing_parameters_take_their_neutral_values(rig):
-    np.testing.assert_array_equal(rig.values({}), rig.neutral)
-    np.testing.assert_array_equal(rig.evaluate().vertices, rig.vertices(rig.neutral))
+    np.testing.assert_array_equal(rig.values_from({}), rig.neutral)
+    np.testing.assert_array_equal(rig.evaluate(rig.neutral).vertices, rig.vertices(rig.neutral))
 
 
 def test_an_unknown_parameter_is_refused_by_name_with_the_known_names(rig):
     with pytest.raises(ParameterError, match=r"unknown parameter 'tip_heigth'; known: "
                                              r"tip_advancement, tip_height") as error:
-        rig.values({"tip_heigth": 1.0})
+        rig.values_from({"tip_heigth": 1.0})
     assert error.value.parameter == "tip_heigth"
 
 
@@ -60,13 +60,13 @@ def test_a_value_outside_its_range_is_refused_with_the_range_and_unit(rig):
     p = rig.parameters["tip_height"]
     with pytest.raises(ParameterError, match=rf"tip_height = 40 is outside its range "
                                              rf"\[{p['min']:g}, {p['max']:g}\] mm"):
-        rig.values({"tip_height": 40})
+        rig.values_from({"tip_height": 40})
     with pytest.raises(ParameterError, match="not a finite number"):
-        rig.values({"jaw_opening": float("nan")})
+        rig.values_from({"jaw_opening": float("nan")})
 
 
 def test_the_rest_shape_is_left_right_symmetric(rig):
-    v = rig.evaluate().vertices
+    v = rig.evaluate(rig.neutral).vertices
     mirrored = v * [1, 1, -1]
     nearest = np.min(np.linalg.norm(mirrored[:, None, :] - v[None, ::7, :], axis=2), axis=1)
     # every vertex has a mirror image on the surface (within the sample spacing)
@@ -101,15 +101,15 @@ def test_pages_out_of_order_are_detected(rig):
 
 
 def test_tip_advancement_moves_the_tip_forward_and_leaves_the_root(rig):
-    rest = rig.evaluate().vertices
-    moved = rig.evaluate({"tip_advancement": 6.0}).vertices
+    rest = rig.evaluate(rig.neutral).vertices
+    moved = rig.evaluate(rig.values_from({"tip_advancement": 6.0})).vertices
     assert moved[:, 0].max() - rest[:, 0].max() > 5
     np.testing.assert_allclose(moved[:, 0].min(), rest[:, 0].min(), atol=1e-9)
 
 
 def test_dorsum_height_raises_the_top_of_the_tongue(rig):
-    rest = rig.evaluate().vertices
-    raised = rig.evaluate({"dorsum_height": 5.0}).vertices
+    rest = rig.evaluate(rig.neutral).vertices
+    raised = rig.evaluate(rig.values_from({"dorsum_height": 5.0})).vertices
     assert 4 < raised[:, 1].max() - rest[:, 1].max() < 6
 
 
@@ -118,22 +118,22 @@ def test_front_width_widens_the_front_of_the_tongue_about_a_millimetre_per_milli
         front = v[v[:, 0] > v[:, 0].max() - 12]
         return np.ptp(front[:, 2])
 
-    rest = rig.evaluate().vertices
-    wide = rig.evaluate({"front_width": 4.0}).vertices
+    rest = rig.evaluate(rig.neutral).vertices
+    wide = rig.evaluate(rig.values_from({"front_width": 4.0})).vertices
     assert 2.5 < width_near_tip(wide) - width_near_tip(rest) < 5.5
 
 
 def test_left_edge_height_raises_the_left_side_only(rig):
-    rest = rig.evaluate().vertices
-    raised = rig.evaluate({"middle_left_edge_height": 5.0}).vertices
+    rest = rig.evaluate(rig.neutral).vertices
+    raised = rig.evaluate(rig.values_from({"middle_left_edge_height": 5.0})).vertices
     moved = np.linalg.norm(raised - rest, axis=1) > 0.5
     assert moved.any()
     assert np.all(rest[moved, 2] > 0)  # +z is the subject's left
 
 
 def test_groove_depth_lowers_the_midline_of_the_dorsum(rig):
-    rest = rig.evaluate().vertices
-    grooved = rig.evaluate({"middle_groove_depth": 4.0}).vertices
+    rest = rig.evaluate(rig.neutral).vertices
+    grooved = rig.evaluate(rig.values_from({"middle_groove_depth": 4.0})).vertices
     middle = np.argmax(rig.station_blend[:, 1])
     top = 2 + middle * rig.page_samples + rig.page_samples // 2  # the midline sample
     assert abs(rest[top, 2]) < 1e-9 and rest[top, 1] > 5
@@ -146,20 +146,20 @@ def test_groove_depth_lowers_the_midline_of_the_dorsum(rig):
 
 
 def test_the_tongue_rides_on_the_jaw_its_floor_points_move_with_the_mandible(rig):
-    values = rig.values({"jaw_opening": 20.0})
+    values = rig.values_from({"jaw_opening": 20.0})
     points, hub, _offsets, _stretch = rig.control_points(values)
     pose = jaw_pose(20.0, rig.jaw)
     fully = rig.point_jaw_weights == 1.0
     np.testing.assert_allclose(points[fully], apply_jaw_pose(rig.rest_points[fully], pose),
                                atol=1e-12)
     np.testing.assert_allclose(hub, apply_jaw_pose(rig.hub[None], pose, [rig.hub_jaw_weight])[0])
-    rest, opened = rig.evaluate().vertices, rig.vertices(values)
+    rest, opened = rig.evaluate(rig.neutral).vertices, rig.vertices(values)
     assert opened[:, 1].min() < rest[:, 1].min() - 10
 
 
 def test_width_stretches_sideways_and_never_moves_the_poles(rig):
-    rest = rig.evaluate().vertices
-    wide = rig.evaluate({"middle_width": 6.0, "back_width": 6.0}).vertices
+    rest = rig.evaluate(rig.neutral).vertices
+    wide = rig.evaluate(rig.values_from({"middle_width": 6.0, "back_width": 6.0})).vertices
     np.testing.assert_array_equal(wide[:2], rest[:2])
     np.testing.assert_array_equal(wide[:, :2], rest[:, :2])
     assert np.all(np.abs(wide[:, 2]) >= np.abs(rest[:, 2]) - 1e-12)

@@ -56,7 +56,7 @@ def test_a_box_is_closed_and_an_open_box_is_not():
 
 
 def test_the_tongue_volume_equals_trimesh_on_the_same_mesh(rig):
-    surface = rig.evaluate({"jaw_opening": 14.0, "tip_advancement": 3.0})
+    surface = rig.evaluate(rig.values_from({"jaw_opening": 14.0, "tip_advancement": 3.0}))
     reference = trimesh.Trimesh(surface.vertices, surface.triangles, process=False).volume
     assert surface.volume == pytest.approx(reference, rel=1e-10)
 
@@ -66,16 +66,17 @@ def test_the_tongue_volume_equals_trimesh_on_the_same_mesh(rig):
 def test_body_and_dorsum_height_and_root_advancement_change_the_volume_by_over_five_percent(
         rig, name):
     p = rig.parameters[name]
-    low, high = rig.evaluate({name: p["min"]}).volume, rig.evaluate({name: p["max"]}).volume
+    low = rig.evaluate(rig.values_from({name: p["min"]})).volume
+    high = rig.evaluate(rig.values_from({name: p["max"]})).volume
     assert max(low, high) / min(low, high) > 1.05
 
 
 @pytest.mark.parametrize("section", ["front", "middle", "back"])
 def test_a_wider_section_holds_more_volume(rig, section):
     name = f"{section}_width"
-    rest = rig.evaluate().volume
-    low = rig.evaluate({name: rig.parameters[name]["min"]}).volume
-    high = rig.evaluate({name: rig.parameters[name]["max"]}).volume
+    rest = rig.evaluate(rig.neutral).volume
+    low = rig.evaluate(rig.values_from({name: rig.parameters[name]["min"]})).volume
+    high = rig.evaluate(rig.values_from({name: rig.parameters[name]["max"]})).volume
     assert low < 0.98 * rest and high > 1.02 * rest
 
 
@@ -94,8 +95,8 @@ def test_every_tongue_parameter_but_asymmetry_changes_the_volume(rig):
 def test_a_volume_penalty_tells_apart_shapes_that_a_contour_fit_confuses(rig):
     # Two sets with the same mid-sagittal contour (only coronal widths differ) have different
     # volumes: only a volume term can choose between them in a 2D fit.
-    a = rig.evaluate({"middle_width": -4.0})
-    b = rig.evaluate({"middle_width": 4.0})
+    a = rig.evaluate(rig.values_from({"middle_width": -4.0}))
+    b = rig.evaluate(rig.values_from({"middle_width": 4.0}))
     midline = np.abs(a.vertices[:, 2]) < 1e-9
     np.testing.assert_allclose(a.vertices[midline], b.vertices[midline], atol=1e-12)
     assert b.volume - a.volume > 0.03 * a.volume

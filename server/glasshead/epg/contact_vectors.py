@@ -34,7 +34,7 @@ from glasshead.epg.contacts import contact_grid, electrode_contacts, probes_from
 from glasshead.epg.layout import GRIDS, layout_document
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.epg.synthetic import corrected_tongue
-from glasshead.geometry.collision_format import decode_tables
+from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.settings import REPO_ROOT
 
 VECTORS_DIR = REPO_ROOT / "tests" / "vectors"
@@ -178,7 +178,7 @@ def build_documents():
 
     maxilla_v, maxilla_f = reduced_maxilla()
     tables_bytes = build_tables(maxilla_v, maxilla_f)
-    tables = decode_tables(tables_bytes)
+    tables = decode_collision_tables(tables_bytes)
     layout = layout_document(maxilla_v, maxilla_f,
                              source={"mesh": f"Badin maxilla reduced to {REDUCED_TRIANGLES} "
                                              "triangles"})
@@ -209,7 +209,7 @@ def build_documents():
     fullest = max(cases, key=lambda c: c["expected"]["reading62"]["contacted"])
     for label, params in (("the neutral tongue", {}),
                           (f"the tongue of {fullest['description']}", fullest["input"]["params"])):
-        vertices, _ = corrected_tongue(rig, rig.values(params), tables)
+        vertices, _ = corrected_tongue(rig, rig.values_from(params), tables)
         expected = frame_of(vertices, rig.triangles, probes)
         kernel_cases.append({"description": f"{label}, corrected, as float32 vertices",
                              "input": {"vertices": encode_f32(vertices.ravel()),

@@ -37,7 +37,7 @@ def corrected_tongue(rig, values, tables):
 
 
 def synthetic_frame(rig, values, tables, probes: Probes) -> SyntheticFrame:
-    """The EPG frame of one parameter set (values (P,) float64, see ``TongueRig.values``)."""
+    """The EPG frame of one parameter set (values (P,) float64, see ``TongueRig.values_from``)."""
     vertices, counts = corrected_tongue(rig, values, tables)
     contacts = electrode_contacts(vertices, rig.triangles, probes)
     return SyntheticFrame(contacts, contact_grid(contacts, probes), vertices, counts)

@@ -62,7 +62,7 @@ def _pad(n):
     return (-n) % ALIGN
 
 
-def encode_tables(header, arrays):
+def encode_collision_tables(header, arrays):
     """Serialise ``header`` (dict without array entries) and ``arrays`` into the file's bytes."""
     missing = set(ARRAY_DTYPES) - set(arrays)
     if missing:
@@ -86,7 +86,7 @@ def encode_tables(header, arrays):
     return prefix + text + payload
 
 
-def decode_header(data):
+def decode_collision_header(data):
     """The JSON header of a tables file, after checking the magic and the format version."""
     data = memoryview(data)
     if len(data) < PREFIX_BYTES or bytes(data[:8]) != COLLISION_TABLES_MAGIC:
@@ -111,10 +111,10 @@ def decode_header(data):
     return header
 
 
-def decode_tables(data):
+def decode_collision_tables(data):
     """Parse and check a whole tables file. data : bytes. Returns ``CollisionTables``."""
     data = bytes(data)
-    header = decode_header(data)
+    header = decode_collision_header(data)
     start = header.pop("_payload_start")
     payload = data[start:]
     if len(payload) != header.get("payload_bytes"):

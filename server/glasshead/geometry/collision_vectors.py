@@ -25,7 +25,7 @@ import numpy as np
 
 from glasshead import constants as C
 from glasshead.geometry.collision import correct_vertices, screen
-from glasshead.geometry.collision_format import decode_tables
+from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.frame import badin_to_project, fix_winding
 from glasshead.geometry.meshio import read_obj
 from glasshead.settings import REPO_ROOT, get_settings
@@ -202,7 +202,7 @@ def constants_vector():
 def build_all():
     """(tables bytes, cases document, constants document)."""
     data = build_vector_tables()
-    tables = decode_tables(data)
+    tables = decode_collision_tables(data)
     cases, refusals = build_cases(tables)
     document = {
         "description": "Collision correction: Python reference answers on shared tables",

@@ -135,7 +135,7 @@ class TongueRig:
 
     # --- parameters ---------------------------------------------------------------------------
 
-    def values(self, params: Mapping[str, float] | None = None):
+    def values_from(self, params: Mapping[str, float] | None = None):
         """(P,) float64 parameter values from a name -> value mapping; missing names are neutral.
 
         Raises ParameterError for an unknown name or a value that is not finite or out of range.
@@ -205,12 +205,9 @@ class TongueRig:
                           [hub[0], hub[1], self.pole_half_width]])
         return np.concatenate([poles, ring.reshape(-1, 3)])
 
-    def evaluate(self, params: Mapping[str, float] | None = None):
-        """The surface for a name -> value mapping (missing names neutral): a TongueSurface."""
-        return self.surface(self.values(params))
-
-    def surface(self, values):
-        """The surface (vertices, normals, triangles, volume) for parameter values (P,)."""
+    def evaluate(self, values):
+        """The surface (vertices, normals, triangles, volume) for parameter values (P,), as a
+        TongueSurface; ``values_from`` turns a name -> value mapping into values."""
         vertices = self.vertices(values)
         return TongueSurface(vertices, vertex_normals(vertices, self.triangles), self.triangles,
                              mesh_volume(vertices, self.triangles))

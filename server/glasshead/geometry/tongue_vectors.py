@@ -70,7 +70,7 @@ def surface_document():
     probes = probe_indices(rig.vertex_count)
     cases = []
     for description, params in parameter_sets(rig):
-        surface = rig.evaluate(params)
+        surface = rig.evaluate(rig.values_from(params))
         v = surface.vertices
         cases.append({
             "description": description,

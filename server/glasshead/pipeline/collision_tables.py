@@ -40,7 +40,11 @@ from glasshead.constants import (
     VOXEL_OK,
 )
 from glasshead.geometry.collision_exact import closest_points_on_triangles, ray_triangle_hits
-from glasshead.geometry.collision_format import CollisionTablesError, decode_header, encode_tables
+from glasshead.geometry.collision_format import (
+    CollisionTablesError,
+    decode_collision_header,
+    encode_collision_tables,
+)
 from glasshead.geometry.liner import build_liner, plane_of_triangles
 from glasshead.geometry.spherical import angles_to_direction
 from glasshead.geometry.voxels import classify_voxels
@@ -192,7 +196,7 @@ def build_collision_tables(maxilla_vertices, maxilla_faces, out_dir,
         "builder": BUILDER_VERSION,
         "stats": stats,
     }
-    data = encode_tables(header, arrays)
+    data = encode_collision_tables(header, arrays)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     (out / TABLES_FILE).write_bytes(data)
@@ -230,7 +234,7 @@ def build_step(assets_dir):
                             + np.ascontiguousarray(f).tobytes()).hexdigest()
     if out.is_file():
         try:
-            header = decode_header(out.read_bytes())
+            header = decode_collision_header(out.read_bytes())
         except CollisionTablesError:
             header = None
         if header and header.get("source", {}).get("sha256") == digest \

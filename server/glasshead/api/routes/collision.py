@@ -16,7 +16,7 @@ from pydantic import BaseModel, Field
 
 from glasshead.constants import COLLISION_MAX_VERTICES, COLLISION_TABLES_FORMAT_VERSION
 from glasshead.geometry.collision import correct_vertices
-from glasshead.geometry.collision_format import CollisionTablesError, decode_tables
+from glasshead.geometry.collision_format import CollisionTablesError, decode_collision_tables
 from glasshead.pipeline.collision_tables import TABLES_FILE
 from glasshead.settings import get_settings
 
@@ -64,7 +64,7 @@ def _tables_path() -> Path:
 @lru_cache(maxsize=2)
 def _load(path: str, mtime_ns: int, size: int):
     data = Path(path).read_bytes()
-    return decode_tables(data), hashlib.sha256(data).hexdigest(), len(data)
+    return decode_collision_tables(data), hashlib.sha256(data).hexdigest(), len(data)
 
 
 def load_tables():

@@ -128,7 +128,7 @@ def epg_contacts(request: ContactsRequest) -> ContactsResponse:
 
         rig = current_rig()
         try:
-            values = rig.values(request.params)
+            values = rig.values_from(request.params)
         except ParameterError as exc:
             raise HTTPException(status_code=422, detail=f"params.{exc.parameter}: {exc}") \
                 from None

@@ -74,10 +74,10 @@ def tongue_rig() -> dict:
 def tongue_surface(request: Annotated[SurfaceRequest, Body()]) -> Surface:
     rig = current_rig()
     try:
-        values = rig.values(request.params)
+        values = rig.values_from(request.params)
     except ParameterError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
-    surface = rig.surface(values)
+    surface = rig.evaluate(values)
     return Surface(
         params=dict(zip(rig.parameter_names, values.tolist())),
         vertex_count=len(surface.vertices),
