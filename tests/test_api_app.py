@@ -29,11 +29,14 @@ def client_with_assets(tmp_path, monkeypatch):
     get_settings.cache_clear()
 
 
-def test_health_reports_ok_and_whether_assets_are_built(client_with_assets):
+def test_health_answers_and_names_the_assets_that_are_not_built(client_with_assets):
     response = client_with_assets.get("/api/v1/health")
     assert response.status_code == 200
-    assert response.json()["status"] == "ok"
-    assert response.json()["assets_built"] is True
+    body = response.json()
+    assert body["status"] == "degraded" and body["assets_built"] is False
+    assert body["assets"]["manifest"]["status"] == "ok"
+    assert body["assets"]["tongue_rig"]["status"] == "missing"
+    assert "glasshead build" in body["assets"]["tongue_rig"]["detail"]
 
 
 def test_an_unknown_api_path_gets_a_json_404_naming_the_path(client_with_assets):

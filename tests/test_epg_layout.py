@@ -208,7 +208,7 @@ def test_the_build_step_places_the_scene_maxilla_and_skips_when_up_to_date(maxil
     modified = (tmp_path / LAYOUT_FILE).stat().st_mtime_ns
     second = build_step(tmp_path)
     assert second["skipped"] is True and (tmp_path / LAYOUT_FILE).stat().st_mtime_ns == modified
-    assert epg_layout.current_layout(tmp_path)["source"]["faces"] == len(f)
+    assert epg_layout.read_layout(tmp_path / LAYOUT_FILE)["source"]["faces"] == len(f)
 
 
 def test_the_built_layout_is_the_placement_rule_on_the_scene_maxilla():

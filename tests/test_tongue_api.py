@@ -106,15 +106,18 @@ def test_a_rebuilt_rig_file_is_served_without_a_restart(client, tmp_path, defini
         changed["coronal"]["pole_half_width"]
 
 
-def test_without_a_built_file_the_rig_is_fitted_in_memory_from_the_reference_data(tmp_path,
-                                                                                  monkeypatch):
+def test_without_a_built_file_the_rig_routes_answer_503_and_fit_nothing(tmp_path, monkeypatch):
     monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(tmp_path / "empty"))
     monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
     get_settings.cache_clear()
     try:
         client = TestClient(create_app())
-        body = client.get("/api/v1/tongue/rig").json()
-        assert body["fit"]["distance_mm"]["mean_both_ways"] <= 1.0
+        for response in (client.get("/api/v1/tongue/rig"),
+                         client.post("/api/v1/tongue/surface", json={"params": {}})):
+            assert response.status_code == 503
+            assert response.json()["asset"] == "tongue_rig"
+            assert "tongue-rig.json" in response.json()["detail"]
+            assert "glasshead build" in response.json()["detail"]
         assert not (tmp_path / "empty").exists()  # serving never writes the build's output
     finally:
         get_settings.cache_clear()

@@ -134,3 +134,21 @@ EPG_DENSE_ROWS = 12
 FACE_RIG_FORMAT_VERSION = 1
 #: mm. Largest difference allowed between the Python and JavaScript face vertices.
 FACE_VERTEX_TOLERANCE_MM = 1e-3
+
+# --- Built assets: what `glasshead build` writes to the assets directory -------------------------
+# Written by glasshead.pipeline, loaded once by glasshead.asset_store and served by the API.
+
+#: The build manifest (meshes, content hashes); written last, so it names only finished files.
+MANIFEST_FILE = "manifest.json"
+#: Format version of the manifest; the asset store refuses any other version.
+MANIFEST_FORMAT_VERSION = 1
+#: The tongue rig definition (glasshead.geometry.tongue_rig).
+TONGUE_RIG_FILE = "tongue-rig.json"
+#: The face rig definition (glasshead.geometry.face).
+FACE_RIG_FILE = "face-rig.json"
+#: The liner and voxel tables (glasshead.geometry.collision_format).
+COLLISION_TABLES_FILE = "collision-tables.bin"
+#: The EPG electrode layouts (glasshead.epg.layout).
+EPG_LAYOUT_FILE = "epg-layout.json"
+#: The command that rebuilds every asset, named in the API's 503 answers.
+REBUILD_COMMAND = "glasshead build"

@@ -10,6 +10,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
 from glasshead.api.static import mount_static
+from glasshead.asset_store import AssetStore, AssetUnavailable
 from glasshead.settings import get_settings
 
 API_PREFIX = "/api/v1"
@@ -27,6 +28,8 @@ async def lifespan(app: FastAPI):
     for hook in STARTUP_HOOKS:
         module_name, function_name = hook.split(":")
         getattr(importlib.import_module(module_name), function_name)()
+    # Every built asset is read once, here; a missing or corrupt one is reported, not fatal.
+    app.state.assets.load_all()
     yield
 
 
@@ -41,6 +44,7 @@ def create_app() -> FastAPI:
         redoc_url=f"{API_PREFIX}/redoc",
         lifespan=lifespan,
     )
+    app.state.assets = AssetStore(settings.assets_dir)
     for name in ROUTE_MODULES:
         module = importlib.import_module(f"glasshead.api.routes.{name}")
         app.include_router(module.router, prefix=API_PREFIX)
@@ -57,6 +61,10 @@ def create_app() -> FastAPI:
     async def json_http_error(request: Request, exc: StarletteHTTPException):
         return JSONResponse({"detail": exc.detail}, status_code=exc.status_code,
                             headers=getattr(exc, "headers", None))
+
+    @app.exception_handler(AssetUnavailable)
+    async def asset_unavailable(request: Request, exc: AssetUnavailable):
+        return JSONResponse(exc.to_json(), status_code=503, headers={"Retry-After": "60"})
 
     @app.exception_handler(RequestValidationError)
     async def json_validation_error(request: Request, exc: RequestValidationError):

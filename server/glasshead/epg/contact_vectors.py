@@ -74,9 +74,10 @@ def build_tables(vertices, faces) -> bytes:
 
 
 def current_rig_definition():
-    from glasshead.geometry.tongue import current_definition
+    from glasshead.asset_store import AssetStore
+    from glasshead.settings import get_settings
 
-    return current_definition()
+    return AssetStore(get_settings().assets_dir).get("tongue_rig").definition
 
 
 def encode_f32(values) -> str:

@@ -313,3 +313,26 @@ def layout_document(vertices, faces, source=None):
                     "points": line["polyline"].points[::step].tolist()},
         "grids": grids,
     }
+
+
+def validate_layout_document(document):
+    """Check a layout document read from JSON; LayoutError naming the first problem."""
+    if not isinstance(document, dict):
+        raise LayoutError("an electrode layout must be a JSON object")
+    version = document.get("format_version")
+    if version != EPG_LAYOUT_FORMAT_VERSION:
+        raise LayoutError(f"layout format_version {version!r} is not {EPG_LAYOUT_FORMAT_VERSION}")
+    grids = document.get("grids")
+    if not isinstance(grids, dict):
+        raise LayoutError("the layout has no 'grids'")
+    missing = [name for name in GRIDS if name not in grids]
+    if missing:
+        raise LayoutError(f"the layout lacks the grids {', '.join(missing)}")
+    for name in GRIDS:
+        electrodes = grids[name].get("electrodes") if isinstance(grids[name], dict) else None
+        if not isinstance(electrodes, list) or not electrodes:
+            raise LayoutError(f"grid {name} has no electrodes")
+    for key in ("contact", "midline", "frame", "source"):
+        if not isinstance(document.get(key), dict):
+            raise LayoutError(f"the layout has no '{key}'")
+    return document

@@ -1,23 +1,17 @@
-"""The face rig definition: its checks, and where the application reads it from.
+"""The face rig definition: its checks.
 
 - ``geometry.face_rig``: the reference evaluator (skin and lips on the jaw, the lip parameters);
-- ``pipeline.face_rig``: the build step that writes ``<assets_dir>/face-rig.json``.
-
-``current_face_rig()`` reads the built file (cached by path and modification time, so a rebuilt
-file is picked up). Unlike the tongue rig it is never made in memory: its per-vertex data must
-follow the vertex order of the built meshes, which only the build knows.
+- ``pipeline.face_rig``: the build step that writes ``<assets_dir>/face-rig.json``;
+- ``glasshead.asset_store``: where the application reads the built file, once per version.
 """
 
 import json
 import math
-from functools import lru_cache
 from pathlib import Path
 
 from glasshead.constants import FACE_RIG_FORMAT_VERSION
 from glasshead.geometry.face_rig import LIP_MESHES, LIP_PARAMETER_NAMES, MESH_NAMES
-from glasshead.settings import get_settings
 
-RIG_FILE = "face-rig.json"
 TABLE_KEYS = ("y0", "z0", "step_y", "step_z", "rows", "cols", "x", "recession", "depth", "steps")
 
 
@@ -71,21 +65,3 @@ def read_face_rig(path):
         return validate_face_rig(json.loads(path.read_text()))
     except (json.JSONDecodeError, KeyError, TypeError, ValueError) as exc:
         raise ValueError(f"{path}: not a face rig ({exc})") from None
-
-
-def face_rig_path():
-    """Where the build writes the face rig."""
-    return Path(get_settings().assets_dir) / RIG_FILE
-
-
-@lru_cache(maxsize=4)
-def _cached(path, modified):
-    return read_face_rig(path)
-
-
-def current_face_rig():
-    """The built face rig. FileNotFoundError (naming the file and the command) when not built."""
-    path = face_rig_path()
-    if not path.is_file():
-        raise FileNotFoundError(f"face rig not built: {path} is missing; run `glasshead build`")
-    return _cached(str(path), path.stat().st_mtime_ns)

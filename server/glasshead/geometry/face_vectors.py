@@ -85,11 +85,12 @@ def _round(values):
 
 
 def face_document():
-    from glasshead.geometry.face import current_face_rig
-    from glasshead.geometry.tongue import current_definition
+    from glasshead.asset_store import AssetStore
+    from glasshead.settings import get_settings
 
-    rig = {k: v for k, v in current_face_rig().items() if k != "inputs_sha256"}
-    jaw = current_definition()["jaw"]
+    store = AssetStore(get_settings().assets_dir)
+    rig = {k: v for k, v in store.get("face_rig").items() if k != "inputs_sha256"}
+    jaw = store.get("tongue_rig").definition["jaw"]
     rest = {name: np.round(points, REST_DECIMALS) for name, points in rest_positions().items()}
     prepared = face_rig.prepare_meshes(rig, rest)
     probes = probe_indices(prepared)

@@ -28,15 +28,14 @@ GENERATOR = "python -m glasshead.geometry.vectors"
 
 def _rig():
     """The built rig (rebuilt first if its inputs changed) and its evaluator."""
-    from glasshead.geometry.tongue import current_definition
-    from glasshead.geometry.tongue_surface import TongueRig
+    from glasshead.asset_store import AssetStore
     from glasshead.pipeline.tongue_rig import build_tongue_rig
     from glasshead.settings import get_settings
 
     settings = get_settings()
     build_tongue_rig(settings.data_dir, settings.assets_dir)
-    definition = current_definition()
-    return definition, TongueRig(definition)
+    rig = AssetStore(settings.assets_dir).get("tongue_rig")
+    return rig.definition, rig
 
 
 def probe_indices(vertex_count, count=PROBES):

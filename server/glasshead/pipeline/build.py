@@ -17,11 +17,11 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from glasshead.constants import MANIFEST_FILE, MANIFEST_FORMAT_VERSION
 from glasshead.pipeline import sources
 
-MANIFEST = "manifest.json"
+MANIFEST = MANIFEST_FILE
 REPORT = "build-report.json"
-MANIFEST_FORMAT_VERSION = 1
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 
 

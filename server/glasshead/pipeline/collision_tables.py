@@ -34,7 +34,9 @@ from glasshead.constants import (
     CELL_LIST,
     CELL_PLANE,
     COLLISION_LINER_STEP_DEG,
+    COLLISION_TABLES_FILE,
     COLLISION_VOXELS,
+    MANIFEST_FILE,
     VOXEL_BORDER,
     VOXEL_NOT_OK,
     VOXEL_OK,
@@ -49,7 +51,7 @@ from glasshead.geometry.liner import build_liner, plane_of_triangles
 from glasshead.geometry.spherical import angles_to_direction
 from glasshead.geometry.voxels import classify_voxels
 
-TABLES_FILE = "collision-tables.bin"
+TABLES_FILE = COLLISION_TABLES_FILE
 #: Bumped whenever the builder's output changes for the same maxilla, so stale tables rebuild.
 BUILDER_VERSION = 1
 #: Nearest O may be to the maxilla, mm.
@@ -211,7 +213,7 @@ def load_scene_maxilla(assets_dir):
     import trimesh
 
     assets = Path(assets_dir)
-    manifest_path = assets / "manifest.json"
+    manifest_path = assets / MANIFEST_FILE
     if not manifest_path.is_file():
         raise FileNotFoundError(f"{manifest_path} is missing: build the anatomy first")
     manifest = json.loads(manifest_path.read_text())

@@ -4,22 +4,21 @@ The placement rule is in ``glasshead.epg.layout``. The file holds every grid (th
 62-electrode palate and the dense 96-electrode grid), so the browser and the API read one file.
 The step is skipped when the file was built from the same maxilla by the same builder version.
 
-``current_layout()`` is what the API serves: the built file, read and checked once per version.
+The API reads the file through the asset store (``glasshead.asset_store``).
 """
 
 import hashlib
 import json
 import sys
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
-from glasshead.constants import EPG_LAYOUT_FORMAT_VERSION
-from glasshead.epg.layout import GRIDS, layout_document
+from glasshead.constants import EPG_LAYOUT_FILE, EPG_LAYOUT_FORMAT_VERSION
+from glasshead.epg.layout import LayoutError, layout_document, validate_layout_document
 from glasshead.pipeline.collision_tables import load_scene_maxilla
 
-LAYOUT_FILE = "epg-layout.json"
+LAYOUT_FILE = EPG_LAYOUT_FILE
 #: Bumped whenever the placement changes for the same maxilla, so stale layouts rebuild.
 BUILDER_VERSION = 1
 
@@ -75,39 +74,11 @@ def read_layout(path):
     """Read and check a layout file; LayoutFileError naming the file if it is not one."""
     path = Path(path)
     try:
-        document = json.loads(path.read_text())
+        return validate_layout_document(json.loads(path.read_text()))
     except FileNotFoundError:
         raise LayoutFileError(f"{path} is missing: run `glasshead build`") from None
-    except (OSError, json.JSONDecodeError) as exc:
+    except (OSError, json.JSONDecodeError, LayoutError) as exc:
         raise LayoutFileError(f"{path}: not an electrode layout ({exc})") from None
-    version = document.get("format_version")
-    if version != EPG_LAYOUT_FORMAT_VERSION:
-        raise LayoutFileError(f"{path}: layout format_version {version!r} is not "
-                              f"{EPG_LAYOUT_FORMAT_VERSION}; run `glasshead build`")
-    grids = document.get("grids", {})
-    missing = [name for name in GRIDS if name not in grids]
-    if missing:
-        raise LayoutFileError(f"{path}: the layout lacks the grids {', '.join(missing)}")
-    return document
-
-
-@lru_cache(maxsize=2)
-def _cached(path, modified):
-    return read_layout(path)
-
-
-def layout_path(assets_dir=None):
-    from glasshead.settings import get_settings
-
-    return Path(assets_dir or get_settings().assets_dir) / LAYOUT_FILE
-
-
-def current_layout(assets_dir=None):
-    """The built layout document (cached per file version); LayoutFileError when missing."""
-    path = layout_path(assets_dir)
-    if not path.is_file():
-        raise LayoutFileError(f"{path} is missing: run `glasshead build`")
-    return _cached(str(path), path.stat().st_mtime_ns)
 
 
 def main(argv=None):

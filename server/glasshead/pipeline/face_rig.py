@@ -23,14 +23,14 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.constants import FACE_RIG_FORMAT_VERSION
+from glasshead.constants import FACE_RIG_FILE, FACE_RIG_FORMAT_VERSION
 from glasshead.geometry import face_rig as evaluator
 from glasshead.geometry import face_teeth, skin_weights
 from glasshead.geometry.face_rig import LIP_MESHES, LIP_PARAMETER_NAMES, MESH_NAMES
 from glasshead.pipeline import face_rig_sources, face_rig_teeth, face_rig_weights
 from glasshead.pipeline.face_rig_sources import FaceSources, load_face_sources
 
-OUTPUT_NAME = "face-rig.json"
+OUTPUT_NAME = FACE_RIG_FILE
 #: Bump when the build changes in a way that must rebuild the output.
 BUILD_REVISION = 1
 

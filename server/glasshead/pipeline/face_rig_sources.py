@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
+from glasshead.constants import MANIFEST_FILE
 from glasshead.geometry.frame import badin_to_project
 from glasshead.geometry.meshio import MeshFormatError, read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
@@ -23,7 +24,7 @@ from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover
 from glasshead.pipeline.head_shell import build_head_shell
 
 ATTACHMENTS_FILE = "face_jaw_attachments.txt"
-MANIFEST = "manifest.json"
+MANIFEST = MANIFEST_FILE
 
 #: Meshes taken from the build when it has them: the rig's own meshes and the two bones.
 SCENE_MESHES = ("face_skin", "upper_lip", "lower_lip", "head_shell", "mandible", "maxilla")

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from glasshead.constants import BADIN_TO_PROJECT_AXES, TONGUE_RIG_FORMAT_VERSION
+from glasshead.constants import BADIN_TO_PROJECT_AXES, TONGUE_RIG_FILE, TONGUE_RIG_FORMAT_VERSION
 from glasshead.geometry import bspline
 from glasshead.geometry import jaw as jaw_module
 from glasshead.geometry import tongue_rig as rig_template
@@ -31,7 +31,7 @@ from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline import tongue_fit
 
 BADIN_DIR = Path("anatomy") / "artisynth-badin"
-OUTPUT_NAME = "tongue-rig.json"
+OUTPUT_NAME = TONGUE_RIG_FILE
 #: Bump when the fit or the definition changes in a way that must rebuild the output.
 FIT_REVISION = 1
 #: Surface samples per triangle-mesh for the distance report (plus every vertex).

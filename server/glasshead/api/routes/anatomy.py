@@ -1,11 +1,9 @@
 """GET /anatomy: the meshes that `glasshead build` wrote, from its manifest."""
 
-import json
-
-from fastapi import APIRouter, HTTPException
+from fastapi import APIRouter
 from pydantic import BaseModel
 
-from glasshead.settings import get_settings
+from glasshead.api.deps import AssetsDep
 
 router = APIRouter(tags=["anatomy"])
 
@@ -28,18 +26,9 @@ class Anatomy(BaseModel):
     meshes: list[MeshEntry]
 
 
-def read_manifest() -> dict:
-    """The build manifest; 503 with a hint when the assets have not been built."""
-    path = get_settings().assets_dir / "manifest.json"
-    if not path.is_file():
-        raise HTTPException(status_code=503,
-                            detail=f"anatomy not built: {path} is missing; run `glasshead build`")
-    return json.loads(path.read_text())
-
-
 @router.get("/anatomy", operation_id="getAnatomy", response_model=Anatomy)
-def anatomy() -> Anatomy:
-    manifest = read_manifest()
+def anatomy(assets: AssetsDep) -> Anatomy:
+    manifest = assets.get("manifest")
     meshes = [
         MeshEntry(
             name=m["name"],

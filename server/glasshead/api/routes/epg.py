@@ -7,20 +7,20 @@ with ``vertices`` it tests a tongue the client already has (the rig's triangles,
 ``triangles`` are given).
 """
 
-from functools import lru_cache
 from typing import Annotated, Literal
 
 import numpy as np
 from fastapi import APIRouter, HTTPException, Query
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from glasshead.api.deps import AssetsDep
+from glasshead.asset_store import AssetStore
 from glasshead.constants import COLLISION_MAX_VERTICES, EPG_LAYOUT_FORMAT_VERSION
 from glasshead.epg.contacts import contact_grid, electrode_contacts, probes_from_layout
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.epg.synthetic import synthetic_frame
-from glasshead.geometry.tongue import ParameterError, current_rig
-from glasshead.pipeline.epg_layout import LayoutFileError, current_layout
+from glasshead.geometry.tongue_surface import ParameterError
 
 router = APIRouter(tags=["epg"])
 
@@ -90,24 +90,19 @@ class ContactsResponse(BaseModel):
                                                "and corrected against the palate")
 
 
-def _layout():
-    try:
-        return current_layout()
-    except LayoutFileError as exc:
-        raise HTTPException(status_code=503, detail=f"electrode layout unusable: {exc}") from None
-
-
-@lru_cache(maxsize=4)
-def _probes(sha256: str, grid: str):
-    return probes_from_layout(_layout()["grids"][grid])
+def _probes(assets: AssetStore, grid: str):
+    """The contact probes of a grid, made once per version of the layout."""
+    return assets.derived("epg_layout", ("probes", grid),
+                          lambda layout: probes_from_layout(layout["grids"][grid]))
 
 
 @router.get("/epg/layout", operation_id="getEpgLayout", response_model=Layout)
-def epg_layout(grid: Annotated[GridName, Query(description="which electrode grid")]
+def epg_layout(assets: AssetsDep,
+               grid: Annotated[GridName, Query(description="which electrode grid")]
                = "reading62") -> Layout:
     """The electrodes of a grid on the scene's palate: position, normal toward the tongue, row,
     column and id. See docs/epg.md for the placement rule."""
-    document = _layout()
+    document = assets.get("epg_layout")
     layout = document["grids"][grid]
     return Layout(format_version=EPG_LAYOUT_FORMAT_VERSION, grid=grid,
                   description=layout["description"], rows=layout["rows"],
@@ -118,21 +113,18 @@ def epg_layout(grid: Annotated[GridName, Query(description="which electrode grid
 
 
 @router.post("/epg/contacts", operation_id="computeEpgContacts", response_model=ContactsResponse)
-def epg_contacts(request: ContactsRequest) -> ContactsResponse:
+def epg_contacts(request: ContactsRequest, assets: AssetsDep) -> ContactsResponse:
     """Which electrodes the tongue touches, and the EPG indices of that frame."""
-    document = _layout()
-    probes = _probes(document["source"]["sha256"], request.grid)
+    probes = _probes(assets, request.grid)
     collision = None
     if request.params is not None:
-        from glasshead.api.routes.collision import load_tables
-
-        rig = current_rig()
+        rig = assets.get("tongue_rig")
         try:
             values = rig.values_from(request.params)
         except ParameterError as exc:
             raise HTTPException(status_code=422, detail=f"params.{exc.parameter}: {exc}") \
                 from None
-        tables, _, _ = load_tables()
+        tables = assets.get("collision_tables")
         frame = synthetic_frame(rig, values, tables, probes)
         contacts, grid, collision = frame.contacts, frame.grid, frame.collision
     else:
@@ -144,7 +136,7 @@ def epg_contacts(request: ContactsRequest) -> ContactsResponse:
                     f"triangles: vertex {int(triangles.max())} does not exist "
                     f"({len(vertices)} vertices)"))
         else:
-            rig = current_rig()
+            rig = assets.get("tongue_rig")
             if len(vertices) != rig.vertex_count:
                 raise HTTPException(status_code=422, detail=(
                     f"vertices: the tongue has {rig.vertex_count} vertices, got "

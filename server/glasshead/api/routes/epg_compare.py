@@ -13,8 +13,7 @@ from fastapi import APIRouter, HTTPException, Query, Response
 from pydantic import BaseModel, Field
 from sqlalchemy.orm import Session
 
-from glasshead.api.routes.poses import get_pose_record
-from glasshead.api.routes.recordings import get_record
+from glasshead.api.lookups import get_pose_record, get_record
 from glasshead.epg import compare as epg_compare
 from glasshead.epg.formats import rows_to_frame
 from glasshead.epg.indices import epg_indices

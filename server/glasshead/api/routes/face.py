@@ -4,10 +4,10 @@ Built by `glasshead build` (``pipeline.face_rig``); the web app poses the face i
 (``web/src/core/faceRig.js``), the Python twin being ``geometry.face_rig``.
 """
 
-from fastapi import APIRouter, HTTPException
+from fastapi import APIRouter
 from pydantic import BaseModel, ConfigDict, Field
 
-from glasshead.geometry.face import current_face_rig
+from glasshead.api.deps import AssetsDep
 
 router = APIRouter(tags=["face"])
 
@@ -42,10 +42,5 @@ class FaceRigDefinition(BaseModel):
 
 
 @router.get("/face/rig", operation_id="getFaceRig", response_model=FaceRigDefinition)
-def face_rig() -> dict:
-    try:
-        return current_face_rig()
-    except FileNotFoundError as exc:
-        raise HTTPException(status_code=503, detail=str(exc)) from None
-    except ValueError as exc:
-        raise HTTPException(status_code=500, detail=str(exc)) from None
+def face_rig(assets: AssetsDep) -> dict:
+    return assets.get("face_rig")

@@ -15,6 +15,7 @@ from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from glasshead.api.lookups import get_pose_record
 from glasshead.store.models import SavedPose
 from glasshead.store.session import SessionDep
 
@@ -74,13 +75,6 @@ class PoseOut(BaseModel):
 class PoseList(BaseModel):
     poses: list[PoseOut]
     total: int
-
-
-def get_pose_record(session: Session, pose_id: int) -> SavedPose:
-    pose = session.get(SavedPose, pose_id)
-    if pose is None:
-        raise HTTPException(status_code=404, detail=f"no saved pose with id {pose_id}")
-    return pose
 
 
 def _commit(session: Session, name: str) -> None:

@@ -12,12 +12,23 @@ import json
 from datetime import datetime
 from typing import Annotated, Literal
 
-from fastapi import APIRouter, HTTPException, Query, Request, Response, status
+from fastapi import (
+    APIRouter,
+    File,
+    Form,
+    HTTPException,
+    Query,
+    Request,
+    Response,
+    UploadFile,
+    status,
+)
 from fastapi.concurrency import run_in_threadpool
 from pydantic import BaseModel, Field, ValidationError
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from glasshead.api.lookups import get_record
 from glasshead.epg import formats
 from glasshead.epg.indices import epg_indices
 from glasshead.epg.sequence import EpgFormatError, rows_to_strings
@@ -78,32 +89,31 @@ def summary(record: EpgRecording) -> RecordingSummary:
         created_at=record.created_at)
 
 
-def get_record(session: Session, recording_id: int) -> EpgRecording:
-    record = session.get(EpgRecording, recording_id)
-    if record is None:
-        raise HTTPException(status_code=404, detail=f"no EPG recording with id {recording_id}")
-    return record
-
-
 @router.post(
     "/epg/recordings", operation_id="createRecordings", status_code=status.HTTP_201_CREATED,
     response_model=RecordingList,
+    # The multipart form comes from the parameters below; the JSON alternative is added here.
     openapi_extra={"requestBody": {"required": True, "content": {
-        "multipart/form-data": {"schema": {"type": "object", "required": ["file"], "properties": {
-            "file": {"type": "string", "format": "binary"},
-            "format": {"type": "string", "enum": list(formats.FORMATS)},
-            "name": {"type": "string"}}}},
         "application/json": {"schema": RecordingUpload.model_json_schema()},
     }}},
 )
-async def create_recordings(request: Request, session: SessionDep) -> RecordingList:
+async def create_recordings(
+    request: Request,
+    session: SessionDep,
+    file: Annotated[UploadFile | None, File(description="the recording file (multipart)")] = None,
+    format: Annotated[FormatName | None, Form(
+        description="the file's format; detected from its name and content when left out")] = None,
+    name: Annotated[str | None, Form(max_length=200,
+                                     description="overrides the file's name")] = None,
+) -> RecordingList:
     """Import a file; emuR JSON with several segments makes one recording per segment."""
     content_type = request.headers.get("content-type", "").split(";")[0].strip().lower()
     declared = request.headers.get("content-length", "")
     if declared.isdigit() and int(declared) > MAX_UPLOAD_BYTES + 64 * 1024:
         raise _too_large()
     if content_type == "multipart/form-data":
-        content, fmt, name = await _read_multipart(request)
+        content, fmt = await _read_upload(file, format)
+        name = name or None
     elif content_type == "application/json":
         content, fmt, name = _read_json_upload(await _read_body(request))
     else:
@@ -133,25 +143,18 @@ async def _read_body(request: Request) -> bytes:
     return bytes(body)
 
 
-async def _read_multipart(request: Request) -> tuple[bytes, str | None, str | None]:
-    form = await request.form(max_files=1, max_fields=4)
-    upload = form.get("file")
-    if upload is None or isinstance(upload, str):
+async def _read_upload(upload: UploadFile | None, fmt: str | None) -> tuple[bytes, str]:
+    if upload is None:
         raise HTTPException(status_code=422, detail="field file: the upload has no file part")
     content = await upload.read(MAX_UPLOAD_BYTES + 1)
     if len(content) > MAX_UPLOAD_BYTES:
         raise _too_large()
-    fmt = form.get("format") or None
-    if fmt is not None and fmt not in formats.FORMATS:
-        raise HTTPException(status_code=422, detail=f"field format: {fmt!r} is not one of "
-                                                    f"{', '.join(formats.FORMATS)}")
     if fmt is None:
         try:
             fmt = formats.detect_format(content, upload.filename)
         except EpgFormatError as error:
             raise HTTPException(status_code=422, detail=str(error)) from None
-    name = form.get("name") or None
-    return content, fmt, str(name)[:200] if name else None
+    return content, fmt
 
 
 def _read_json_upload(body: bytes) -> tuple[bytes, str, str | None]:

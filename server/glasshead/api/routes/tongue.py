@@ -9,7 +9,8 @@ from typing import Annotated
 from fastapi import APIRouter, Body, HTTPException
 from pydantic import BaseModel, ConfigDict, Field
 
-from glasshead.geometry.tongue import ParameterError, current_definition, current_rig
+from glasshead.api.deps import AssetsDep
+from glasshead.geometry.tongue_surface import ParameterError
 
 router = APIRouter(tags=["tongue"])
 
@@ -66,13 +67,13 @@ class Surface(BaseModel):
 
 
 @router.get("/tongue/rig", operation_id="getTongueRig", response_model=RigDefinition)
-def tongue_rig() -> dict:
-    return current_definition()
+def tongue_rig(assets: AssetsDep) -> dict:
+    return assets.get("tongue_rig").definition
 
 
 @router.post("/tongue/surface", operation_id="evaluateTongueSurface", response_model=Surface)
-def tongue_surface(request: Annotated[SurfaceRequest, Body()]) -> Surface:
-    rig = current_rig()
+def tongue_surface(request: Annotated[SurfaceRequest, Body()], assets: AssetsDep) -> Surface:
+    rig = assets.get("tongue_rig")
     try:
         values = rig.values_from(request.params)
     except ParameterError as exc:
