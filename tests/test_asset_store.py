@@ -9,7 +9,7 @@ import pytest
 from fastapi.testclient import TestClient
 
 from glasshead.api.app import create_app
-from glasshead.asset_store import ASSETS, AssetStore, AssetUnavailable
+from glasshead.asset_store import ASSETS, AssetStore, AssetUnavailableError
 from glasshead.constants import REBUILD_COMMAND
 from glasshead.settings import get_settings
 
@@ -179,6 +179,6 @@ def test_the_store_refuses_an_unknown_asset_name_and_reports_unavailable_ones(tm
     store = AssetStore(tmp_path)
     with pytest.raises(KeyError, match="no asset named"):
         store.get("nothing")
-    with pytest.raises(AssetUnavailable, match="glasshead build"):
+    with pytest.raises(AssetUnavailableError, match="glasshead build"):
         store.get("manifest")
     assert store.status()["ok"] is False

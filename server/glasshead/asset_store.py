@@ -10,8 +10,9 @@ request; its bytes are hashed again when the ``stat`` changes, or at most every 
 seconds otherwise (so a file rewritten with the same size and time is still picked up).
 
 A missing or corrupt file never stops the store: the asset is marked ``missing`` or ``corrupt``
-with the reason, ``status()`` reports it (GET /health), and ``get`` raises ``AssetUnavailable``,
-which the API turns into a 503 naming the asset and the command that rebuilds it.
+with the reason, ``status()`` reports it (GET /health), and ``get`` raises
+``AssetUnavailableError``, which the API turns into a 503 naming the asset and the command that
+rebuilds it.
 """
 
 import hashlib
@@ -103,7 +104,7 @@ ASSETS: tuple[AssetSpec, ...] = (
 )
 
 
-class AssetUnavailable(Exception):
+class AssetUnavailableError(Exception):
     """An asset that is missing or corrupt; the API answers 503 with ``to_json()``."""
 
     def __init__(self, name: str, file: str, problem: str, reason: str):
@@ -132,7 +133,7 @@ class Asset:
 class _Slot:
     spec: AssetSpec
     loaded: Asset | None = None
-    error: AssetUnavailable | None = None
+    error: AssetUnavailableError | None = None
     failed_sha256: str | None = None
     stat_key: tuple | None = None
     checked_at: float = float("-inf")
@@ -167,14 +168,15 @@ class AssetStore:
         return report
 
     def entry(self, name: str) -> Asset:
-        """The current version of an asset; AssetUnavailable when it is missing or corrupt."""
+        """The current version of an asset; AssetUnavailableError when it is missing or corrupt."""
         slot = self._slots.get(name)
         if slot is None:
             raise KeyError(f"no asset named {name!r}; known: {', '.join(self._slots)}")
         with self._lock:
             self._refresh(slot)
             if slot.loaded is None:
-                raise slot.error or AssetUnavailable(name, slot.spec.file, "missing", "not loaded")
+                raise slot.error or AssetUnavailableError(name, slot.spec.file, "missing",
+                                                          "not loaded")
             return slot.loaded
 
     def get(self, name: str) -> Any:
@@ -213,7 +215,7 @@ class AssetStore:
             stat = path.stat()
         except FileNotFoundError:
             slot.loaded, slot.stat_key, slot.failed_sha256 = None, None, None
-            slot.error = AssetUnavailable(spec.name, spec.file, "missing",
+            slot.error = AssetUnavailableError(spec.name, spec.file, "missing",
                                           f"{path} does not exist")
             return
         except OSError as exc:
@@ -247,4 +249,4 @@ class AssetStore:
     @staticmethod
     def _fail(slot: _Slot, digest: str | None, reason: str) -> None:
         slot.loaded, slot.failed_sha256 = None, digest
-        slot.error = AssetUnavailable(slot.spec.name, slot.spec.file, "corrupt", reason)
+        slot.error = AssetUnavailableError(slot.spec.name, slot.spec.file, "corrupt", reason)

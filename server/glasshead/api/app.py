@@ -10,7 +10,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
 from glasshead.api.static import mount_static
-from glasshead.asset_store import AssetStore, AssetUnavailable
+from glasshead.asset_store import AssetStore, AssetUnavailableError
 from glasshead.settings import get_settings
 
 API_PREFIX = "/api/v1"
@@ -62,8 +62,8 @@ def create_app() -> FastAPI:
         return JSONResponse({"detail": exc.detail}, status_code=exc.status_code,
                             headers=getattr(exc, "headers", None))
 
-    @app.exception_handler(AssetUnavailable)
-    async def asset_unavailable(request: Request, exc: AssetUnavailable):
+    @app.exception_handler(AssetUnavailableError)
+    async def asset_unavailable(request: Request, exc: AssetUnavailableError):
         return JSONResponse(exc.to_json(), status_code=503, headers={"Retry-After": "60"})
 
     @app.exception_handler(RequestValidationError)
