@@ -1,5 +1,6 @@
-// Every test: Python (pytest, including the shared vectors), JavaScript unit tests (including the
-// shared vectors), and end-to-end tests in Debian's Chromium. Prints one closing tally.
+// Every test: static checks (ruff, mypy, eslint), Python (pytest, including the shared vectors),
+// JavaScript unit tests (including the shared vectors), and end-to-end tests in Debian's Chromium.
+// Prints one closing tally.
 import { spawnSync } from 'node:child_process';
 import { existsSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
@@ -12,6 +13,7 @@ function testFiles( dir ) {
 }
 
 const suites = [
+	{ name: 'lint', command: process.execPath, args: [ join( REPO, 'scripts', 'lint.mjs' ) ] },
 	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-p', 'no:cacheprovider' ] },
 	{ name: 'javascript', command: process.execPath, args: [ '--test', '--test-reporter=spec', ...testFiles( 'tests/js' ) ] },
 	{ name: 'end-to-end', command: process.execPath, args: [ '--test', '--test-concurrency=1', '--test-reporter=spec', ...testFiles( 'e2e' ) ] },
@@ -36,6 +38,9 @@ process.exit( failedSuites.length ? 1 : 0 );
 
 function countResults( name, output ) {
 	const number = ( pattern ) => Number( output.match( pattern )?.[ 1 ] ?? 0 );
+	if ( name === 'lint' ) {
+		return { passed: number( /lint: (\d+) passed/ ), failed: number( /lint: \d+ passed, (\d+) failed/ ), skipped: 0 };
+	}
 	if ( name === 'python' ) {
 		const summary = output.trim().split( '\n' ).filter( ( line ) => / in [\d.]+s/.test( line ) ).pop() ?? '';
 		return {

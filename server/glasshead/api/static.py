@@ -11,12 +11,14 @@ IMMUTABLE = "public, max-age=31536000, immutable"
 #: Unversioned asset URLs must be revalidated (cheap: the ETag is the content hash).
 REVALIDATE = "no-cache"
 
-MEDIA_TYPES = {".glb": "model/gltf-binary", ".json": "application/json", ".bin": "application/octet-stream"}
+MEDIA_TYPES = {".glb": "model/gltf-binary", ".json": "application/json",
+               ".bin": "application/octet-stream"}
 
 
 def _etag(path: Path) -> str:
     stat = path.stat()
-    return '"' + hashlib.sha256(f"{path.name}:{stat.st_size}:{stat.st_mtime_ns}".encode()).hexdigest()[:32] + '"'
+    key = f"{path.name}:{stat.st_size}:{stat.st_mtime_ns}".encode()
+    return '"' + hashlib.sha256(key).hexdigest()[:32] + '"'
 
 
 def _safe_child(root: Path, relative: str) -> Path:
@@ -53,7 +55,8 @@ def mount_static(app: FastAPI, settings) -> None:
                 raise HTTPException(status_code=404, detail=f"no file named {name!r}")
         if not index.is_file():
             return HTMLResponse(
-                "<h1>Glasshead</h1><p>The web app is not built yet: run <code>npm start</code>.</p>",
+                "<h1>Glasshead</h1>"
+                "<p>The web app is not built yet: run <code>npm start</code>.</p>",
                 status_code=503,
             )
         return FileResponse(index, headers={"Cache-Control": REVALIDATE})

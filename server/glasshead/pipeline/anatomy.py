@@ -89,7 +89,8 @@ def build_anatomy(data_dir, stage_dir, log=print):
     point = mouth_point(badin["maxilla"][0])
     arch = (badin["maxilla"][0].min(axis=0), badin["maxilla"][0].max(axis=0))
     levels = timer.run("CBCT levels of detail", build_lods, placed, placed_faces, point, arch)
-    registration["mouth_facing"] = mouth_residual(*badin["maxilla"], placed, placed_faces, point, arch)
+    registration["mouth_facing"] = mouth_residual(*badin["maxilla"], placed, placed_faces, point,
+                                                  arch)
     choice = choose_scene_maxilla(registration, levels)
     log(f"    scene maxilla: {choice['mesh']} ({choice['level']})")
 

@@ -237,7 +237,8 @@ def main(argv=None):
     settings = get_settings()
     assets_dir = Path(argv[0]) if argv else settings.assets_dir
     report = build_step(SimpleNamespace(data_dir=settings.data_dir, assets_dir=assets_dir))
-    print(f"{report['file']}: {report['vertices']}" + (" (up to date)" if report["skipped"] else ""))
+    suffix = " (up to date)" if report["skipped"] else ""
+    print(f"{report['file']}: {report['vertices']}{suffix}")
     print(json.dumps(report["stats"], indent=1))
     return 0
 

@@ -137,7 +137,7 @@ def _components(polygons):
     edge_owner = {}
     rows, cols = [], []
     for i, poly in enumerate(polygons):
-        for a, b in zip(poly, poly[1:] + poly[:1]):
+        for a, b in zip(poly, poly[1:] + poly[:1], strict=True):
             key = (min(a, b), max(a, b))
             if key in edge_owner:
                 rows.append(edge_owner[key])
@@ -195,7 +195,7 @@ def extract_face_skin(node_ids, nodes_m, elems, centre):
         polygons_of[key] = _oriented_polygon(points, elems, e, q)
 
     def outer_keys(flags):
-        return [p[0] if f else p[1] for p, f in zip(pairs, flags)]
+        return [p[0] if f else p[1] for p, f in zip(pairs, flags, strict=True)]
 
     # Turn over columns whose outer end is off the main skin, then keep the main skin.
     labels = _components([polygons_of[k] for k in outer_keys(a_is_outer)])
@@ -205,7 +205,7 @@ def extract_face_skin(node_ids, nodes_m, elems, centre):
     keys = outer_keys(a_is_outer)
     labels = _components([polygons_of[k] for k in keys])
     keep = labels == np.argmax(np.bincount(labels))
-    polygons = [polygons_of[k] for k, kept in zip(keys, keep) if kept]
+    polygons = [polygons_of[k] for k, kept in zip(keys, keep, strict=True) if kept]
 
     tris = _triangulate(points, polygons)
     used, inverse = np.unique(tris, return_inverse=True)

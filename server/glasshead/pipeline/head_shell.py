@@ -164,7 +164,8 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     rim_ids = boundary_loops(np.asarray(skin_faces))[0]
     rim = skin_vertices[rim_ids]
 
-    band_centre = np.array([(cranium[:, 0].min() + cranium[:, 0].max()) / 2, cranium[:, 1].min(), 0])
+    band_centre = np.array([(cranium[:, 0].min() + cranium[:, 0].max()) / 2,
+                            cranium[:, 1].min(), 0])
     out = cranium - band_centre
     scalp = cranium + SCALP_MM * out / np.linalg.norm(out, axis=1)[:, None]
     half = (cranium.max(axis=0) - cranium.min(axis=0)) / 2
@@ -245,7 +246,8 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     quads = np.vstack(quads)
     pole = len(vertices) - 1
     faces = np.vstack(
-        [quads[:, [0, 1, 2]], quads[:, [0, 2, 3]], np.stack([(RINGS - 1) * n + i, (RINGS - 1) * n + j, np.full(n, pole)], axis=1)]
+        [quads[:, [0, 1, 2]], quads[:, [0, 2, 3]],
+         np.stack([(RINGS - 1) * n + i, (RINGS - 1) * n + j, np.full(n, pole)], axis=1)]
     ).astype(np.int64)
     tri = vertices[faces]
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -255,14 +257,19 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     params = {
         "method": (
             "radial shell about the cranium ellipsoid centre: meridians from each face-rim vertex "
-            "to a pole tilted to cross the rim steeply, radius = smooth max of a cranium ellipsoid (scalp "
+            "to a pole tilted to cross the rim steeply, radius = smooth max of a cranium "
+            "ellipsoid (scalp "
             f"{SCALP_MM} mm) and a lower jaw/neck ellipsoid fitted to the rim below the cheeks, "
             f"plus a Hermite offset matching the rim's position and slope, faded over "
             f"{np.degrees(BLEND_RAD):.0f} degrees; ring 0 is the rim itself (shared vertices)"
         ),
         "centre_mm": centre.round(3).tolist(),
-        "cranium_ellipsoid": {"centre_mm": c_up.round(3).tolist(), "semi_axes_mm": a_up.round(3).tolist(), "fit_rms_mm": round(rms_up, 3)},
-        "lower_ellipsoid": {"centre_mm": c_lo.round(3).tolist(), "semi_axes_mm": a_lo.round(3).tolist(), "fit_rms_mm": round(rms_lo, 3)},
+        "cranium_ellipsoid": {"centre_mm": c_up.round(3).tolist(),
+                              "semi_axes_mm": a_up.round(3).tolist(),
+                              "fit_rms_mm": round(rms_up, 3)},
+        "lower_ellipsoid": {"centre_mm": c_lo.round(3).tolist(),
+                            "semi_axes_mm": a_lo.round(3).tolist(),
+                            "fit_rms_mm": round(rms_lo, 3)},
         "rim_vertices": int(n),
         "rings": RINGS,
         "pole_direction": axes[0].round(4).tolist(),

@@ -78,7 +78,8 @@ def register_cbct(cbct_vertices_mm, cbct_faces, badin_vertices, badin_faces):
     cbct = np.asarray(cbct_vertices_mm, dtype=np.float64)
     badin_points, _ = sample_surface(badin_vertices, badin_faces, seed=1)
     rng = np.random.default_rng(2)
-    fine_src = badin_points[rng.choice(len(badin_points), min(FINE_POINTS, len(badin_points)), replace=False)]
+    chosen = rng.choice(len(badin_points), min(FINE_POINTS, len(badin_points)), replace=False)
+    fine_src = badin_points[chosen]
     coarse_src = fine_src[:COARSE_POINTS]
 
     trials = []

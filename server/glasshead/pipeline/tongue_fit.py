@@ -128,7 +128,8 @@ class RestShapeProblem:
         return lower, upper
 
     def unpack(self, x):
-        """(positions (18, 2), section weights (18, 3), ratios {section: (15,)}, pole half-width)."""
+        """(positions (18, 2), section weights (18, 3), ratios {section: (15,)},
+        pole half-width)."""
         n = len(SAGITTAL_POINTS)
         radii = x[:n]
         positions = self.hub + radii[:, None] * np.stack([np.cos(self.angles),
@@ -138,7 +139,7 @@ class RestShapeProblem:
         for s, section in enumerate(SECTIONS):
             full = np.zeros(15)
             full[7] = 1.0
-            for value, k in zip(halves[s], _SYMMETRIC_CONTROLS):
+            for value, k in zip(halves[s], _SYMMETRIC_CONTROLS, strict=True):
                 full[k] = full[14 - k] = value
             ratios[section] = full
         weights = np.array([p[4] if p[4] is not None else (0.0, 0.0, 0.0)

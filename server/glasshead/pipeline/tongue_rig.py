@@ -1,4 +1,4 @@
-"""Build step: fit the tongue rig's rest shape to the MRI tongue and write assets/build/tongue-rig.json.
+"""Build step: fit the tongue rig's rest shape to the MRI tongue; write the tongue-rig.json asset.
 
 ``build_tongue_rig(data_dir, out_dir)`` reads ``anatomy/artisynth-badin/tongue.obj`` (the rest
 tongue) and ``jaw.obj`` (for the temporomandibular pivot), converts them into the project frame,

@@ -43,4 +43,5 @@ def anatomy(assets: AssetsDep) -> Anatomy:
         )
         for m in manifest["meshes"]
     ]
-    return Anatomy(format_version=manifest["format_version"], frame=manifest["frame"], meshes=meshes)
+    return Anatomy(format_version=manifest["format_version"], frame=manifest["frame"],
+                   meshes=meshes)

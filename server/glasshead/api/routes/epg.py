@@ -1,4 +1,4 @@
-"""GET /epg/layout: the electrodes on the palate. POST /epg/contacts: synthetic EPG, Python reference.
+"""GET /epg/layout: the electrodes on the palate. POST /epg/contacts: synthetic EPG (Python twin).
 
 The layout is built by `glasshead build` (``pipeline.epg_layout``); the browser computes contacts
 itself every frame (``web/src/core/epgContacts.js``). POST /epg/contacts runs the Python twin:
@@ -151,5 +151,5 @@ def epg_contacts(request: ContactsRequest, assets: AssetsDep) -> ContactsRespons
     return ContactsResponse(
         grid=request.grid, rows=rows_to_strings(grid), cells=grid.ravel().tolist(),
         electrodes=probes.ids, contacts=contacts.tolist(),
-        contacted=[i for i, c in zip(probes.ids, contacts) if c], indices=indices,
+        contacted=[i for i, c in zip(probes.ids, contacts, strict=True) if c], indices=indices,
         collision=collision)

@@ -80,7 +80,7 @@ def tongue_surface(request: Annotated[SurfaceRequest, Body()], assets: AssetsDep
         raise HTTPException(status_code=422, detail=str(exc)) from None
     surface = rig.evaluate(values)
     return Surface(
-        params=dict(zip(rig.parameter_names, values.tolist())),
+        params=dict(zip(rig.parameter_names, values.tolist(), strict=True)),
         vertex_count=len(surface.vertices),
         triangle_count=len(surface.triangles),
         vertices=surface.vertices.tolist(),
