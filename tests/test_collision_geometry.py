@@ -8,6 +8,7 @@ import pytest
 import trimesh
 
 from glasshead.geometry.collision_exact import (
+    closest_points_on_segments,
     closest_points_on_triangles,
     first_hits_from_origin,
     project_onto_closest,
@@ -110,7 +111,7 @@ def test_range_table_answers_rectangle_minima_like_brute_force():
     j1 = np.minimum(j0 + rng.integers(0, 37, 200), 36)
     i0 = rng.integers(0, 53, 200)
     i1 = np.minimum(i0 + rng.integers(0, 53, 200), 52)
-    brute = [values[a:b + 1, c:d + 1].min() for a, b, c, d in zip(j0, j1, i0, i1)]
+    brute = [values[a:b + 1, c:d + 1].min() for a, b, c, d in zip(j0, j1, i0, i1, strict=True)]
     np.testing.assert_array_equal(table.query(j0, j1, i0, i1), brute)
 
 
@@ -124,11 +125,42 @@ def test_closest_point_on_triangle_matches_trimesh_in_every_voronoi_region():
     np.testing.assert_allclose(ours, theirs, atol=1e-9)
 
 
+@pytest.mark.parametrize("collapse", ["b on a", "c on b", "c on ab's line", "all on a"])
+def test_a_degenerate_triangle_answers_the_closest_point_of_its_edges(collapse):
+    seed = 29
+    rng = np.random.default_rng(seed)
+    n = 5000
+    a, b, c = rng.normal(size=(3, n, 3)) * 5.0
+    if collapse == "b on a":
+        b = a.copy()
+    elif collapse == "c on b":
+        c = b.copy()
+    elif collapse == "c on ab's line":
+        c = a + rng.uniform(-1.0, 2.0, (n, 1)) * (b - a)
+    else:
+        b, c = a.copy(), a.copy()
+    p = rng.normal(size=(n, 3)) * 12.0
+    ours = closest_points_on_triangles(p, a, b, c)
+    edges = np.stack([closest_points_on_segments(p, a, b), closest_points_on_segments(p, b, c),
+                      closest_points_on_segments(p, c, a)])
+    # 1e-9 mm: float64 rounding on coordinates of tens of millimetres.
+    assert np.all(np.isfinite(ours))
+    np.testing.assert_allclose(np.linalg.norm(ours - p, axis=1),
+                               np.linalg.norm(edges - p, axis=2).min(axis=0), atol=1e-9)
+
+
+def test_the_build_surface_distances_use_the_one_closest_point_kernel():
+    from glasshead.pipeline import surface_distance
+
+    assert surface_distance.closest_points_on_triangles is closest_points_on_triangles
+
+
 def test_moller_trumbore_hits_inside_and_misses_outside_and_parallel():
     a = np.array([5.0, -1.0, -1.0])
     e1 = np.array([0.0, 3.0, 0.0])
     e2 = np.array([0.0, 0.0, 3.0])
-    d = np.array([[1.0, 0.0, 0.0], [2.0, 0.2, 0.2], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
+    d = np.array([[1.0, 0.0, 0.0], [2.0, 0.2, 0.2], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0],
+                  [-1.0, 0.0, 0.0]])
     t = ray_triangle_hits(d, a, e1, e2)
     np.testing.assert_allclose(t[:2], [5.0, 2.5])
     assert np.all(np.isinf(t[2:]))  # beside the triangle, parallel to it, pointing away

@@ -1,7 +1,10 @@
 """Exact point and ray queries against triangles: the references the collision tables answer to.
 
 - ``closest_points_on_triangles``: Ericson, Real-Time Collision Detection (2005), 5.1.5, "Closest
-  point on triangle to point", by Voronoi regions of the vertices, edges and face.
+  point on triangle to point", by Voronoi regions of the vertices, edges and face; the project's
+  one closest-point kernel (the build's surface distances use it too).
+- ``closest_points_on_segments``: Ericson (2005), 5.1.2, "Closest point on line segment to
+  point".
 - ``ray_triangle_hits``: Moller and Trumbore (1997), "Fast, minimum storage ray-triangle
   intersection", two-sided.
 - ``first_hits_from_origin``: the exact answer to "does the segment from O to P cross the maxilla,
@@ -14,17 +17,46 @@ import numpy as np
 
 from glasshead.constants import COLLISION_TOL
 
+#: Squared sine of the angle at a below which a triangle counts as flat (a segment or a point):
+#: the closest point is then taken on its edges, wrong by at most its width, 1e-6 of an edge.
+FLAT_SIN2 = 1e-12
+
 
 def _dot(u, v):
     return np.einsum("...i,...i->...", u, v)
 
 
+def _flat(a, b, c):
+    """True where triangle (a, b, c) is flat: |ab x ac|^2 <= FLAT_SIN2 |ab|^2 |ac|^2, written
+    with Lagrange's identity |ab x ac|^2 = |ab|^2 |ac|^2 - (ab . ac)^2."""
+    ab, ac = b - a, c - a
+    product = _dot(ab, ab) * _dot(ac, ac)
+    return _dot(ab, ac) ** 2 >= (1.0 - FLAT_SIN2) * product
+
+
+def closest_points_on_segments(p, a, b):
+    """Closest points on segments (a, b) to points p, all (..., 3) broadcast together; a
+    zero-length segment answers a. Returns (..., 3) float64."""
+    p, a, b = np.broadcast_arrays(*(np.asarray(x, dtype=np.float64) for x in (p, a, b)))
+    ab = b - a
+    length2 = _dot(ab, ab)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(length2 > 0.0, _dot(p - a, ab) / length2, 0.0)
+    return a + ab * np.clip(t, 0.0, 1.0)[..., None]
+
+
 def closest_points_on_triangles(p, a, b, c):
     """Closest points on triangles (a, b, c) to points p (Ericson 5.1.5), all broadcast together.
 
-    p, a, b, c : (..., 3) float. Returns (..., 3) float64.
+    p, a, b, c : (..., 3) float, mm or any one unit. Returns (..., 3) float64 in that unit.
+    The one closest-point kernel of the project: the collision baseline, the liner and the
+    build's surface distances (``pipeline.surface_distance``) all call it. A degenerate triangle
+    (its sine of the angle at a below 1e-6, see ``FLAT_SIN2``), where the Voronoi tests divide
+    rounding noise, answers the closest point of its three edges instead.
     """
-    p, a, b, c = np.broadcast_arrays(*(np.asarray(x, dtype=np.float64) for x in (p, a, b, c)))
+    a, b, c = (np.asarray(x, dtype=np.float64) for x in (a, b, c))
+    flat = _flat(a, b, c)  # before broadcasting: once per triangle, not per point and triangle
+    p, a, b, c = np.broadcast_arrays(np.asarray(p, dtype=np.float64), a, b, c)
     ab, ac, ap = b - a, c - a, p - a
     d1, d2 = _dot(ab, ap), _dot(ac, ap)
     bp = p - b
@@ -40,18 +72,25 @@ def closest_points_on_triangles(p, a, b, c):
         t_ab = d1 / (d1 - d3)
         t_ac = d2 / (d2 - d6)
         t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-    out = a + ab * v_face[..., None] + ac * w_face[..., None]
-    # Regions are tested from last to first so that the first matching region wins.
-    regions = [
-        ((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0), b + (c - b) * t_bc[..., None]),
-        ((vb <= 0) & (d2 >= 0) & (d6 <= 0), a + ac * t_ac[..., None]),
-        ((d6 >= 0) & (d5 <= d6), c),
-        ((vc <= 0) & (d1 >= 0) & (d3 <= 0), a + ab * t_ab[..., None]),
-        ((d3 >= 0) & (d4 <= d3), b),
-        ((d1 <= 0) & (d2 <= 0), a),
-    ]
+        out = a + ab * v_face[..., None] + ac * w_face[..., None]
+        # Regions are tested from last to first so that the first matching region wins.
+        regions = [
+            ((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0), b + (c - b) * t_bc[..., None]),
+            ((vb <= 0) & (d2 >= 0) & (d6 <= 0), a + ac * t_ac[..., None]),
+            ((d6 >= 0) & (d5 <= d6), c),
+            ((vc <= 0) & (d1 >= 0) & (d3 <= 0), a + ab * t_ab[..., None]),
+            ((d3 >= 0) & (d4 <= d3), b),
+            ((d1 <= 0) & (d2 <= 0), a),
+        ]
     for mask, point in regions:
         out = np.where(mask[..., None], point, out)
+    undecided = np.broadcast_to(flat, out.shape[:-1]) | ~np.all(np.isfinite(out), axis=-1)
+    if np.any(undecided):
+        q = p[undecided]
+        starts, ends = np.stack([a, b, c])[:, undecided], np.stack([b, c, a])[:, undecided]
+        edges = closest_points_on_segments(q[None], starts, ends)
+        nearest = np.argmin(_dot(edges - q[None], edges - q[None]), axis=0)
+        out[undecided] = edges[nearest, np.arange(len(q))]
     return out
 
 

@@ -1,16 +1,21 @@
 """Exact point-to-surface distances and Hausdorff distances between triangle meshes.
 
-Closest point on a triangle: Ericson, Real-Time Collision Detection, 5.1.5, vectorised.
+Closest point on a triangle: ``geometry.collision_exact.closest_points_on_triangles`` (Ericson,
+Real-Time Collision Detection, 5.1.5, vectorised), the kernel the collision baseline uses.
 Candidate triangles are pruned with a k-d tree over triangle centroids: a first pass over the
 ``FIRST_PASS`` nearest centroids gives an upper bound u on each point's distance; every triangle
 that could be closer has its centroid within u + R of the point (R = its centroid-to-corner
 reach), and a second pass checks all of those. Triangles are grouped by reach in powers of two,
-one tree per group, so a few long slivers do not widen every search. The result is exact, not a sampling estimate of
-the far surface.
+one tree per group, so a few long slivers do not widen every search. The result is exact, not a
+sampling estimate of the far surface. (``trimesh.proximity.closest_point`` was measured against
+this on the maxilla, 20 000 points in its bounding box: it was slower and up to 1.4e-4 mm off
+at points within 0.03 mm of the surface.)
 """
 
 import numpy as np
 from scipy.spatial import cKDTree
+
+from glasshead.geometry.collision_exact import closest_points_on_triangles
 
 #: Nearest triangle centroids examined in the first (upper bound) pass.
 FIRST_PASS = 8
@@ -19,41 +24,6 @@ FIRST_PASS = 8
 SAMPLES_PER_MM2 = 1.0
 #: Cap on samples drawn from one mesh, to bound the build's time.
 MAX_SAMPLES = 40_000
-
-
-def closest_points_on_triangles(p, a, b, c):
-    """Closest points to p (k, 3) on triangles (a, b, c), each (k, 3); returns (k, 3) float64.
-
-    Ericson 5.1.5: classify p against the Voronoi regions of the vertices, edges and face.
-    """
-    ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = np.einsum("ij,ij->i", ab, ap), np.einsum("ij,ij->i", ac, ap)
-    bp = p - b
-    d3, d4 = np.einsum("ij,ij->i", ab, bp), np.einsum("ij,ij->i", ac, bp)
-    cp = p - c
-    d5, d6 = np.einsum("ij,ij->i", ab, cp), np.einsum("ij,ij->i", ac, cp)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-
-    with np.errstate(divide="ignore", invalid="ignore"):
-        denom = va + vb + vc
-        v_face, w_face = vb / denom, vc / denom
-        t_ab = d1 / (d1 - d3)
-        t_ac = d2 / (d2 - d6)
-        t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-    out = a + ab * v_face[:, None] + ac * w_face[:, None]
-    cases = [
-        ((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0), b + (c - b) * t_bc[:, None]),
-        ((vb <= 0) & (d2 >= 0) & (d6 <= 0), a + ac * t_ac[:, None]),
-        ((d6 >= 0) & (d5 <= d6), c),
-        ((vc <= 0) & (d1 >= 0) & (d3 <= 0), a + ab * t_ab[:, None]),
-        ((d3 >= 0) & (d4 <= d3), b),
-        ((d1 <= 0) & (d2 <= 0), a),
-    ]
-    for mask, value in cases:  # later cases take precedence, as in Ericson's early returns
-        out = np.where(mask[:, None], value, out)
-    degenerate = ~np.isfinite(out).all(axis=1)
-    out[degenerate] = a[degenerate]
-    return out
 
 
 class SurfaceDistance:
@@ -93,7 +63,8 @@ class SurfaceDistance:
             balls = tree.query_ball_point(points, bound + reach)
             counts = np.fromiter((len(b) for b in balls), dtype=np.int64, count=len(balls))
             rows = np.repeat(np.arange(len(points)), counts)
-            ids = face_ids[np.fromiter((i for b in balls for i in b), dtype=np.int64, count=int(counts.sum()))]
+            ids = face_ids[np.fromiter((i for b in balls for i in b), dtype=np.int64,
+                                       count=int(counts.sum()))]
             for start in range(0, len(rows), 1_000_000):  # bounded memory
                 chunk = slice(start, start + 1_000_000)
                 np.minimum.at(best, rows[chunk], self._distance_to(points[rows[chunk]], ids[chunk]))
