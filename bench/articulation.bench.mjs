@@ -18,7 +18,7 @@ import { Articulation, parameterDefinitions } from '../web/src/scene/Articulatio
 import { TongueRig } from '../web/src/core/tongue.js';
 import { correctVertices } from '../web/src/core/collision.js';
 import { ParamState } from '../web/src/core/paramState.js';
-import { parseCollisionTables } from '../web/src/core/tables.js';
+import { decodeCollisionTables } from '../web/src/core/tables.js';
 import { median, random } from './support/stats.mjs';
 
 const REPO = resolve( dirname( fileURLToPath( import.meta.url ) ), '..' );
@@ -41,7 +41,7 @@ function built( name ) {
 }
 
 const definition = JSON.parse( built( 'tongue-rig.json' ).toString( 'utf8' ) );
-const tables = parseCollisionTables( built( 'collision-tables.bin' ) );
+const tables = decodeCollisionTables( built( 'collision-tables.bin' ) );
 const rig = new TongueRig( definition );
 const state = new ParamState( parameterDefinitions( definition ) );
 const head = new Head();

@@ -25,7 +25,7 @@ import { MeshBVH } from 'three-mesh-bvh';
 
 import { COLLISION_TOL } from '../web/src/core/constants.js';
 import { correctVertices } from '../web/src/core/collision.js';
-import { parseCollisionTables } from '../web/src/core/tables.js';
+import { decodeCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
 import { median, random } from './support/stats.mjs';
 
@@ -74,7 +74,7 @@ async function sceneMaxilla() {
 const now = () => Number( process.hrtime.bigint() ) / 1e6;
 
 // --- set-up -------------------------------------------------------------------------------------
-const tables = parseCollisionTables( file( 'collision-tables.bin' ) );
+const tables = decodeCollisionTables( file( 'collision-tables.bin' ) );
 const rig = new TongueRig( JSON.parse( file( 'tongue-rig.json' ).toString( 'utf8' ) ) );
 const geometry = await sceneMaxilla();
 const bvh = new MeshBVH( geometry );

@@ -16,7 +16,7 @@ import { performance } from 'node:perf_hooks';
 import { correctVertices } from '../web/src/core/collision.js';
 import { createContactModel, epgContacts, epgContactsBruteForce } from '../web/src/core/epgContacts.js';
 import { epgIndices, INDEX_STRIDE } from '../web/src/core/epgIndices.js';
-import { parseCollisionTables } from '../web/src/core/tables.js';
+import { decodeCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
 import { median } from './support/stats.mjs';
 
@@ -38,7 +38,7 @@ const layout = useBuilt ? JSON.parse( read( builtFiles[ 2 ] ) ) : VECTORS.layout
 const source = useBuilt ? `built assets in ${ ASSETS }` : `the contact vectors' palate (${ VECTORS.tables.maxilla_triangles } triangles)`;
 
 const rig = new TongueRig( rigDefinition );
-const tables = parseCollisionTables( tablesBytes );
+const tables = decodeCollisionTables( tablesBytes );
 const poses = [ {}, ...VECTORS.cases.map( ( c ) => c.input.params ) ];
 const surface = rig.createSurface();
 const tongues = poses.map( ( params ) => {

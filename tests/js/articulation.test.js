@@ -16,13 +16,13 @@ import { lipGap, midlineCrossings } from '../../web/src/scene/FacePose.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import { ParamState } from '../../web/src/core/paramState.js';
-import { parseCollisionTables } from '../../web/src/core/tables.js';
+import { decodeCollisionTables } from '../../web/src/core/tables.js';
 import { FLAG_CORRECTED } from '../../web/src/core/constants.js';
 import { debugObject } from '../../web/src/debug.js';
 
 const VECTORS = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
 const RIG = JSON.parse( readFileSync( join( VECTORS, 'tongue-surface.json' ), 'utf8' ) ).rig;
-const TABLES = parseCollisionTables( readFileSync( join( VECTORS, 'collision-tables.bin' ) ) );
+const TABLES = decodeCollisionTables( readFileSync( join( VECTORS, 'collision-tables.bin' ) ) );
 
 /** A head of stand-ins: a box for the rest tongue, the mandible and the two lips (in the mouth, touching at y = 0). */
 function standInHead() {

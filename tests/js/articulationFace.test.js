@@ -1,7 +1,8 @@
 // The face in the articulation (web/src/scene/FacePose.js, Articulation.js): the real-time face
 // rig of the shared vectors posing the skin, lips and head shell from the state's lip parameters
-// and the jaw, the seam of the skin welded again, and loadArticulation() putting it together
-// from the API (a fake fetch) or falling back to the rigid lower lip when it cannot.
+// and the jaw, the seam of the skin welded again, and the views' loadArticulation() putting it
+// together from the API (a client on a fake fetch) or falling back to the rigid lower lip when it
+// cannot.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { fewestGarbageCollections } from './support/garbage.js';
@@ -11,7 +12,9 @@ import { fileURLToPath } from 'node:url';
 import { BoxGeometry, BufferAttribute, BufferGeometry, Group, Matrix4 } from 'three';
 
 import { Head } from '../../web/src/scene/Head.js';
-import { Articulation, loadArticulation, parameterDefinitions } from '../../web/src/scene/Articulation.js';
+import { Articulation, parameterDefinitions } from '../../web/src/scene/Articulation.js';
+import { createApi } from '../../web/src/api.js';
+import { loadArticulation } from '../../web/src/ui/loaders.js';
 import { FacePose, seamGroups, weldSeam } from '../../web/src/scene/FacePose.js';
 import { FACE_MESHES } from '../../web/src/core/faceRig.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
@@ -128,18 +131,18 @@ test( 'with a face rig the lower lip is no longer carried rigidly: its group sta
 
 } );
 
-/** A fetch answering the API's three requests of loadArticulation(). */
+/** A client whose fetch answers the API's three requests of loadArticulation(). */
 function apiFetch( { face = FACE.rig } = {} ) {
 
 	const answer = ( status, body ) => ( { ok: status === 200, status, statusText: '', json: async () => body } );
-	return async ( url ) => {
+	return createApi( { fetchImpl: async ( url ) => {
 
 		if ( url.endsWith( '/tongue/rig' ) ) return answer( 200, TONGUE );
 		if ( url.endsWith( '/face/rig' ) ) return face ? answer( 200, face ) : answer( 503, { detail: 'face rig not built: run `glasshead build`' } );
 		if ( url.endsWith( '/collision/tables' ) ) return answer( 503, { detail: 'collision tables not built' } );
 		return answer( 404, { detail: `no route ${ url }` } );
 
-	};
+	} } );
 
 }
 
@@ -167,7 +170,7 @@ function wrapPart( part, name, geometry ) {
 test( 'loadArticulation poses the face from the API\'s face rig and reports what it could not load', async () => {
 
 	const head = standInHead();
-	const articulation = await loadArticulation( head, null, { fetchImpl: apiFetch() } );
+	const articulation = await loadArticulation( head, null, { api: apiFetch() } );
 	try {
 
 		assert.equal( articulation.faceRigError, null );
@@ -190,13 +193,13 @@ test( 'loadArticulation poses the face from the API\'s face rig and reports what
 
 test( 'without a face rig, or without the meshes it poses, the lower lip rides on the jaw', async () => {
 
-	for ( const [ fetchImpl, message ] of [
+	for ( const [ api, message ] of [
 		[ apiFetch( { face: null } ), /503: face rig not built/ ],
 		[ apiFetch(), /needs the mesh "face_skin"/ ],
 	] ) {
 
 		const head = standInHead( { withFace: false } );
-		const articulation = await loadArticulation( head, null, { fetchImpl } );
+		const articulation = await loadArticulation( head, null, { api } );
 		try {
 
 			assert.match( articulation.faceRigError, message );

@@ -12,13 +12,15 @@ import {
 	FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED, COLLISION_TOL,
 } from '../../web/src/core/constants.js';
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../../web/src/core/collision.js';
-import { CollisionTablesError, crc32, fetchCollisionTables, parseCollisionTables } from '../../web/src/core/tables.js';
+import { CollisionTablesError, crc32, decodeCollisionTables } from '../../web/src/core/tables.js';
+import { createApi } from '../../web/src/api.js';
+import { loadCollisionTables } from '../../web/src/ui/loaders.js';
 
 const VECTORS_DIR = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
 const CASES = JSON.parse( readFileSync( join( VECTORS_DIR, 'collision-correct.json' ), 'utf8' ) );
 const CONSTANTS = JSON.parse( readFileSync( join( VECTORS_DIR, 'collision-constants.json' ), 'utf8' ) );
 const FILE = readFileSync( join( VECTORS_DIR, CASES.tables ) );
-const TABLES = parseCollisionTables( FILE );
+const TABLES = decodeCollisionTables( FILE );
 
 function fileCopy() {
 
@@ -97,7 +99,7 @@ for ( const refusal of CASES.refusals ) {
 		}
 
 		if ( refusal.input.truncate !== undefined ) bytes = bytes.slice( 0, refusal.input.truncate );
-		assert.throws( () => parseCollisionTables( bytes ), ( error ) => error instanceof CollisionTablesError && error.message.includes( refusal.expected.error ) );
+		assert.throws( () => decodeCollisionTables( bytes ), ( error ) => error instanceof CollisionTablesError && error.message.includes( refusal.expected.error ) );
 
 	} );
 
@@ -191,7 +193,7 @@ test( 'a buffer at an unaligned offset is copied, not misread', () => {
 
 	const shifted = new Uint8Array( FILE.length + 3 );
 	shifted.set( FILE, 3 );
-	const tables = parseCollisionTables( shifted.subarray( 3 ) );
+	const tables = decodeCollisionTables( shifted.subarray( 3 ) );
 	assert.deepEqual( Array.from( tables.voxels ), Array.from( TABLES.voxels ) );
 
 } );
@@ -207,11 +209,12 @@ test( 'fetching tables follows the header URL and refuses another format version
 
 	};
 
-	const tables = await fetchCollisionTables( '/api/v1', fakeFetch( constants.COLLISION_TABLES_FORMAT_VERSION ) );
+	const load = ( version ) => loadCollisionTables( { api: createApi( { fetchImpl: fakeFetch( version ) } ) } );
+	const tables = await load( constants.COLLISION_TABLES_FORMAT_VERSION );
 	assert.deepEqual( requested, [ '/api/v1/collision/tables', '/assets/build/t.bin' ] );
 	assert.equal( tables.nlon, TABLES.nlon );
 	requested.length = 0;
-	await assert.rejects( fetchCollisionTables( '/api/v1', fakeFetch( 99 ) ), /format version 99/ );
+	await assert.rejects( load( 99 ), /format version 99/ );
 	assert.deepEqual( requested, [ '/api/v1/collision/tables' ] );
 
 } );

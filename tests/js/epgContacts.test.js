@@ -13,14 +13,14 @@ import {
 } from '../../web/src/core/constants.js';
 import { contactRows, createContactModel, epgContacts, epgContactsBruteForce } from '../../web/src/core/epgContacts.js';
 import { correctVertices } from '../../web/src/core/collision.js';
-import { parseCollisionTables } from '../../web/src/core/tables.js';
+import { decodeCollisionTables } from '../../web/src/core/tables.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { epgIndices, INDEX_STRIDE, SLOT_CONTACTS, SLOT_PERCENT } from '../../web/src/core/epgIndices.js';
 
 const VECTORS_DIR = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
 const VECTORS = JSON.parse( readFileSync( join( VECTORS_DIR, 'epg-contacts.json' ), 'utf8' ) );
 const TABLES_FILE = readFileSync( join( VECTORS_DIR, VECTORS.tables.file ) );
-const TABLES = parseCollisionTables( TABLES_FILE );
+const TABLES = decodeCollisionTables( TABLES_FILE );
 const RIG = new TongueRig( VECTORS.rig );
 const GRIDS = [ 'reading62', 'dense96' ];
 const MODELS = Object.fromEntries( GRIDS.map( ( name ) => [ name, createContactModel( VECTORS.layout.grids[ name ], RIG.index, RIG.vertexCount ) ] ) );

@@ -17,7 +17,7 @@ import { createEpgLive } from '../../web/src/scene/EpgLive.js';
 import { debugObject, installDebug } from '../../web/src/debug.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { correctVertices } from '../../web/src/core/collision.js';
-import { parseCollisionTables } from '../../web/src/core/tables.js';
+import { decodeCollisionTables } from '../../web/src/core/tables.js';
 
 const VECTORS_DIR = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
 const CONTACTS = JSON.parse( readFileSync( join( VECTORS_DIR, 'epg-contacts.json' ), 'utf8' ) );
@@ -165,7 +165,7 @@ test( 'the live EPG of a corrected tongue reports its rows, percent and indices 
 	installDebug( globalThis );
 	const rig = new TongueRig( CONTACTS.rig );
 	const bytes = readFileSync( join( VECTORS_DIR, CONTACTS.tables.file ) );
-	const tables = parseCollisionTables( bytes );
+	const tables = decodeCollisionTables( bytes );
 	const live = createEpgLive( { layout: CONTACTS.layout, tongueTriangles: rig.index, vertexCount: rig.vertexCount, dense: true } );
 	const unregister = live.registerDebug();
 	const seen = [];

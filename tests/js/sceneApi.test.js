@@ -1,56 +1,114 @@
-// Fetch helpers of the browser app (web/src/api.js) against a stand-in fetch.
+// The one HTTP client of the browser app (web/src/api.js) against a stand-in fetch.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { ApiError, fetchJson, getAnatomy, parseAnatomy } from '../../web/src/api.js';
+import { ApiError, createApi, describeDetail, getAnatomy, parseAnatomy, resolveUrl } from '../../web/src/api.js';
 
 const respond = ( status, body, statusText = '' ) => async () => ( {
 	ok: status >= 200 && status < 300,
 	status,
 	statusText,
 	json: async () => ( typeof body === 'string' ? JSON.parse( body ) : body ),
+	arrayBuffer: async () => new Uint8Array( [ 1, 2, 3 ] ).buffer,
 } );
 
-test( 'paths are requested under /api/v1', async () => {
+/** A client whose fetch records every request and answers with `answer`. */
+function recording( answer = respond( 200, {} ) ) {
 
-	const urls = [];
-	await fetchJson( '/health', { fetchImpl: async ( url ) => {
+	const requests = [];
+	const api = createApi( { fetchImpl: async ( url, init ) => {
 
-		urls.push( url );
-		return respond( 200, { status: 'ok' } )();
-
-	} } );
-	await fetchJson( '/api/v1/anatomy', { fetchImpl: async ( url ) => {
-
-		urls.push( url );
-		return respond( 200, {} )();
+		requests.push( { url, init } );
+		return answer( url, init );
 
 	} } );
-	assert.deepEqual( urls, [ '/api/v1/health', '/api/v1/anatomy' ] );
+	return { api, requests };
+
+}
+
+test( 'relative paths are requested under /api/v1; paths from the site root and full URLs as they are', async () => {
+
+	const { api, requests } = recording();
+	await api.get( 'health' );
+	await api.get( 'epg/layout?grid=reading62' );
+	await api.getBinary( '/assets/build/maxilla.glb?v=1' );
+	await api.get( 'https://example.org/x' );
+	assert.deepEqual( requests.map( ( r ) => r.url ), [ '/api/v1/health', '/api/v1/epg/layout?grid=reading62', '/assets/build/maxilla.glb?v=1', 'https://example.org/x' ] );
+	assert.equal( resolveUrl( 'poses/3', '/base' ), '/base/poses/3' );
+	assert.throws( () => resolveUrl( '' ), TypeError );
 
 } );
 
-test( 'an HTTP error becomes an ApiError that quotes the server\'s detail', async () => {
+test( 'every verb sends its method, and a body as JSON', async () => {
 
-	await assert.rejects( fetchJson( '/anatomy', { fetchImpl: respond( 503, { detail: 'anatomy not built: run `glasshead build`' } ) } ), ( error ) => {
+	const { api, requests } = recording();
+	await api.post( 'poses', { name: 'a' } );
+	await api.put( 'poses/1', { name: 'b' } );
+	await api.patch( 'poses/1', { description: 'c' } );
+	await api.delete( 'poses/1' );
+	assert.deepEqual( requests.map( ( r ) => r.init.method ), [ 'POST', 'PUT', 'PATCH', 'DELETE' ] );
+	assert.equal( requests[ 0 ].init.headers[ 'Content-Type' ], 'application/json' );
+	assert.deepEqual( JSON.parse( requests[ 1 ].init.body ), { name: 'b' } );
+	assert.equal( requests[ 3 ].init.body, undefined );
+
+} );
+
+test( 'a binary GET resolves to the bytes; an empty answer (204) to null', async () => {
+
+	const { api } = recording( respond( 200, null ) );
+	assert.deepEqual( Array.from( new Uint8Array( await api.getBinary( 'collision/tables.bin' ) ) ), [ 1, 2, 3 ] );
+	const empty = createApi( { fetchImpl: respond( 204, null ) } );
+	assert.equal( await empty.delete( 'poses/1' ), null );
+
+} );
+
+test( 'an HTTP error becomes an ApiError naming the method, URL and status, and quoting the server\'s detail', async () => {
+
+	const api = createApi( { fetchImpl: respond( 503, { detail: 'anatomy not built: run `glasshead build`' } ) } );
+	await assert.rejects( api.get( 'anatomy' ), ( error ) => {
 
 		assert.ok( error instanceof ApiError );
 		assert.equal( error.status, 503 );
-		assert.match( error.message, /GET \/api\/v1\/anatomy failed with HTTP 503: anatomy not built/ );
+		assert.equal( error.method, 'GET' );
+		assert.equal( error.url, '/api/v1/anatomy' );
+		assert.equal( error.detail, 'anatomy not built: run `glasshead build`' );
+		assert.equal( error.message, 'GET /api/v1/anatomy failed with HTTP 503: anatomy not built: run `glasshead build`' );
 		return true;
 
 	} );
+	const refused = createApi( { fetchImpl: respond( 422, { detail: [ { loc: [ 'body', 'params', 'tip_height' ], msg: 'Input should be a finite number' } ] } ) } );
+	await assert.rejects( refused.post( 'poses', {} ), { message: 'POST /api/v1/poses failed with HTTP 422: params.tip_height: Input should be a finite number' } );
+	const plain = createApi( { fetchImpl: respond( 500, '<html>', 'Internal Server Error' ) } );
+	await assert.rejects( plain.put( 'poses/1', {} ), { message: 'PUT /api/v1/poses/1 failed with HTTP 500: Internal Server Error' } );
 
 } );
 
-test( 'a network failure and invalid JSON are reported as such', async () => {
+test( 'a network failure and invalid JSON are ApiErrors too; an abort passes through', async () => {
 
-	await assert.rejects( fetchJson( '/anatomy', { fetchImpl: async () => {
+	const offline = createApi( { fetchImpl: async () => {
 
 		throw new TypeError( 'Failed to fetch' );
 
-	} } ), /Could not reach the server for \/api\/v1\/anatomy: Failed to fetch/ );
-	await assert.rejects( fetchJson( '/anatomy', { fetchImpl: respond( 200, '{oops' ) } ), /returned invalid JSON/ );
+	} } );
+	await assert.rejects( offline.patch( 'poses/1', {} ), ( error ) => error instanceof ApiError && error.status === null &&
+		error.message === 'Could not reach the server for PATCH /api/v1/poses/1: Failed to fetch' );
+	await assert.rejects( createApi( { fetchImpl: respond( 200, '{oops' ) } ).get( 'anatomy' ), ( error ) => error instanceof ApiError && /GET \/api\/v1\/anatomy returned invalid JSON/.test( error.message ) );
+	const aborted = createApi( { fetchImpl: async () => {
+
+		throw new DOMException( 'The operation was aborted.', 'AbortError' );
+
+	} } );
+	await assert.rejects( aborted.get( 'anatomy' ), { name: 'AbortError' } );
+
+} );
+
+test( 'the server\'s detail reads as one line whatever its shape', () => {
+
+	assert.equal( describeDetail( 'plain words' ), 'plain words' );
+	assert.equal( describeDetail( undefined ), '' );
+	assert.equal( describeDetail( [ { loc: [ 'body', 'name' ], msg: 'too long' }, { msg: 'and this' } ] ), 'name: too long; and this' );
+	assert.equal( describeDetail( { message: 'the tongue rig is not built', asset: 'tongue-rig.json' } ), 'the tongue rig is not built' );
+	assert.equal( describeDetail( { asset: 'x' } ), '{"asset":"x"}' );
 
 } );
 
@@ -60,7 +118,7 @@ test( 'only meshes marked for the scene are kept from the anatomy', async () => 
 		{ name: 'maxilla', url: '/a/maxilla.glb', scene: true, triangles: 3 },
 		{ name: 'maxilla_full', url: '/a/full.glb', scene: false, triangles: 9 },
 	] };
-	const anatomy = await getAnatomy( { fetchImpl: respond( 200, body ) } );
+	const anatomy = await getAnatomy( createApi( { fetchImpl: respond( 200, body ) } ) );
 	assert.deepEqual( anatomy.meshes.map( ( mesh ) => mesh.name ), [ 'maxilla' ] );
 	assert.deepEqual( anatomy.frame, { units: 'mm' } );
 

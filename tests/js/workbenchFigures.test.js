@@ -7,12 +7,12 @@ import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-import { parseCollisionTables } from '../../web/src/core/tables.js';
+import { decodeCollisionTables } from '../../web/src/core/tables.js';
 import { VOXEL_BORDER, VOXEL_NOT_OK, VOXEL_OK } from '../../web/src/core/constants.js';
 import { LINER_LIFT_MM, LinerWireframe, linerSegments } from '../../web/src/scene/LinerWireframe.js';
 import { voxelCentres, VoxelDots } from '../../web/src/scene/VoxelDots.js';
 
-const TABLES = parseCollisionTables( readFileSync( join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors', 'collision-tables.bin' ) ) );
+const TABLES = decodeCollisionTables( readFileSync( join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors', 'collision-tables.bin' ) ) );
 
 /** Longitude, latitude and radius about O of a point, in the liner's angle convention. */
 function spherical( x, y, z ) {

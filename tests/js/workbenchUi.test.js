@@ -3,7 +3,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { describeDetail, savePose } from '../../web/src/ui/PoseBox.js';
+import { ApiError, createApi } from '../../web/src/api.js';
+import { savePose } from '../../web/src/ui/PoseBox.js';
 import { formatValue, humanise, shortLabel, sliderStep } from '../../web/src/ui/ParameterPanel.js';
 
 /** A fetch that records its requests and answers with `status` and `body`. */
@@ -17,14 +18,14 @@ function fakeFetch( status, body ) {
 
 	};
 
-	return { fetchImpl, requests };
+	return { api: createApi( { fetchImpl } ), requests };
 
 }
 
 test( 'saving a pose posts its trimmed name and every parameter to /api/v1/poses', async () => {
 
-	const { fetchImpl, requests } = fakeFetch( 201, { id: 1, name: 'alveolar stop', params: { tip_height: 6 } } );
-	const pose = await savePose( '  alveolar stop ', { tip_height: 6, jaw_opening: 2 }, { fetchImpl } );
+	const { api, requests } = fakeFetch( 201, { id: 1, name: 'alveolar stop', params: { tip_height: 6 } } );
+	const pose = await savePose( '  alveolar stop ', { tip_height: 6, jaw_opening: 2 }, { api } );
 	assert.equal( pose.id, 1 );
 	assert.equal( requests.length, 1 );
 	assert.equal( requests[ 0 ].url, '/api/v1/poses' );
@@ -36,25 +37,24 @@ test( 'saving a pose posts its trimmed name and every parameter to /api/v1/poses
 
 test( 'a duplicate pose name is explained with the name', async () => {
 
-	const { fetchImpl } = fakeFetch( 409, { detail: "field name: a pose named 'ah' already exists" } );
-	await assert.rejects( savePose( 'ah', {}, { fetchImpl } ), { message: 'A pose named "ah" already exists. Choose another name.' } );
+	const { api } = fakeFetch( 409, { detail: "field name: a pose named 'ah' already exists" } );
+	await assert.rejects( savePose( 'ah', {}, { api } ), ( error ) => error instanceof ApiError && error.status === 409 &&
+		error.message === 'A pose named "ah" already exists. Choose another name.' );
 
 } );
 
 test( 'a refused value shows where and what, from the validation details', async () => {
 
 	const detail = [ { loc: [ 'body', 'params', 'tip_height' ], msg: 'Input should be a finite number', type: 'finite_number' } ];
-	const { fetchImpl } = fakeFetch( 422, { detail } );
-	await assert.rejects( savePose( 'x', { tip_height: 1 }, { fetchImpl } ), { message: 'The pose was not saved (HTTP 422): params.tip_height: Input should be a finite number' } );
-	assert.equal( describeDetail( 'plain words' ), 'plain words' );
-	assert.equal( describeDetail( undefined ), '' );
+	const { api } = fakeFetch( 422, { detail } );
+	await assert.rejects( savePose( 'x', { tip_height: 1 }, { api } ), { message: 'POST /api/v1/poses failed with HTTP 422: params.tip_height: Input should be a finite number' } );
 
 } );
 
 test( 'a pose without a name is refused before anything is sent', async () => {
 
-	const { fetchImpl, requests } = fakeFetch( 201, {} );
-	await assert.rejects( savePose( '   ', {}, { fetchImpl } ), { message: 'Give the pose a name first.' } );
+	const { api, requests } = fakeFetch( 201, {} );
+	await assert.rejects( savePose( '   ', {}, { api } ), { message: 'Give the pose a name first.' } );
 	assert.equal( requests.length, 0 );
 
 } );
@@ -67,7 +67,7 @@ test( 'an unreachable server is said so', async () => {
 
 	};
 
-	await assert.rejects( savePose( 'a', {}, { fetchImpl } ), { message: 'Could not reach the server to save the pose: Failed to fetch' } );
+	await assert.rejects( savePose( 'a', {}, { api: createApi( { fetchImpl } ) } ), { message: 'Could not reach the server for POST /api/v1/poses: Failed to fetch' } );
 
 } );
 

@@ -1,66 +1,156 @@
-// Fetch helpers for the Glasshead HTTP API (`/api/v1`). Every failure becomes an ApiError whose
-// message names the request and what went wrong, so the page can show it as it is.
+// The one HTTP client of the web app, for the Glasshead API (`/api/v1`). Every view loads through
+// it; scene objects and core kernels never fetch. Every failure is an ApiError whose message names
+// the method, the URL, the HTTP status and the server's `detail`, so the page can show it as it is.
+//
+//   import { api } from '../api.js';
+//   const anatomy = await api.get( 'anatomy' );                  // GET /api/v1/anatomy
+//   await api.post( 'poses', { name, params } );                 // POST /api/v1/poses
+//   const bytes = await api.getBinary( info.url );               // an asset URL from an answer
+//
+// Paths resolve as links do against the API base `/api/v1/`: 'anatomy' is /api/v1/anatomy, while
+// a path from the site root ('/assets/build/maxilla.glb', as answers give them) or a full URL is
+// used as it is. Tests make their own client with createApi( { fetchImpl } ).
 
+/** Where the API lives. */
 export const API_BASE = '/api/v1';
 
+/** A request that failed: no answer, an HTTP error, or an answer that is not what was asked for. */
 export class ApiError extends Error {
 
-	constructor( message, { url = null, status = null } = {} ) {
+	/**
+	 * @param {string} message says what failed, naming the request
+	 * @param {{ method?: string, url?: string|null, status?: number|null, detail?: any, cause?: any }} fields
+	 *   `status` is null when no answer came; `detail` is the server's error detail as it sent it
+	 */
+	constructor( message, { method = 'GET', url = null, status = null, detail = null, cause } = {} ) {
 
-		super( message );
+		super( message, cause === undefined ? undefined : { cause } );
 		this.name = 'ApiError';
+		this.method = method;
 		this.url = url;
 		this.status = status;
+		this.detail = detail;
 
 	}
 
 }
 
-/** GET `path` under the API base and parse JSON; rejects with an ApiError. */
-export async function fetchJson( path, { fetchImpl = globalThis.fetch, signal } = {} ) {
+/**
+ * The server's error detail as one line: a string as it is, FastAPI's validation errors as
+ * "where: what", an object by its message when it has one.
+ */
+export function describeDetail( detail ) {
 
-	const url = path.startsWith( '/' ) && ! path.startsWith( API_BASE ) ? API_BASE + path : path;
-	let response;
-	try {
+	if ( typeof detail === 'string' ) return detail;
+	if ( Array.isArray( detail ) ) {
 
-		response = await fetchImpl( url, { signal, headers: { Accept: 'application/json' } } );
+		return detail.map( ( entry ) => {
 
-	} catch ( error ) {
+			const where = Array.isArray( entry?.loc ) ? entry.loc.filter( ( part ) => part !== 'body' ).join( '.' ) : '';
+			return where ? `${ where }: ${ entry?.msg }` : String( entry?.msg ?? JSON.stringify( entry ) );
 
-		if ( error?.name === 'AbortError' ) throw error;
-		throw new ApiError( `Could not reach the server for ${ url }: ${ error.message }`, { url } );
+		} ).join( '; ' );
 
 	}
 
-	if ( ! response.ok ) {
+	if ( detail === undefined || detail === null ) return '';
+	if ( typeof detail.message === 'string' ) return detail.message;
+	return JSON.stringify( detail );
 
-		let detail;
-		try {
+}
 
-			const body = await response.json();
-			detail = typeof body?.detail === 'string' ? body.detail : JSON.stringify( body?.detail ?? body );
+/** The URL of `path` against `base`: relative paths go under it; '/…' and full URLs stay. */
+export function resolveUrl( path, base = API_BASE ) {
 
-		} catch {
+	if ( typeof path !== 'string' || path === '' ) throw new TypeError( `a request needs a path, got ${ path }` );
+	if ( path.startsWith( '/' ) || /^[a-z][a-z0-9+.-]*:/i.test( path ) ) return path;
+	return `${ base }/${ path }`;
 
-			detail = response.statusText;
+}
+
+/**
+ * A client of the API.
+ * @param {{ base?: string, fetchImpl?: Function }} options `fetchImpl` stands in for the browser's
+ *   fetch (tests); the default is the global fetch at the time of each request
+ * @returns {{ base: string, url: Function, get: Function, post: Function, put: Function,
+ *   patch: Function, delete: Function, getBinary: Function }} every method returns a Promise and
+ *   takes a last `{ signal }` option; get/post/put/patch/delete resolve to the parsed JSON answer
+ *   (null for an empty one), getBinary to an ArrayBuffer
+ */
+export function createApi( { base = API_BASE, fetchImpl = null } = {} ) {
+
+	async function request( method, path, { body, binary = false, signal } = {} ) {
+
+		const url = resolveUrl( path, base );
+		const headers = { Accept: binary ? '*/*' : 'application/json' };
+		const init = { method, headers, signal };
+		if ( body !== undefined ) {
+
+			headers[ 'Content-Type' ] = 'application/json';
+			init.body = JSON.stringify( body );
 
 		}
 
-		throw new ApiError( `GET ${ url } failed with HTTP ${ response.status }${ detail ? `: ${ detail }` : '' }`, { url, status: response.status } );
+		const fetch = fetchImpl ?? globalThis.fetch;
+		let response;
+		try {
+
+			response = await fetch( url, init );
+
+		} catch ( error ) {
+
+			if ( error?.name === 'AbortError' ) throw error;
+			throw new ApiError( `Could not reach the server for ${ method } ${ url }: ${ error?.message ?? error }`, { method, url, cause: error } );
+
+		}
+
+		const { status } = response;
+		if ( ! response.ok ) {
+
+			let detail = null;
+			try {
+
+				detail = ( await response.json() )?.detail ?? null;
+
+			} catch {
+				// Not JSON (a proxy's page, a crash): the status text says what there is to say.
+			}
+
+			const said = describeDetail( detail ) || response.statusText || '';
+			throw new ApiError( `${ method } ${ url } failed with HTTP ${ status }${ said ? `: ${ said }` : '' }`, { method, url, status, detail } );
+
+		}
+
+		if ( binary ) return response.arrayBuffer();
+		if ( status === 204 ) return null;
+		try {
+
+			return await response.json();
+
+		} catch ( error ) {
+
+			throw new ApiError( `${ method } ${ url } returned invalid JSON: ${ error.message }`, { method, url, status, cause: error } );
+
+		}
 
 	}
 
-	try {
-
-		return await response.json();
-
-	} catch ( error ) {
-
-		throw new ApiError( `GET ${ url } returned invalid JSON: ${ error.message }`, { url, status: response.status } );
-
-	}
+	return Object.freeze( {
+		base,
+		/** The URL a path is requested at. */
+		url: ( path ) => resolveUrl( path, base ),
+		get: ( path, options ) => request( 'GET', path, options ),
+		post: ( path, body, options ) => request( 'POST', path, { ...options, body } ),
+		put: ( path, body, options ) => request( 'PUT', path, { ...options, body } ),
+		patch: ( path, body, options ) => request( 'PATCH', path, { ...options, body } ),
+		delete: ( path, options ) => request( 'DELETE', path, options ),
+		getBinary: ( path, options ) => request( 'GET', path, { ...options, binary: true } ),
+	} );
 
 }
+
+/** The page's client. */
+export const api = createApi();
 
 /**
  * Check the shape of a `GET /anatomy` answer and return the meshes to put in the scene.
@@ -92,8 +182,8 @@ export function parseAnatomy( body ) {
 }
 
 /** GET /anatomy, checked. */
-export async function getAnatomy( options ) {
+export async function getAnatomy( client = api ) {
 
-	return parseAnatomy( await fetchJson( '/anatomy', options ) );
+	return parseAnatomy( await client.get( 'anatomy' ) );
 
 }

@@ -80,7 +80,7 @@ function firstHit( tables, cell ) {
  *
  * positions: Float32Array (or Float64Array) of 3 * count coordinates, project frame (mm); vertices
  *   inside the palate or teeth are moved onto the surface, the others are left untouched.
- * tables: the result of parseCollisionTables.
+ * tables: the result of decodeCollisionTables.
  * flags: Uint8Array (count) written with FLAG_SCREENED / FLAG_TESTED / FLAG_CORRECTED, or null.
  * stats: Int32Array (3) or null, written with screened, tested and corrected counts.
  * Returns the number of corrected vertices. Allocates nothing.

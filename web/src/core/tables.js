@@ -74,8 +74,8 @@ function toBytes( data ) {
 
 }
 
-/** The JSON header, after checking the magic bytes and the format version. */
-export function readCollisionHeader( data ) {
+/** The JSON header, after checking the magic bytes and the format version (decode_collision_header). */
+export function decodeCollisionHeader( data ) {
 
 	const bytes = toBytes( data );
 	const magic = new TextDecoder().decode( bytes.subarray( 0, 8 ) );
@@ -120,13 +120,13 @@ export function readCollisionHeader( data ) {
 }
 
 /**
- * Parse and check a collision tables file.
+ * Decode and check a collision tables file (twin of collision_format.decode_collision_tables).
  * data: ArrayBuffer or typed array of the whole file. Returns the tables: the header, typed array
  * views on the payload (no copies) and the numbers the kernel needs, ready for correctVertices.
  */
-export function parseCollisionTables( data ) {
+export function decodeCollisionTables( data ) {
 
-	const { header, bytes, payloadStart } = readCollisionHeader( data );
+	const { header, bytes, payloadStart } = decodeCollisionHeader( data );
 	const payload = bytes.subarray( payloadStart );
 	if ( payload.length !== header.payload_bytes ) {
 
@@ -220,24 +220,20 @@ export function parseCollisionTables( data ) {
 }
 
 /**
- * Fetch and parse the collision tables from the API: GET {apiBase}/collision/tables gives the
- * header and the URL of the binary. A server whose tables have another format version is refused
- * before the binary is downloaded. fetchImpl is injectable for tests.
+ * Check the answer of GET /collision/tables ({ format_version, url, ... }) before its binary is
+ * downloaded: a server whose tables have another format version is refused here. Returns the
+ * answer.
  */
-export async function fetchCollisionTables( apiBase = '/api/v1', fetchImpl = globalThis.fetch ) {
+export function checkCollisionTablesInfo( info ) {
 
-	const response = await fetchImpl( `${ apiBase }/collision/tables` );
-	if ( ! response.ok ) throw new CollisionTablesError( `GET ${ apiBase }/collision/tables answered ${ response.status }` );
-	const info = await response.json();
-	if ( info.format_version !== COLLISION_TABLES_FORMAT_VERSION ) {
+	if ( info?.format_version !== COLLISION_TABLES_FORMAT_VERSION ) {
 
-		throw new CollisionTablesError( `the server offers collision tables format version ${ info.format_version }; ` +
+		throw new CollisionTablesError( `the server offers collision tables format version ${ info?.format_version }; ` +
 			`this client understands version ${ COLLISION_TABLES_FORMAT_VERSION }` );
 
 	}
 
-	const binary = await fetchImpl( info.url );
-	if ( ! binary.ok ) throw new CollisionTablesError( `GET ${ info.url } answered ${ binary.status }` );
-	return parseCollisionTables( await binary.arrayBuffer() );
+	if ( typeof info.url !== 'string' ) throw new CollisionTablesError( 'the collision tables answer has no url' );
+	return info;
 
 }

@@ -16,9 +16,7 @@ import { BufferAttribute, BufferGeometry, Matrix4 } from 'three';
 import { jawPose, POSE_LENGTH } from '../core/jaw.js';
 import { meshVolume, TongueRig, vertexNormals } from '../core/tongue.js';
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../core/collision.js';
-import { fetchCollisionTables } from '../core/tables.js';
 import { ParamState } from '../core/paramState.js';
-import { fetchJson } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { FacePose, lipGap, midlineLips } from './FacePose.js';
 
@@ -329,32 +327,29 @@ export function parameterDefinitions( rigDefinition, faceRigDefinition = null ) 
 }
 
 /**
- * Load the tongue rig, the collision tables and the face rig from the API and put a parametric,
- * collision corrected tongue into `head`, with the face following the jaw and the lip
- * parameters, driven from `viewer`'s loop. Tables or a face rig that cannot be had leave the
- * tongue uncorrected (collision.enabled false) or the lower lip riding rigidly on the jaw, with
- * `tablesError` or `faceRigError` saying why. Returns the Articulation, its debug fields registered.
+ * Put a parametric, collision corrected tongue into `head`, with the face following the jaw and
+ * the lip parameters, driven from `viewer`'s loop (none: updates are the caller's). The data are
+ * what the views load (ui/loaders.js loadArticulationData): the tongue rig definition, the decoded
+ * collision tables and the face rig definition. Tables or a face rig that could not be had (null)
+ * leave the tongue uncorrected (collision.enabled false) or the lower lip riding rigidly on the
+ * jaw, with `tablesError` or `faceRigError` saying why. Returns the Articulation, its debug
+ * fields registered.
+ * @param {{ definition: object, tables?: object|null, tablesError?: string|null,
+ *   face?: object|null, faceRigError?: string|null }} data
  */
-export async function loadArticulation( head, viewer, { fetchImpl = globalThis.fetch } = {} ) {
+export function createArticulation( head, viewer, { definition, tables = null, tablesError = null, face = null, faceRigError = null } ) {
 
-	const [ definition, tables, face ] = await Promise.all( [
-		fetchJson( '/tongue/rig', { fetchImpl } ),
-		fetchCollisionTables( '/api/v1', fetchImpl ).catch( ( error ) => error ),
-		fetchJson( '/face/rig', { fetchImpl } ).catch( ( error ) => error ),
-	] );
 	const rig = new TongueRig( definition );
-	const faceDefinition = face instanceof Error ? null : face;
-	const state = new ParamState( parameterDefinitions( definition, faceDefinition ) );
-	const tablesError = tables instanceof Error ? tables.message : null;
-	const articulation = new Articulation( rig, state, { tables: tablesError ? null : tables } );
+	const state = new ParamState( parameterDefinitions( definition, face ) );
+	const articulation = new Articulation( rig, state, { tables } );
 	articulation.tablesError = tablesError;
-	articulation.faceRigError = face instanceof Error ? face.message : null;
+	articulation.faceRigError = faceRigError;
 	articulation.attach( head );
-	if ( faceDefinition ) {
+	if ( face ) {
 
 		try {
 
-			articulation.setFaceRig( new FacePose( faceDefinition, head, state ) );
+			articulation.setFaceRig( new FacePose( face, head, state ) );
 			articulation.update( true );
 
 		} catch ( error ) {

@@ -5,24 +5,14 @@
 //   const epg = createEpgLive( { layout, tongueTriangles, vertexCount } );
 //   articulation.onCorrected( ( positions ) => epg.update( positions ) );
 //
-// `layout` is the layout file (GET /api/v1/epg/layout answers one grid of it; fetchEpgLayout
-// fetches both). Nothing is allocated per frame: the frames and indices are preallocated and the
-// listeners get the same arrays every time.
+// `layout` holds the grids of the layout file (GET /api/v1/epg/layout answers one grid of it; the
+// views load both with ui/loaders.js loadEpgLayout). Nothing is allocated per frame: the frames
+// and indices are preallocated and the listeners get the same arrays every time.
 
-import { fetchJson } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { EPG_ELECTRODES } from '../core/constants.js';
 import { contactRows, createContactModel, epgContacts } from '../core/epgContacts.js';
 import { epgIndices, INDEX_SLOTS, INDEX_STRIDE, SLOT_PERCENT } from '../core/epgIndices.js';
-
-/** Fetch the Reading and dense grids: { grids: { reading62, dense96 }, contact }. */
-export async function fetchEpgLayout( { fetchImpl = globalThis.fetch } = {} ) {
-
-	const [ reading62, dense96 ] = await Promise.all( [ 'reading62', 'dense96' ].map(
-		( grid ) => fetchJson( `/epg/layout?grid=${ grid }`, { fetchImpl } ) ) );
-	return { grids: { reading62, dense96 }, contact: reading62.contact, midline: reading62.midline };
-
-}
 
 /**
  * @param {{ layout: { grids: { reading62: object, dense96?: object } }, tongueTriangles: Uint32Array,

@@ -18,7 +18,7 @@ export const LINER_LIFT_MM = 0.3;
  * theta = lon0 + i step (0: superior, +90 deg: anterior), phi = lat0 + j step (+: the left);
  * direction ( cos phi sin theta, cos phi cos theta, sin phi ); node ( j, i ) at radius
  * nodeRadius[ j * ( nlon + 1 ) + i ] from O, less `lift`. Only segments whose two nodes were hit are kept.
- * @param {object} tables from parseCollisionTables()
+ * @param {object} tables from decodeCollisionTables()
  * @param {number} every draw every n-th line of each family
  * @param {number} lift mm toward O (so that the palate does not hide the lines drawn on it)
  */

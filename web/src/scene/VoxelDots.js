@@ -16,7 +16,7 @@ export const VOXEL_STYLES = Object.freeze( {
  * Centres of the voxels of one class (Float32Array, x y z each, project frame, mm).
  * Voxel ( ix, iy, iz ) is entry ( ix * ny + iy ) * nz + iz; its centre is
  * min + ( index + 0.5 ) / inv along each axis.
- * @param {object} tables from parseCollisionTables()
+ * @param {object} tables from decodeCollisionTables()
  * @param {number} voxelClass VOXEL_OK, VOXEL_BORDER or VOXEL_NOT_OK
  */
 export function voxelCentres( tables, voxelClass ) {

@@ -8,20 +8,22 @@
 
 import { registerDebug } from '../debug.js';
 import { Electrodes } from '../scene/Electrodes.js';
-import { createEpgLive, fetchEpgLayout } from '../scene/EpgLive.js';
+import { createEpgLive } from '../scene/EpgLive.js';
 import { h } from './Controls.js';
+import { loadEpgLayout } from './loaders.js';
 import { Palatogram } from './Palatogram.js';
 import './epg.css';
 
 /** Size of the live palatogram, CSS pixels. */
 const PANEL_SIZE = Object.freeze( { width: 170, height: 196 } );
 
-export async function attachHeadEpg( view, { fetchImpl = globalThis.fetch } = {} ) {
+/** @param {{ api?: object }} options the HTTP client the layout is loaded through */
+export async function attachHeadEpg( view, { api } = {} ) {
 
 	let layout;
 	try {
 
-		layout = await fetchEpgLayout( { fetchImpl } );
+		layout = await loadEpgLayout( { api } );
 
 	} catch ( error ) {
 

@@ -1,13 +1,12 @@
 // The head view (route `#/`): the 3D head with its control panel.
 
-import { getAnatomy } from '../api.js';
+import { api as pageApi, getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
-import { loadAnatomy } from '../scene/loadAnatomy.js';
-import { loadArticulation } from '../scene/Articulation.js';
 import { Vector3 } from 'three';
 import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { Controls, h } from './Controls.js';
 import { createHeadStage } from './headStage.js';
+import { loadAnatomy, loadArticulation } from './loaders.js';
 
 export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, view: 'three-quarter' } );
 
@@ -16,8 +15,10 @@ const FLIGHT_MS = 650;
 
 export class HeadView {
 
-	constructor() {
+	/** @param {{ api?: object }} options the HTTP client everything is loaded through */
+	constructor( { api = pageApi } = {} ) {
 
+		this.api = api;
 		this.state = { ...DEFAULT_STATE, loaded: false, error: null, meshes: [] };
 		this.unregister = [];
 
@@ -74,9 +75,10 @@ export class HeadView {
 		this.controls.showProgress( 0, 0 );
 		try {
 
-			const anatomy = await getAnatomy();
+			const anatomy = await getAnatomy( this.api );
 			this.controls.showStatus( `Loading meshes: 0 of ${ anatomy.meshes.length }` );
 			await loadAnatomy( this.head, anatomy.meshes, {
+				api: this.api,
 				onProgress: ( loaded, total ) => {
 
 					this.controls.showStatus( `Loading meshes: ${ loaded } of ${ total }` );
@@ -94,9 +96,9 @@ export class HeadView {
 
 		if ( ! this.viewer ) return; // unmounted while loading
 		this.state.meshes = this.head.meshInfo();
-		this.articulation = await loadArticulation( this.head, this.viewer ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
+		this.articulation = await loadArticulation( this.head, this.viewer, { api: this.api } ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
 		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
-		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this ); // electrodes on the palate, live palatogram
+		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } ); // electrodes on the palate, live palatogram
 		this.head.setTransparency( this.state.transparency );
 		this.head.setCutaway( this.state.cutaway );
 		this.fitViews();

@@ -2,56 +2,34 @@
 // explained inline and changes nothing), and save the parameters as a named pose
 // (POST /api/v1/poses).
 
-import { API_BASE } from '../api.js';
+import { api as pageApi, ApiError } from '../api.js';
 import { h } from './Controls.js';
 
 /**
- * Save `params` as the pose `name`. Resolves to the created pose; rejects with an Error whose
- * message can be shown as it is (a duplicate name, a refused value, an unreachable server).
+ * Save `params` as the pose `name` (POST /poses). Resolves to the created pose; rejects with an
+ * ApiError whose message can be shown as it is (a duplicate name, a refused value, an unreachable
+ * server), or an Error when there is no name.
  */
-export async function savePose( name, params, { fetchImpl = globalThis.fetch } = {} ) {
+export async function savePose( name, params, { api = pageApi } = {} ) {
 
 	const trimmed = ( name ?? '' ).trim();
 	if ( trimmed === '' ) throw new Error( 'Give the pose a name first.' );
-	let response;
 	try {
 
-		response = await fetchImpl( `${ API_BASE }/poses`, {
-			method: 'POST',
-			headers: { 'Content-Type': 'application/json', Accept: 'application/json' },
-			body: JSON.stringify( { name: trimmed, params } ),
-		} );
+		return await api.post( 'poses', { name: trimmed, params } );
 
 	} catch ( error ) {
 
-		throw new Error( `Could not reach the server to save the pose: ${ error.message }`, { cause: error } );
+		if ( error instanceof ApiError && error.status === 409 ) {
+
+			const { method, url, status, detail } = error;
+			throw new ApiError( `A pose named "${ trimmed }" already exists. Choose another name.`, { method, url, status, detail, cause: error } );
+
+		}
+
+		throw error;
 
 	}
-
-	const body = await response.json().catch( () => null );
-
-	if ( response.status === 409 ) throw new Error( `A pose named "${ trimmed }" already exists. Choose another name.` );
-	if ( ! response.ok ) throw new Error( `The pose was not saved (HTTP ${ response.status }): ${ describeDetail( body?.detail ) || response.statusText }` );
-	return body;
-
-}
-
-/** FastAPI's error detail as one line: a string as it is, validation errors as "where: what". */
-export function describeDetail( detail ) {
-
-	if ( typeof detail === 'string' ) return detail;
-	if ( Array.isArray( detail ) ) {
-
-		return detail.map( ( entry ) => {
-
-			const where = Array.isArray( entry?.loc ) ? entry.loc.filter( ( part ) => part !== 'body' ).join( '.' ) : '';
-			return where ? `${ where }: ${ entry?.msg }` : String( entry?.msg ?? JSON.stringify( entry ) );
-
-		} ).join( '; ' );
-
-	}
-
-	return detail === undefined || detail === null ? '' : JSON.stringify( detail );
 
 }
 
@@ -59,12 +37,13 @@ export class PoseBox {
 
 	/**
 	 * @param {import('../core/paramState.js').ParamState} state
-	 * @param {{ fetchImpl?: Function, clipboard?: { writeText( text: string ): Promise<void> } | null }} options
+	 * @param {{ api?: object, clipboard?: { writeText( text: string ): Promise<void> } | null }} options
+	 *   `api`: the HTTP client poses are saved through
 	 */
-	constructor( state, { fetchImpl = globalThis.fetch, clipboard = globalThis.navigator?.clipboard ?? null } = {} ) {
+	constructor( state, { api = pageApi, clipboard = globalThis.navigator?.clipboard ?? null } = {} ) {
 
 		this.state = state;
-		this.fetchImpl = fetchImpl;
+		this.api = api;
 		this.clipboard = clipboard;
 		this.pasteError = null;
 		this.poseStatus = null;
@@ -143,7 +122,7 @@ export class PoseBox {
 		this.showSave( null, null );
 		try {
 
-			const pose = await savePose( this.name.value, this.state.toObject(), { fetchImpl: this.fetchImpl } );
+			const pose = await savePose( this.name.value, this.state.toObject(), { api: this.api } );
 			this.showSave( `Saved the pose "${ pose.name }".`, null );
 
 		} catch ( error ) {

@@ -3,17 +3,15 @@
 // contacted squares (Cohen, Beskow and Massaro 1998, Figures 7 and 8). The camera looks up at the
 // palate from below and in front, where a clinician pictures an EPG plate.
 
-import { getAnatomy } from '../api.js';
+import { api as pageApi, getAnatomy } from '../api.js';
 import { Electrodes } from '../scene/Electrodes.js';
 import { createEpgLive } from '../scene/EpgLive.js';
 import { Head } from '../scene/Head.js';
-import { loadAnatomy } from '../scene/loadAnatomy.js';
 import { Articulation, parameterDefinitions, TONGUE_PART } from '../scene/Articulation.js';
 import { Viewer } from '../scene/Viewer.js';
-import { fetchJson } from '../api.js';
-import { fetchCollisionTables } from '../core/tables.js';
 import { ParamState } from '../core/paramState.js';
 import { TongueRig } from '../core/tongue.js';
+import { loadAnatomy, loadCollisionTables } from './loaders.js';
 
 /** Meshes this view needs: the palate and the tongue (the jaw would hide the palate). */
 const PARTS = Object.freeze( [ 'maxilla', TONGUE_PART ] );
@@ -27,9 +25,13 @@ const CAMERA = Object.freeze( { target: [ - 3, 17, 0 ], position: [ - 30, - 96, 
 
 export class TargetPalate3D {
 
-	/** container: the element the canvas fills. Throws when WebGL2 is missing. */
-	constructor( container ) {
+	/**
+	 * container: the element the canvas fills. Throws when WebGL2 is missing.
+	 * @param {{ api?: object }} options the HTTP client everything is loaded through
+	 */
+	constructor( container, { api = pageApi } = {} ) {
 
+		this.api = api;
 		this.viewer = new Viewer( container, { fov: 32 } );
 		this.viewer.controls.minDistance = 30;
 		this.head = new Head();
@@ -44,13 +46,13 @@ export class TargetPalate3D {
 	async load() {
 
 		const [ anatomy, layout, definition, tables ] = await Promise.all( [
-			getAnatomy(),
-			fetchJson( '/epg/layout?grid=reading62' ),
-			fetchJson( '/tongue/rig' ),
-			fetchCollisionTables( '/api/v1' ),
+			getAnatomy( this.api ),
+			this.api.get( 'epg/layout?grid=reading62' ),
+			this.api.get( 'tongue/rig' ),
+			loadCollisionTables( { api: this.api } ),
 		] );
 		const meshes = anatomy.meshes.filter( ( m ) => PARTS.includes( m.name ) );
-		await loadAnatomy( this.head, meshes );
+		await loadAnatomy( this.head, meshes, { api: this.api } );
 		if ( ! this.viewer ) return this;
 		const rig = new TongueRig( definition );
 		this.state = new ParamState( parameterDefinitions( definition ) );

@@ -5,11 +5,9 @@
 // and saving them as a named pose.
 
 import { Box3, BufferAttribute, BufferGeometry, Points, PointsMaterial } from 'three';
-import { getAnatomy } from '../api.js';
+import { api as pageApi, getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { FLAG_CORRECTED } from '../core/constants.js';
-import { loadAnatomy } from '../scene/loadAnatomy.js';
-import { loadArticulation } from '../scene/Articulation.js';
 import { LinerWireframe } from '../scene/LinerWireframe.js';
 import { VoxelDots } from '../scene/VoxelDots.js';
 import { fitDistance, VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
@@ -20,6 +18,7 @@ import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from '
 import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, sectionStations } from './SectionsPanel.js';
 import './workbench.css';
 import { createHeadStage } from './headStage.js';
+import { loadAnatomy, loadArticulation } from './loaders.js';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
 const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
@@ -39,8 +38,10 @@ export const WORKBENCH_DEFAULTS = Object.freeze( { skin: false, jaw: true, palat
 
 export class WorkbenchView {
 
-	constructor() {
+	/** @param {{ api?: object }} options the HTTP client everything is loaded and saved through */
+	constructor( { api = pageApi } = {} ) {
 
+		this.api = api;
 		this.state = { ...WORKBENCH_DEFAULTS, loaded: false, error: null };
 		this.unregister = [];
 
@@ -90,13 +91,14 @@ export class WorkbenchView {
 
 		try {
 
-			const anatomy = await getAnatomy();
+			const anatomy = await getAnatomy( this.api );
 			await loadAnatomy( this.head, anatomy.meshes, {
+				api: this.api,
 				onProgress: ( loaded, total ) => this.showStatus( `Loading meshes: ${ loaded } of ${ total }` ),
 			} );
 			if ( ! this.viewer ) return;
 			this.showStatus( 'Loading the tongue rig and the collision tables…' );
-			this.articulation = await loadArticulation( this.head, this.viewer );
+			this.articulation = await loadArticulation( this.head, this.viewer, { api: this.api } );
 
 		} catch ( error ) {
 
@@ -175,7 +177,7 @@ export class WorkbenchView {
 		// Changes are drawn in the next frame (whose hook recomputes); until then a render is pending.
 		this.unregister.push( state.onChange( () => this.viewer.requestRender() ) );
 		this.left.append( this.parameters.element );
-		this.poseBox = new PoseBox( state );
+		this.poseBox = new PoseBox( state, { api: this.api } );
 
 		const canvas = ( [ width, height ], label ) => {
 

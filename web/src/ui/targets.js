@@ -13,69 +13,31 @@
 // Targets are named `${kind}:${id}` in the view's URL (#/clinician?target=pose:3), so a new
 // source needs no change to the view: add an object with these members to TARGET_SOURCES.
 
-import { API_BASE, ApiError, fetchJson } from '../api.js';
-
-/** POST JSON under the API base and parse the answer; rejects with an ApiError naming the request. */
-export async function postJson( path, body, { fetchImpl = globalThis.fetch } = {} ) {
-
-	const url = path.startsWith( API_BASE ) ? path : API_BASE + path;
-	let response;
-	try {
-
-		response = await fetchImpl( url, { method: 'POST', headers: { 'Content-Type': 'application/json', Accept: 'application/json' }, body: JSON.stringify( body ) } );
-
-	} catch ( error ) {
-
-		throw new ApiError( `Could not reach the server for ${ url }: ${ error.message }`, { url } );
-
-	}
-
-	const text = await response.text();
-	let parsed;
-	try {
-
-		parsed = text ? JSON.parse( text ) : null;
-
-	} catch {
-
-		parsed = null;
-
-	}
-
-	if ( ! response.ok ) {
-
-		const detail = typeof parsed?.detail === 'string' ? parsed.detail : text.slice( 0, 300 );
-		throw new ApiError( `POST ${ url } failed with HTTP ${ response.status }: ${ detail }`, { url, status: response.status } );
-
-	}
-
-	if ( parsed === null ) throw new ApiError( `POST ${ url } returned no JSON`, { url, status: response.status } );
-	return parsed;
-
-}
+import { api as pageApi } from '../api.js';
 
 /** Saved poses (GET /poses): each is one static frame, its synthetic EPG from POST /epg/contacts. */
 export class SavedPoseTargets {
 
-	constructor( { fetchImpl = globalThis.fetch } = {} ) {
+	/** @param {{ api?: object }} options the HTTP client the poses are read through */
+	constructor( { api = pageApi } = {} ) {
 
 		this.kind = 'pose';
 		this.title = 'Saved poses';
-		this.fetchImpl = fetchImpl;
+		this.api = api;
 
 	}
 
 	async list() {
 
-		const body = await fetchJson( '/poses?limit=1000', { fetchImpl: this.fetchImpl } );
+		const body = await this.api.get( 'poses?limit=1000' );
 		return body.poses.map( ( pose ) => ( { id: String( pose.id ), label: pose.name, description: pose.description ?? '' } ) );
 
 	}
 
 	async frames( id ) {
 
-		const pose = await fetchJson( `/poses/${ encodeURIComponent( id ) }`, { fetchImpl: this.fetchImpl } );
-		const epg = await postJson( '/epg/contacts', { params: pose.params }, { fetchImpl: this.fetchImpl } );
+		const pose = await this.api.get( `poses/${ encodeURIComponent( id ) }` );
+		const epg = await this.api.post( 'epg/contacts', { params: pose.params } );
 		return {
 			label: pose.name,
 			rows: [ epg.rows ],

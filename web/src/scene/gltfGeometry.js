@@ -1,21 +1,8 @@
-// Load the anatomy GLBs listed by GET /anatomy into a Head.
+// Geometry from a parsed glTF: what the anatomy GLBs (GET /anatomy) become in the Head. The
+// files are fetched by the views (ui/loaders.js); nothing here fetches.
 
 import { BufferAttribute } from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
-
-export class MeshLoadError extends Error {
-
-	constructor( entry, cause ) {
-
-		super( `Could not load the mesh "${ entry.name }" from ${ entry.url }: ${ cause?.message ?? cause }` );
-		this.name = 'MeshLoadError';
-		this.mesh = entry.name;
-		this.cause = cause;
-
-	}
-
-}
 
 /**
  * A plain Float32 copy of a vec3 attribute that may be interleaved or quantised, so that kernels
@@ -72,38 +59,5 @@ export function geometryFromGltf( gltf ) {
 	const merged = mergeGeometries( geometries.map( ( g ) => ( g.index ? g : g.toNonIndexed() ) ) );
 	if ( ! merged ) throw new Error( 'its meshes have different attributes and cannot be merged' );
 	return merged;
-
-}
-
-/**
- * Load every entry ({ name, url, role }) and add it to `head` in the listed order.
- * onProgress( loaded, total, name ) is called as each file arrives. Rejects with a MeshLoadError
- * naming the first mesh that failed.
- */
-export async function loadAnatomy( head, entries, { onProgress = () => {}, loader = new GLTFLoader() } = {} ) {
-
-	let loaded = 0;
-	const geometries = await Promise.all( entries.map( async ( entry ) => {
-
-		let geometry;
-		try {
-
-			geometry = geometryFromGltf( await loader.loadAsync( entry.url ) );
-
-		} catch ( error ) {
-
-			throw new MeshLoadError( entry, error );
-
-		}
-
-		loaded ++;
-		onProgress( loaded, entries.length, entry.name );
-		return geometry;
-
-	} ) );
-
-	entries.forEach( ( entry, i ) => head.addPart( entry, geometries[ i ] ) );
-	head.finishLoading();
-	return head;
 
 }

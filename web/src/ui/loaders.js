@@ -1,0 +1,112 @@
+// What the views load from the API, all through the one HTTP client (api.js): the anatomy meshes,
+// the tongue rig with the collision tables and the face rig, and the electrode layouts. Scene
+// objects are handed what these return and fetch nothing themselves. Every function takes the
+// client as `api` (tests pass one made by createApi( { fetchImpl } )).
+
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { api as pageApi } from '../api.js';
+import { EPG_GRIDS } from '../core/constants.js';
+import { checkCollisionTablesInfo, decodeCollisionTables } from '../core/tables.js';
+import { createArticulation } from '../scene/Articulation.js';
+import { geometryFromGltf } from '../scene/gltfGeometry.js';
+
+/** A mesh of GET /anatomy that could not be loaded; names it and says why. */
+export class MeshLoadError extends Error {
+
+	constructor( entry, cause ) {
+
+		super( `Could not load the mesh "${ entry.name }" from ${ entry.url }: ${ cause?.message ?? cause }`, { cause } );
+		this.name = 'MeshLoadError';
+		this.mesh = entry.name;
+
+	}
+
+}
+
+/**
+ * Load every entry ({ name, url, role } of GET /anatomy) and add it to `head` in the listed order.
+ * onProgress( loaded, total, name ) is called as each file arrives. Rejects with a MeshLoadError
+ * naming the first mesh that failed.
+ */
+export async function loadAnatomy( head, entries, { api = pageApi, onProgress = () => {}, loader = new GLTFLoader() } = {} ) {
+
+	let loaded = 0;
+	const geometries = await Promise.all( entries.map( async ( entry ) => {
+
+		let geometry;
+		try {
+
+			geometry = geometryFromGltf( await loader.parseAsync( await api.getBinary( entry.url ), '' ) );
+
+		} catch ( error ) {
+
+			throw new MeshLoadError( entry, error );
+
+		}
+
+		loaded ++;
+		onProgress( loaded, entries.length, entry.name );
+		return geometry;
+
+	} ) );
+
+	entries.forEach( ( entry, i ) => head.addPart( entry, geometries[ i ] ) );
+	head.finishLoading();
+	return head;
+
+}
+
+/**
+ * The collision tables, decoded: GET /collision/tables gives the header and the URL of the binary;
+ * a server whose tables have another format version is refused before the binary is downloaded.
+ */
+export async function loadCollisionTables( { api = pageApi } = {} ) {
+
+	const info = checkCollisionTablesInfo( await api.get( 'collision/tables' ) );
+	return decodeCollisionTables( await api.getBinary( info.url ) );
+
+}
+
+/**
+ * What scene/Articulation.js createArticulation() is handed: the tongue rig definition (rejects
+ * without it), the collision tables and the face rig definition, each null with its error message
+ * when it could not be had.
+ * @returns {Promise<{ definition: object, tables: object|null, tablesError: string|null,
+ *   face: object|null, faceRigError: string|null }>}
+ */
+export async function loadArticulationData( { api = pageApi } = {} ) {
+
+	const [ definition, tables, face ] = await Promise.all( [
+		api.get( 'tongue/rig' ),
+		loadCollisionTables( { api } ).catch( ( error ) => error ),
+		api.get( 'face/rig' ).catch( ( error ) => error ),
+	] );
+	return {
+		definition,
+		tables: tables instanceof Error ? null : tables,
+		tablesError: tables instanceof Error ? tables.message : null,
+		face: face instanceof Error ? null : face,
+		faceRigError: face instanceof Error ? face.message : null,
+	};
+
+}
+
+/** Load the articulation's data and put the parametric tongue and the face rig into `head`. */
+export async function loadArticulation( head, viewer, { api = pageApi } = {} ) {
+
+	return createArticulation( head, viewer, await loadArticulationData( { api } ) );
+
+}
+
+/**
+ * The electrode layouts of every grid: { grids: { reading62, dense96 }, contact, midline }.
+ * @param {{ api?: object, grids?: string[] }} options `grids` to load fewer
+ */
+export async function loadEpgLayout( { api = pageApi, grids = EPG_GRIDS } = {} ) {
+
+	const layouts = await Promise.all( grids.map( ( grid ) => api.get( `epg/layout?grid=${ encodeURIComponent( grid ) }` ) ) );
+	const byName = Object.fromEntries( grids.map( ( grid, k ) => [ grid, layouts[ k ] ] ) );
+	const first = layouts[ 0 ];
+	return { grids: byName, contact: first?.contact, midline: first?.midline };
+
+}
