@@ -144,7 +144,10 @@ def _emur_segment(segment) -> EpgSequence:
         if from_rows is not None and from_raw is not None and (from_rows != from_raw).any():
             raise EpgFormatError("rows and raw describe different contacts", field="raw",
                                  frame=i)
-        frames[i] = from_rows if from_rows is not None else from_raw
+        if from_rows is not None:
+            frames[i] = from_rows
+        elif from_raw is not None:
+            frames[i] = from_raw
     meta = {key: segment[key] for key in ("label", "word") if isinstance(segment.get(key), str)}
     if isinstance(segment.get("utt"), str):
         meta["utterance"] = segment["utt"]
@@ -156,7 +159,8 @@ def _emur_segment(segment) -> EpgSequence:
 
 
 def rows_to_frame(rows, frame: int) -> np.ndarray:
-    """8 strings of 8 '0'/'1' (R1 first) -> an (8, 8) uint8 frame; EpgFormatError names the fault."""
+    """8 strings of 8 '0'/'1' (R1 first) -> an (8, 8) uint8 frame; EpgFormatError names the
+    fault."""
     if not isinstance(rows, list) or len(rows) != 8:
         count = len(rows) if isinstance(rows, list) else "not a list"
         raise EpgFormatError(f"expected 8 rows of 8 contacts, got {count}", field="rows",
@@ -202,7 +206,7 @@ def write_emur_json(sequences: list[EpgSequence]) -> bytes:
     segments = []
     for seq in sequences:
         raw = frames_to_raw(seq.frames)
-        segment = {"name": seq.name}
+        segment: dict[str, object] = {"name": seq.name}
         for key, out in (("label", "label"), ("utterance", "utt"), ("word", "word")):
             if key in seq.meta:
                 segment[out] = seq.meta[key]
@@ -211,7 +215,7 @@ def write_emur_json(sequences: list[EpgSequence]) -> bytes:
                 segment[key.replace("_s", "_ms")] = _ms(seq.meta[key])
         segment["frames"] = [
             {"t_ms": _ms(t), "raw": [int(b) for b in raw[i]], "rows": rows_to_strings(frame)}
-            for i, (t, frame) in enumerate(zip(seq.t_s, seq.frames))
+            for i, (t, frame) in enumerate(zip(seq.t_s, seq.frames, strict=True))
         ]
         segments.append(segment)
     return json.dumps({"source": "Glasshead EPG export", "segments": segments}).encode()
@@ -230,7 +234,8 @@ def parse_csv(content: bytes) -> list[EpgSequence]:
     except UnicodeDecodeError as error:
         raise EpgFormatError(f"not UTF-8 text ({error.reason})", field="body") from None
     lines = text.splitlines()
-    meta, frame_rate, header_at = {}, None, None
+    meta: dict[str, str | float] = {}
+    frame_rate, header_at = None, None
     for number, line in enumerate(lines, start=1):
         stripped = line.strip()
         if not stripped or stripped == CSV_MAGIC:
@@ -249,7 +254,7 @@ def parse_csv(content: bytes) -> list[EpgSequence]:
     if len(header) != len(expected):
         raise EpgFormatError(f"line {header_at}: expected {len(expected)} columns (t_s and 62 "
                              f"electrodes), got {len(header)}", field="header")
-    for got, want in zip(header, expected):
+    for got, want in zip(header, expected, strict=True):
         if got.upper() != want.upper():
             raise EpgFormatError(f"line {header_at}: column {got!r} where {want!r} belongs",
                                  field="header")
@@ -269,7 +274,7 @@ def parse_csv(content: bytes) -> list[EpgSequence]:
         except ValueError:
             raise EpgFormatError(f"line {number}: {row[0]!r} is not a time in seconds",
                                  field="t_s", frame=i) from None
-        for name, cell, value in zip(CSV_ELECTRODES, _CSV_CELLS, row[1:]):
+        for name, cell, value in zip(CSV_ELECTRODES, _CSV_CELLS, row[1:], strict=True):
             value = value.strip()
             if value not in ("0", "1"):
                 raise EpgFormatError(f"line {number}: value {value!r} is not 0 or 1",
@@ -286,7 +291,7 @@ def parse_csv(content: bytes) -> list[EpgSequence]:
                 meta[key] = float(meta[key])
             except ValueError:
                 raise EpgFormatError(f"{meta[key]!r} is not a number", field=key) from None
-    name = meta.pop("name", "") or "CSV recording"
+    name = str(meta.pop("name", "") or "CSV recording")
     return [make_sequence(frames.reshape(-1, 8, 8), t_s, name, frame_rate, meta)]
 
 
@@ -301,7 +306,7 @@ def write_csv(seq: EpgSequence) -> bytes:
             out.write(f"# {_one_line(str(key).replace(':', '_'))}: {_one_line(value)}\n")
     out.write(",".join(["t_s", *CSV_ELECTRODES]) + "\n")
     flat = seq.frames.reshape(len(seq.frames), 64)[:, _CSV_CELLS]
-    for t, values in zip(seq.t_s, flat):
+    for t, values in zip(seq.t_s, flat, strict=True):
         out.write(f"{float(t)!r}," + ",".join("1" if v else "0" for v in values) + "\n")
     return out.getvalue().encode()
 

@@ -31,6 +31,7 @@ Rows, columns and ids follow the emuR frames: row 1 is the front, ids read ``R3C
 """
 
 import hashlib
+from typing import TypedDict
 
 import numpy as np
 
@@ -42,8 +43,18 @@ from glasshead.constants import (
 from glasshead.epg.dental import LAYOUT_TIP_BAND_MM, tooth_weights
 from glasshead.epg.palate_section import Section, crossing_arc, point_at
 
+
+class GridSpec(TypedDict):
+    """One electrode grid: rows x columns cells, row-major from R1; missing cells are empty."""
+
+    rows: int
+    columns: int
+    missing_cells: tuple[int, ...]
+    description: str
+
+
 #: The grids: rows, columns, and the flat cells (row * columns + column) left without an electrode.
-GRIDS = {
+GRIDS: dict[str, GridSpec] = {
     "reading62": {"rows": 8, "columns": 8, "missing_cells": (0, 7),
                   "description": "Reading 62-electrode palate: 8 rows, R1 has columns 2-7"},
     "dense96": {"rows": 12, "columns": 8, "missing_cells": (),
@@ -258,7 +269,10 @@ def build_layout(vertices, faces, grid=DEFAULT_GRID, line=None, teeth=None):
     line = midline(v, f, teeth) if line is None else line
     rows, columns = spec["rows"], spec["columns"]
     length = line["end_s"] - line["start_s"]
-    electrodes, positions, inside, rows_detail = [], [], [], []
+    electrodes: list[dict] = []
+    points: list[np.ndarray] = []
+    inside: list[np.ndarray] = []
+    rows_detail: list[dict] = []
     for r in range(rows):
         s = line["start_s"] + (r + 0.5) * length / rows
         point, tangent, into_mouth = _row_frame(line, s)
@@ -274,11 +288,11 @@ def build_layout(vertices, faces, grid=DEFAULT_GRID, line=None, teeth=None):
             position, _ = point_at(profile, arc, left_s + (c + 0.5) * width / columns)
             electrodes.append({"id": f"R{r + 1}C{c + 1}", "row": r + 1, "column": c + 1,
                                "cell": cell})
-            positions.append(position)
+            points.append(position)
             inside.append(point + INSIDE_DEPTH_MM * into_mouth)
-    positions = np.array(positions)
+    positions = np.array(points)
     normals = electrode_normals(v, f, positions, np.array(inside))
-    for e, p, n in zip(electrodes, positions, normals):
+    for e, p, n in zip(electrodes, positions, normals, strict=True):
         e["position"] = p.tolist()
         e["normal"] = n.tolist()
     return {"grid": grid, "description": spec["description"], "rows": rows, "columns": columns,

@@ -29,8 +29,9 @@ class Polyline:
 
     points (k, 3) float64 mm; edges (k, 2) int64 mesh vertex pairs the points lie on; weights
     (k,) float64, the point is ``(1 - w) * v[a] + w * v[b]``; triangles (k - 1,) int64, the mesh
-    triangle of each segment (-1 for a bridge across a seam, see BRIDGE_MM); closed: True when the curve is a loop (the last point joins the
-    first through ``triangles[-1]``, which then has k entries).
+    triangle of each segment (-1 for a bridge across a seam, see BRIDGE_MM); closed: True when
+    the curve is a loop (the last point joins the first through ``triangles[-1]``, which then has
+    k entries).
     """
 
     points: np.ndarray
@@ -107,7 +108,8 @@ class Section:
         inverse = node_of[edge_of.ravel()]
         self.links = inverse.reshape(2, -1).T  # (segments, 2) node ids
         self.link_triangles = crossing
-        self.neighbours = [[] for _ in range(len(self.node_points))]
+        # per node: (neighbouring node, segment) pairs
+        self.neighbours: list[list[tuple[int, int]]] = [[] for _ in range(len(self.node_points))]
         for s, (p, q) in enumerate(self.links):
             if p == q:  # a segment shorter than SEAM_MM joins nothing
                 continue
@@ -125,7 +127,7 @@ class Section:
         d[np.arange(len(ends)), np.arange(len(ends))] = np.inf
         pairs = np.argwhere(np.triu(d <= BRIDGE_MM, 1))
         pairs = pairs[np.argsort(d[pairs[:, 0], pairs[:, 1]])]
-        used = set()
+        used: set[int] = set()
         links, triangles = [self.links], [self.link_triangles]
         for i, j in pairs:
             a, b = int(ends[i]), int(ends[j])
@@ -162,7 +164,7 @@ class Section:
     def _walk(self, start, came_by, stop_at):
         """Nodes and segments from ``start`` onward, leaving by any segment but ``came_by``,
         until the curve ends or reaches ``stop_at`` (then it is a loop: True is returned)."""
-        nodes, segments = [start], []
+        nodes, segments = [start], list[int]()
         visited = {came_by}
         current = start
         while True:

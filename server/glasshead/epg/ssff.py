@@ -49,7 +49,8 @@ def parse_ssff(content: bytes) -> list[EpgSequence]:
     data_at = content.index(b"\n", end + 1) + 1 if b"\n" in content[end + 1:] else len(content)
     header = content[:end].decode("latin-1").splitlines()[1:]
     rate = start = None
-    columns, meta = [], {}
+    columns: list[tuple[str, str, int]] = []
+    meta: dict[str, str | float] = {}
     for line in header:
         fields = line.split()
         if not fields:
@@ -97,7 +98,7 @@ def parse_ssff(content: bytes) -> list[EpgSequence]:
         raise EpgFormatError("R1 has no electrode in columns 1 and 8; bits 0 and 7 of byte 8 "
                              "must be 0", field="epg[7]", frame=int(np.argmax(corners > 0)))
     t_s = start + np.arange(len(raw)) / rate
-    name = meta.pop("name", "") or "SSFF recording"
+    name = str(meta.pop("name", "") or "SSFF recording")
     return [make_sequence(raw_to_frames(raw), t_s, name, rate, meta)]
 
 

@@ -30,7 +30,8 @@ class SyntheticFrame:
 
 
 def corrected_tongue(rig, values, tables):
-    """The corrected tongue for parameter values (P,): ((n, 3) float64 of float32 values, counts)."""
+    """The corrected tongue for parameter values (P,): ((n, 3) float64 of float32 values,
+    counts)."""
     positions = rig.vertices(values).astype(np.float32).astype(np.float64)
     corrected, _flags, counts = correct_vertices(positions, tables)
     return corrected.astype(np.float32).astype(np.float64), counts

@@ -74,8 +74,8 @@ class Liner:
     rmax: np.ndarray
     offsets: np.ndarray
     cell_triangles: np.ndarray
-    normals: np.ndarray = None
-    plane_offsets: np.ndarray = None
+    normals: np.ndarray
+    plane_offsets: np.ndarray
 
 
 def plane_of_triangles(tri):
@@ -173,29 +173,30 @@ def build_liner(tri, step):
     kind[single[covers[offsets[single]]]] = CELL_PLANE
 
     shape = (grid.nlat, grid.nlon)
-    liner = Liner(grid=grid, node_radius=None, kind=kind.reshape(shape),
-                  rmin=rmin.reshape(shape), rmax=rmax.reshape(shape), offsets=offsets,
-                  cell_triangles=owner.astype(np.uint32), normals=normals,
-                  plane_offsets=offsets_c)
-    liner.node_radius = node_radii(liner, tri)
-    return liner
+    cell_triangles = owner.astype(np.uint32)
+    return Liner(grid=grid, node_radius=node_radii(grid, offsets, cell_triangles, tri),
+                 kind=kind.reshape(shape), rmin=rmin.reshape(shape), rmax=rmax.reshape(shape),
+                 offsets=offsets, cell_triangles=cell_triangles, normals=normals,
+                 plane_offsets=offsets_c)
 
 
-def node_radii(liner, tri):
+def node_radii(grid: LinerGrid, offsets: np.ndarray, cell_triangles: np.ndarray,
+               tri: np.ndarray) -> np.ndarray:
     """First-hit radius of the ray through every grid node (+inf on a miss): the paper's liner.
 
-    A node lies on the closed boundary of its neighbouring cells, so the triangle list of any one
-    of them holds every triangle its ray can hit first.
+    offsets, cell_triangles : the liner's CSR cell lists; tri : (m, 3, 3) triangles relative to O.
+    Returns (nlat + 1, nlon + 1) float64. A node lies on the closed boundary of its neighbouring
+    cells, so the triangle list of any one of them holds every triangle its ray can hit first.
     """
-    g = liner.grid
+    g = grid
     jj, ii = np.meshgrid(np.arange(g.nlat + 1), np.arange(g.nlon + 1), indexing="ij")
     d = angles_to_direction(g.lon0 + ii * g.step, g.lat0 + jj * g.step).reshape(-1, 3)
     cell = (np.minimum(jj, g.nlat - 1) * g.nlon + np.minimum(ii, g.nlon - 1)).ravel()
-    start = liner.offsets[cell].astype(np.int64)
-    count = liner.offsets[cell + 1].astype(np.int64) - start
+    start = offsets[cell].astype(np.int64)
+    count = offsets[cell + 1].astype(np.int64) - start
     node = np.repeat(np.arange(len(cell)), count)
     entry = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + start[node]
-    t_idx = liner.cell_triangles[entry]
+    t_idx = cell_triangles[entry]
     t = ray_triangle_hits(d[node], tri[t_idx, 0], tri[t_idx, 1] - tri[t_idx, 0],
                           tri[t_idx, 2] - tri[t_idx, 0])
     radius = np.full(len(cell), np.inf)

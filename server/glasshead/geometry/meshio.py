@@ -1,4 +1,5 @@
-"""Readers for the source mesh formats: Wavefront OBJ and the Badin face mesh (face.node, face.elem).
+"""Readers for the source mesh formats: Wavefront OBJ and the Badin face mesh (face.node,
+face.elem).
 
 Every reader validates what it returns (finite numbers, at least one face, indices in range) and
 raises ``MeshFormatError`` naming the file, so a corrupt input stops the build with a message a
@@ -55,7 +56,8 @@ def read_obj(path):
     out-of-range indices.
     """
     text = _read_text(path)
-    vertices, faces = [], []
+    vertices: list[list[float]] = []
+    faces: list[list[int]] = []
     for line_no, line in enumerate(text.splitlines(), start=1):
         fields = line.split()
         if not fields or fields[0] not in ("v", "f"):
@@ -73,7 +75,8 @@ def read_obj(path):
                 ids = [i - 1 if i > 0 else count + i for i in ids]
                 faces.extend([ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1))
         except ValueError as exc:
-            raise MeshFormatError(path, f"line {line_no}: cannot parse {line.strip()[:60]!r} ({exc})") from None
+            raise MeshFormatError(path, f"line {line_no}: cannot parse {line.strip()[:60]!r} "
+                                        f"({exc})") from None
     points = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
     _check_points(path, points)
     triangles = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
@@ -90,18 +93,20 @@ def read_face_nodes(path):
     Returns ``(ids, points)``: (n,) int64 node ids as written in the file, and (n, 3) float64.
     """
     text = _read_text(path)
-    ids, points = [], []
+    id_list: list[int] = []
+    point_list: list[list[float]] = []
     for line_no, line in enumerate(text.splitlines(), start=1):
         if not line.strip():
             continue
         numbers = _REAL.findall(line.replace("D", "E").replace("d", "e"))
         if len(numbers) != 4 or not re.fullmatch(r"[-+]?\d+", numbers[0]):
-            raise MeshFormatError(path, f"line {line_no}: expected 'index x y z', got {line.strip()[:60]!r}")
-        ids.append(int(numbers[0]))
-        points.append([float(x) for x in numbers[1:]])
-    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+            raise MeshFormatError(path, f"line {line_no}: expected 'index x y z', got "
+                                        f"{line.strip()[:60]!r}")
+        id_list.append(int(numbers[0]))
+        point_list.append([float(x) for x in numbers[1:]])
+    points = np.asarray(point_list, dtype=np.float64).reshape(-1, 3)
     _check_points(path, points)
-    ids = np.asarray(ids, dtype=np.int64)
+    ids = np.asarray(id_list, dtype=np.int64)
     if len(np.unique(ids)) != len(ids):
         raise MeshFormatError(path, "node ids are not unique")
     return ids, points
@@ -115,18 +120,18 @@ def read_face_elems(path, node_ids=None):
     Returns (m, 8) int64 node ids in the file's order (the flags are dropped).
     """
     text = _read_text(path)
-    elems = []
+    rows: list[list[int]] = []
     for line_no, line in enumerate(text.splitlines(), start=1):
         fields = line.split()
         if not fields:
             continue
         try:
-            elems.append([int(x) for x in fields[:HEX_NODES]])
+            rows.append([int(x) for x in fields[:HEX_NODES]])
         except ValueError:
             raise MeshFormatError(path, f"line {line_no}: node ids must be integers") from None
-        if len(elems[-1]) != HEX_NODES:
+        if len(rows[-1]) != HEX_NODES:
             raise MeshFormatError(path, f"line {line_no}: expected {HEX_NODES} node ids")
-    elems = np.asarray(elems, dtype=np.int64).reshape(-1, HEX_NODES)
+    elems = np.asarray(rows, dtype=np.int64).reshape(-1, HEX_NODES)
     if len(elems) == 0:
         raise MeshFormatError(path, "no elements")
     if node_ids is not None:

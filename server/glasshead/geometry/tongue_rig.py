@@ -207,12 +207,12 @@ def parameter_table():
         table.append(_parameter(name, unit, low, high, GROUP_SAGITTAL, text,
                                 [{"point": p, "by": list(by)} for p, by in moves]))
     for section in SECTIONS:
-        for name, unit, low, high, text, moves in CORONAL_PARAMETERS:
+        for name, unit, low, high, text, weights in CORONAL_PARAMETERS:
             table.append(_parameter(f"{section}_{name}", unit, low, high,
                                     f"tongue coronal {section}", text,
                                     [{"section": section, "stretch": by} if c is STRETCH
                                      else {"section": section, "control": c, "by": by}
-                                     for c, by in moves]))
+                                     for c, by in weights]))
     name, unit, low, high, text = JAW_PARAMETER
     table.append(_parameter(name, unit, low, high, GROUP_JAW, text, []))
     return table
