@@ -78,7 +78,8 @@ def rigid_parts(jaw_pose):
 
 
 def jaw_screw(jaw_pose):
-    """Screw decomposition of the jaw's rigid motion.
+    """Screw decomposition of the jaw's rigid motion (Chasles' theorem: a turn about an axis and
+    a slide along it).
 
     jaw_pose : (3, 4) or (4, 4), see ``rigid_parts``.
     Returns (11,) float64: axis u (3), angle (rad, >= 0), slide d along u, the translation's part

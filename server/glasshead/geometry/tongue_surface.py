@@ -13,6 +13,9 @@ then a few small matrix products:
    coronal weight (the pole controls are w itself);
 5. radii at the page samples: lambda = values @ B_coronal^T; vertex = H + lambda * (cos(phi) e
    + sin(phi) (1 + k (1 - sin(phi)^4)) z), k the blended sideways stretch of the sections.
+
+Cohen, Beskow and Massaro (1998), section 3: sagittal and coronal B-splines whose control points
+move singly and in pairs under articulation parameters.
 """
 
 import math
