@@ -21,7 +21,8 @@ VECTORS = Path(__file__).parent / "vectors"
 # positions and normals of all sets, one after the other, plus the volumes as JSON.
 NODE_SCRIPT = """
 import { readFileSync, writeFileSync } from 'node:fs';
-import { TongueRig, meshVolume } from './web/src/core/tongue.js';
+import { meshVolume } from './web/src/core/meshVolume.js';
+import { TongueRig } from './web/src/core/tongue.js';
 const [ vectorsPath, outPath ] = process.argv.slice( 1 );
 const document = JSON.parse( readFileSync( vectorsPath, 'utf8' ) );
 const rig = new TongueRig( document.rig );

@@ -10,9 +10,13 @@ Knot vectors:
 """
 
 import numpy as np
+import numpy.typing as npt
+
+Floats = npt.NDArray[np.float64]
 
 
-def clamped_knots(inner, degree, start=0.0, end=1.0):
+def clamped_knots(inner: npt.ArrayLike, degree: int, start: float = 0.0,
+                  end: float = 1.0) -> Floats:
     """Clamped knot vector: ``start`` and ``end`` repeated ``degree + 1`` times around ``inner``.
 
     inner : (k,) float, strictly inside (start, end), non-decreasing.
@@ -27,7 +31,7 @@ def clamped_knots(inner, degree, start=0.0, end=1.0):
     return np.concatenate([np.full(degree + 1, start), inner, np.full(degree + 1, end)])
 
 
-def periodic_knots(count, degree):
+def periodic_knots(count: int, degree: int) -> Floats:
     """Uniform knots of a closed curve with ``count`` distinct control points, domain [0, 1).
 
     The curve uses ``count + degree`` wrapped control points (see ``wrap_periodic``).
@@ -39,18 +43,19 @@ def periodic_knots(count, degree):
     return (np.arange(count + 2 * degree + 1, dtype=np.float64) - degree) / count
 
 
-def wrap_periodic(points, degree):
+def wrap_periodic(points: npt.ArrayLike, degree: int) -> Floats:
     """Repeat the first ``degree`` control points at the end: (n, d) -> (n + degree, d)."""
     points = np.asarray(points, dtype=np.float64)
     return np.concatenate([points, points[:degree]], axis=0)
 
 
 # The NURBS Book (Piegl and Tiller, 2nd ed.), algorithm A2.1 FindSpan.
-def find_span(knots, degree, u):
+def find_span(knots: npt.NDArray[np.float64], degree: int, u: float) -> int:
     """Index i of the knot span with knots[i] <= u < knots[i + 1], within the curve's domain.
 
     knots : (m + 1,) float; the curve has n + 1 = m - degree control points.
-    u is clamped into the domain [knots[degree], knots[n + 1]]; the right end maps to the last span.
+    u is clamped into the domain [knots[degree], knots[n + 1]]; the right end maps to the last
+    span.
     """
     n = len(knots) - degree - 2
     if u >= knots[n + 1]:
@@ -69,8 +74,9 @@ def find_span(knots, degree, u):
 
 
 # The NURBS Book (Piegl and Tiller, 2nd ed.), algorithm A2.2 BasisFuns.
-def basis_funs(knots, degree, span, u):
-    """The degree + 1 non-zero basis functions N[span - degree .. span] at u, as (degree + 1,) float64."""
+def basis_funs(knots: Floats, degree: int, span: int, u: float) -> Floats:
+    """The degree + 1 non-zero basis functions N[span - degree .. span] at u, as (degree + 1,)
+    float64."""
     values = np.zeros(degree + 1)
     left = np.zeros(degree + 1)
     right = np.zeros(degree + 1)
@@ -87,33 +93,35 @@ def basis_funs(knots, degree, span, u):
     return values
 
 
-def basis_table(knots, degree, params):
+def basis_table(knots: npt.ArrayLike, degree: int,
+                params: npt.ArrayLike) -> tuple[npt.NDArray[np.int64], Floats]:
     """Spans and non-zero basis values at each parameter.
 
     knots : (m + 1,) float; params : (k,) float.
     Returns ``(first, values)``: first (k,) int64, index of the first control point each row
     weights (span - degree); values (k, degree + 1) float64.
     """
-    knots = _check_knots(knots, degree)
-    params = np.asarray(params, dtype=np.float64).reshape(-1)
-    first = np.empty(params.size, dtype=np.int64)
-    values = np.empty((params.size, degree + 1))
-    for row, u in enumerate(params):
-        span = find_span(knots, degree, u)
+    checked = _check_knots(knots, degree)
+    u_all = np.asarray(params, dtype=np.float64).reshape(-1)
+    first = np.empty(u_all.size, dtype=np.int64)
+    values = np.empty((u_all.size, degree + 1))
+    for row, u in enumerate(u_all):
+        span = find_span(checked, degree, float(u))
         first[row] = span - degree
-        values[row] = basis_funs(knots, degree, span, u)
+        values[row] = basis_funs(checked, degree, span, float(u))
     return first, values
 
 
-def basis_matrix(knots, degree, params, count=None):
+def basis_matrix(knots: npt.ArrayLike, degree: int, params: npt.ArrayLike,
+                 count: int | None = None) -> Floats:
     """Dense (k, n) matrix B with curve(params) = B @ control_points.
 
     ``count`` folds the columns of a wrapped periodic curve back onto its ``count`` distinct
     control points (column j of the wrapped curve goes to j % count).
     """
-    knots = _check_knots(knots, degree)
-    first, values = basis_table(knots, degree, params)
-    columns = len(knots) - degree - 1
+    checked = _check_knots(knots, degree)
+    first, values = basis_table(checked, degree, params)
+    columns = len(checked) - degree - 1
     width = columns if count is None else count
     matrix = np.zeros((first.size, width))
     rows = np.repeat(np.arange(first.size), degree + 1)
@@ -122,25 +130,26 @@ def basis_matrix(knots, degree, params, count=None):
     return matrix
 
 
-def greville_abscissae(knots, degree):
-    """Parameter where each control point has the most influence: the mean of its ``degree`` inner knots."""
-    knots = _check_knots(knots, degree)
-    count = len(knots) - degree - 1
-    return np.array([knots[i + 1 : i + degree + 1].mean() for i in range(count)])
+def greville_abscissae(knots: npt.ArrayLike, degree: int) -> Floats:
+    """Parameter where each control point has the most influence: the mean of its ``degree``
+    inner knots."""
+    checked = _check_knots(knots, degree)
+    count = len(checked) - degree - 1
+    return np.array([checked[i + 1 : i + degree + 1].mean() for i in range(count)])
 
 
-def _check_degree(degree):
+def _check_degree(degree: int) -> None:
     if int(degree) != degree or degree < 1:
         raise ValueError(f"degree must be a positive integer, got {degree!r}")
 
 
-def _check_knots(knots, degree):
+def _check_knots(knots: npt.ArrayLike, degree: int) -> Floats:
     _check_degree(degree)
-    knots = np.asarray(knots, dtype=np.float64).reshape(-1)
-    if knots.size < 2 * degree + 2:
-        raise ValueError(f"{knots.size} knots are too few for degree {degree}")
-    if np.any(np.diff(knots) < 0):
+    checked = np.asarray(knots, dtype=np.float64).reshape(-1)
+    if checked.size < 2 * degree + 2:
+        raise ValueError(f"{checked.size} knots are too few for degree {degree}")
+    if np.any(np.diff(checked) < 0):
         raise ValueError("knots must be non-decreasing")
-    if not np.all(np.isfinite(knots)):
+    if not np.all(np.isfinite(checked)):
         raise ValueError("knots must be finite")
-    return knots
+    return checked
