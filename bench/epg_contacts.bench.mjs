@@ -14,7 +14,7 @@ import { fileURLToPath } from 'node:url';
 import { performance } from 'node:perf_hooks';
 
 import { correctVertices } from '../web/src/core/collision.js';
-import { createContactModel, epgContacts, epgContactsBruteForce } from '../web/src/core/epgContacts.js';
+import { createContactModel, electrodeContacts, electrodeContactsBruteForce } from '../web/src/core/epgContacts.js';
 import { epgIndices, INDEX_STRIDE } from '../web/src/core/epgIndices.js';
 import { decodeCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
@@ -74,20 +74,20 @@ function perFrameMedian( set, frameFn, runs = RUNS, warmup = WARMUP ) {
 
 const kernel = ( model ) => ( positions ) => {
 
-	sink += epgContacts( model, positions, frame );
+	sink += electrodeContacts( model, positions, frame );
 	epgIndices( frame, 0, indices );
 	sink += indices[ 1 ];
 
 };
 const naive = ( model ) => ( positions ) => {
 
-	sink += epgContactsBruteForce( model, positions, frame );
+	sink += electrodeContactsBruteForce( model, positions, frame );
 	epgIndices( frame, 0, indices );
 	sink += indices[ 1 ];
 
 };
 
-const withContact = tongues.filter( ( positions ) => epgContacts( models.reading62, positions, frame ) > 0 );
+const withContact = tongues.filter( ( positions ) => electrodeContacts( models.reading62, positions, frame ) > 0 );
 const readingMs = perFrameMedian( tongues, kernel( models.reading62 ) );
 const contactMs = perFrameMedian( withContact, kernel( models.reading62 ) );
 const denseMs = perFrameMedian( tongues, kernel( models.dense96 ) );

@@ -2,7 +2,7 @@
 // of the shared vectors (the built face skin, lips and head shell: about 7,700 vertices), for
 // seeded random lip parameters and jaw openings, a quarter of them closing the lips. Measured in
 // this run, over the same sets:
-//   ours     applyFaceRig: shape fields, screw skinning, closure solve, incisor correction,
+//   ours     poseFace: shape fields, screw skinning, closure solve, incisor correction,
 //            skipping the vertices that never move;
 //   frame    ours plus vertex normals of the four meshes (what a changed frame costs the scene);
 //   baseline every vertex of the four meshes moved by the jaw's matrix blended by its weight
@@ -14,9 +14,9 @@ import { readFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-import { applyFaceRig, createFaceRig, FACE_MESHES, lipValues, restFaceRig } from '../web/src/core/faceRig.js';
+import { createFaceRig, FACE_MESHES, lipValues, poseFace, restFaceRig } from '../web/src/core/faceRig.js';
 import { jawPose, POSE_LENGTH } from '../web/src/core/jaw.js';
-import { vertexNormals } from '../web/src/core/tongue.js';
+import { vertexNormals } from '../web/src/core/meshVolume.js';
 import { median, random } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
@@ -103,10 +103,10 @@ function baseline( pose ) {
 
 }
 
-const ours = time( ( k ) => applyFaceRig( rig, values[ k % SETS ], poses[ k % SETS ], out ) );
+const ours = time( ( k ) => poseFace( rig, values[ k % SETS ], poses[ k % SETS ], out ) );
 const frame = time( ( k ) => {
 
-	applyFaceRig( rig, values[ k % SETS ], poses[ k % SETS ], out );
+	poseFace( rig, values[ k % SETS ], poses[ k % SETS ], out );
 	for ( const n of normals ) vertexNormals( out[ n.name ], n.index, n.sums, n.target );
 
 } );

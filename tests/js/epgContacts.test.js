@@ -11,7 +11,7 @@ import { fileURLToPath } from 'node:url';
 import {
 	COLLISION_TOL, EPG_CONTACT_BEHIND_MM, EPG_CONTACT_TOLERANCE_MM, EPG_LAYOUT_FORMAT_VERSION,
 } from '../../web/src/core/constants.js';
-import { contactRows, createContactModel, epgContacts, epgContactsBruteForce } from '../../web/src/core/epgContacts.js';
+import { contactRows, createContactModel, electrodeContacts, electrodeContactsBruteForce } from '../../web/src/core/epgContacts.js';
 import { correctVertices } from '../../web/src/core/collision.js';
 import { decodeCollisionTables } from '../../web/src/core/tables.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
@@ -44,7 +44,7 @@ function correctedTongue( params, surface = RIG.createSurface() ) {
 function rowsOf( model, positions ) {
 
 	const frame = new Uint8Array( model.cells );
-	const found = epgContacts( model, positions, frame );
+	const found = electrodeContacts( model, positions, frame );
 	return { rows: contactRows( model, frame ), found, frame };
 
 }
@@ -109,7 +109,7 @@ test( 'small hand-made meshes about one probe give the expected contacts', () =>
 		const index = Uint32Array.from( c.input.triangles );
 		const model = createContactModel( grid, index, positions.length / 3 );
 		const frame = new Uint8Array( 64 );
-		epgContacts( model, positions, frame );
+		electrodeContacts( model, positions, frame );
 		const contacted = model.ids.filter( ( id, k ) => frame[ model.cellOf[ k ] ] === 1 );
 		assert.deepEqual( contacted, c.expected.contacted, c.description );
 		assert.deepEqual( contactRows( model, frame ), c.expected.rows, c.description );
@@ -145,8 +145,8 @@ test( 'the broad phase gives the brute force answer on 80 seeded random tongues 
 		for ( const name of GRIDS ) {
 
 			const model = MODELS[ name ];
-			const a = epgContacts( model, surface.positions, fast );
-			const b = epgContactsBruteForce( model, surface.positions, slow );
+			const a = electrodeContacts( model, surface.positions, fast );
+			const b = electrodeContactsBruteForce( model, surface.positions, slow );
 			assert.equal( a, b, `seed 99, tongue ${n}, ${name}` );
 			assert.deepEqual( fast.subarray( 0, model.cells ), slow.subarray( 0, model.cells ), `seed 99, tongue ${n}, ${name}` );
 			checked += a;
@@ -180,17 +180,17 @@ test( 'a frame allocates nothing: thousands of frames trigger no garbage collect
 	const model = MODELS.reading62;
 	const positions = correctedTongue( VECTORS.cases.find( ( c ) => c.expected.reading62.contacted > 30 ).input.params );
 	const frame = new Uint8Array( 64 );
-	for ( let i = 0; i < 500; i ++ ) epgContacts( model, positions, frame ); // let the JIT settle
+	for ( let i = 0; i < 500; i ++ ) electrodeContacts( model, positions, frame ); // let the JIT settle
 	const frames = 6000;
 	const quiet = await fewestGarbageCollections( () => {
 
-		for ( let i = 0; i < frames; i ++ ) epgContacts( model, positions, frame );
+		for ( let i = 0; i < frames; i ++ ) electrodeContacts( model, positions, frame );
 
 	} );
 	// The same loop with a fresh target per frame shows that the probe does see allocation.
 	const noisy = await garbageCollections( () => {
 
-		for ( let i = 0; i < frames; i ++ ) epgContacts( model, positions, new Uint8Array( 8192 ) );
+		for ( let i = 0; i < frames; i ++ ) electrodeContacts( model, positions, new Uint8Array( 8192 ) );
 
 	} );
 	assert.equal( quiet, 0, `${quiet} collections during ${frames} frames` );

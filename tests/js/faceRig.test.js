@@ -9,9 +9,10 @@ import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import {
-	applyFaceRig, createFaceRig, FACE_MESHES, GAP_LIPS, GAP_NATURAL, jawScrew, LIP_PARAMETER_NAMES, lipGap, lipValues, restFaceRig, teethBound,
+	createFaceRig, FACE_MESHES, GAP_LIPS, GAP_NATURAL, LIP_PARAMETER_NAMES, lipGap, lipValues, poseFace, restFaceRig,
 } from '../../web/src/core/faceRig.js';
-import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
+import { teethBound } from '../../web/src/core/faceTeeth.js';
+import { jawPose, jawScrew, POSE_LENGTH, SCREW_SIZE } from '../../web/src/core/jaw.js';
 import { FACE_VERTEX_TOLERANCE_MM } from '../../web/src/core/constants.js';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
@@ -33,7 +34,7 @@ function poseCase( context, params ) {
 	const { jaw_opening: opening = 0, ...lips } = params;
 	lipValues( rig, lips, values );
 	jawPose( opening, VECTORS.jaw, pose );
-	return applyFaceRig( rig, values, pose, out ).gaps[ GAP_LIPS ];
+	return poseFace( rig, values, pose, out ).gaps[ GAP_LIPS ];
 
 }
 
@@ -130,7 +131,7 @@ test( 'a pose of the jaw alone moves the lower lip with the mandible and leaves 
 test( 'the jaw screw of a pure rotation has no slide and reproduces the pose', () => {
 
 	const pose = jawPose( 0, { pivot: [ 0, 0 ], translation_per_degree: [ 0, 0 ] }, new Float64Array( POSE_LENGTH ) );
-	const screw = jawScrew( pose, new Float64Array( 11 ) );
+	const screw = jawScrew( pose, new Float64Array( SCREW_SIZE ) );
 	assert.equal( screw[ 3 ], 0, 'identity: no angle' );
 	const turned = jawPose( 20, { pivot: [ - 50, 40 ], translation_per_degree: [ 0, 0 ] }, new Float64Array( POSE_LENGTH ) );
 	jawScrew( turned, screw );
@@ -180,7 +181,7 @@ test( 'posing allocates nothing: thousands of poses trigger no garbage collectio
 	// Poses and parameter sets made beforehand, so that the loop measures the kernel alone.
 	const poses = Array.from( { length: 25 }, ( _, k ) => jawPose( k, VECTORS.jaw, new Float64Array( POSE_LENGTH ) ) );
 	const sets = Array.from( { length: 10 }, ( _, k ) => lipValues( rig, { lip_opening: k / 10, lip_rounding: k - 4, lower_lip_tuck: k / 2 } ) );
-	const pose = ( k ) => applyFaceRig( rig, sets[ k % 10 ], poses[ k % 25 ], out );
+	const pose = ( k ) => poseFace( rig, sets[ k % 10 ], poses[ k % 25 ], out );
 	const calls = 3000;
 	const loop = () => {
 
@@ -191,7 +192,7 @@ test( 'posing allocates nothing: thousands of poses trigger no garbage collectio
 	const quiet = await garbageCollections( loop );
 	const noisy = await garbageCollections( () => {
 
-		for ( let k = 0; k < calls; k ++ ) applyFaceRig( rig, sets[ 0 ], poses[ 0 ], Object.fromEntries( FACE_MESHES.map( ( n ) => [ n, new Float32Array( out[ n ].length ) ] ) ) );
+		for ( let k = 0; k < calls; k ++ ) poseFace( rig, sets[ 0 ], poses[ 0 ], Object.fromEntries( FACE_MESHES.map( ( n ) => [ n, new Float32Array( out[ n ].length ) ] ) ) );
 
 	} );
 	assert.equal( quiet, 0, `${ quiet } collections during ${ calls } poses` );

@@ -8,7 +8,8 @@ import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-import { TongueRig, meshVolume, surfaceTriangles } from '../../web/src/core/tongue.js';
+import { TongueRig, surfaceTriangles } from '../../web/src/core/tongue.js';
+import { meshVolume } from '../../web/src/core/meshVolume.js';
 import { applyJawPose, jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import {
 	TONGUE_VERTEX_TOLERANCE_MM, TONGUE_VOLUME_RELATIVE_TOLERANCE,

@@ -10,7 +10,7 @@
 //
 // The probes never move, so everything about them is built once (createContactModel): their
 // boxes, the lowest height any of them reaches, and a uniform grid over them whose cells list
-// the probes that cross them. Per frame (epgContacts), only triangles with a corner at or above
+// the probes that cross them. Per frame (electrodeContacts), only triangles with a corner at or above
 // that height are visited (through the triangles around each vertex); each corner is placed in
 // the grid once per frame, a triangle whose corners all lie beyond one side of the grid is
 // skipped, and the others are tested only against the probes listed in the cells they span,
@@ -29,7 +29,7 @@ export const PROBE_CELL_MM = 3;
 
 /**
  * Everything about one grid's probes that does not depend on the tongue, plus the scratch arrays
- * of epgContacts (so a frame allocates nothing).
+ * of electrodeContacts (so a frame allocates nothing).
  * @param {{grid: string, rows: number, columns: number, electrodes: Array<{id: string, cell: number, position: number[], normal: number[]}>}} grid
  *   one grid of the layout file (layout.grids.reading62, say)
  * @param {{tolerance?: number, behind?: number, cellSize?: number}} [options]
@@ -183,7 +183,7 @@ function probeHits( model, k, positions, a, b, c ) {
  * @param {Uint8Array} target
  * @returns {number}
  */
-export function epgContacts( model, positions, target ) {
+export function electrodeContacts( model, positions, target ) {
 
 	const contacted = model.contacted, last = model.lastTriangle;
 	contacted.fill( 0 );
@@ -300,7 +300,7 @@ function placeVertex( model, positions, v, stamp ) {
  * The same contacts by testing every probe against every triangle: the slow reference (and the
  * benchmark's baseline). Allocates nothing.
  */
-export function epgContactsBruteForce( model, positions, target ) {
+export function electrodeContactsBruteForce( model, positions, target ) {
 
 	const index = model.index;
 	target.fill( 0, 0, model.cells );

@@ -1,6 +1,6 @@
 // Face deformation: the skin and lips following the jaw, and the lip parameters. Twin of
-// server/glasshead/geometry/face_rig.py and face_teeth.py; tests/vectors/face-rig.json keeps the
-// two in agreement. The rig definition (GET /face/rig, built by glasshead.pipeline.face_rig) holds
+// server/glasshead/geometry/face_rig.py (the teeth of step 4: faceTeeth.js and face_teeth.py; the
+// jaw's screw: jaw.js); tests/vectors/face-rig.json keeps the two in agreement. The rig definition (GET /face/rig, built by glasshead.pipeline.face_rig) holds
 // every number used here.
 //
 // A posed vertex is found in four steps, each a function of its rest position and its jaw weight
@@ -14,16 +14,20 @@
 //   3. closure: the lips' mid-sagittal gap is measured and, as far as lip_opening asks, closed by
 //      the mouth bump times (w - a) times one vector C solved from the gap;
 //   4. teeth: skin and lip points behind the labial faces of the incisors are pushed out along the
-//      faces' normals (upper faces on the maxilla, lower ones carried by the jaw).
+//      faces' normals (upper faces on the maxilla, lower ones carried by the jaw; faceTeeth.js).
 // Vertices whose weight and field coefficients are all 0 never move and are skipped.
 
 import { FACE_RIG_FORMAT_VERSION } from './constants.js';
+import { COEFF_CLOSURE, COEFF_COUNT, COEFF_PROTRUSION, COEFF_RAISE, COEFF_ROUND_X, COEFF_ROUND_Z, COEFF_TUCK, fieldCoefficients } from './faceField.js';
+import { clampToTeeth, primeTeeth, teethTable } from './faceTeeth.js';
+import { GAP_LIPS, GAP_NATURAL, measureGap, solveClosure } from './lipClosure.js';
+import { jawScrew, SCREW_MIN_ANGLE, SCREW_SIZE } from './jaw.js';
 
 /** Meshes the rig deforms, in the definition's order. */
 export const FACE_MESHES = Object.freeze( [ 'face_skin', 'upper_lip', 'lower_lip', 'head_shell' ] );
 /** Meshes kept in front of the incisors (the head shell never comes near them). */
 export const TEETH_MESHES = Object.freeze( [ 'face_skin', 'upper_lip', 'lower_lip' ] );
-/** Lip parameter names in table order: the order of the values applyFaceRig() reads. */
+/** Lip parameter names in table order: the order of the values poseFace() reads. */
 export const LIP_PARAMETER_NAMES = Object.freeze( [ 'lip_opening', 'lip_rounding', 'lip_protrusion', 'upper_lip_raise', 'lower_lip_tuck' ] );
 
 const OPENING = 0;
@@ -32,43 +36,10 @@ const PROTRUSION = 2;
 const RAISE = 3;
 const TUCK = 4;
 
-/** Per-vertex field coefficients, COEFF_COUNT per vertex (as in face_rig.py). */
-const COEFF_PROTRUSION = 0;
-const COEFF_ROUND_X = 1;
-const COEFF_ROUND_Z = 2;
-const COEFF_RAISE = 3;
-const COEFF_TUCK = 4;
-const COEFF_CLOSURE = 5;
-export const COEFF_COUNT = 6;
+export { GAP_LIPS, GAP_NATURAL, lipGap } from './lipClosure.js';
 
-/** Slots of rig.gaps: the lips' gap before closure, after the pose, and scratch for lipGap(). */
-export const GAP_NATURAL = 0;
-export const GAP_LIPS = 1;
-const GAP_SCRATCH = 2;
-
-/** Below this rotation (radians) the jaw motion is a pure translation. */
-const SCREW_MIN_ANGLE = 1e-9;
 /** mm. Largest distance between a mesh's rest vertex and the rig's probe of it. */
 export const PROBE_TOLERANCE_MM = 1e-3;
-
-/** The quintic smoothstep 6t^5 - 15t^4 + 10t^3 of t clamped to [0, 1]. */
-function smoothstep5( t ) {
-
-	const c = t < 0 ? 0 : ( t > 1 ? 1 : t );
-	return c * c * c * ( c * ( 6 * c - 15 ) + 10 );
-
-}
-
-/** Compact bump with a flat top (face_rig.smooth_bump). */
-function bumpAt( bump, x, y, z ) {
-
-	const dx = ( x - bump.centre[ 0 ] ) / bump.radii[ 0 ];
-	const dy = ( y - bump.centre[ 1 ] ) / bump.radii[ 1 ];
-	const dz = ( z - bump.centre[ 2 ] ) / bump.radii[ 2 ];
-	const r = Math.sqrt( dx * dx + dy * dy + dz * dz );
-	return smoothstep5( ( 1 - r ) / ( 1 - bump.plateau ) );
-
-}
 
 /**
  * Build the real-time rig: per-mesh weights, field coefficients and scratch arrays, all allocated
@@ -76,7 +47,7 @@ function bumpAt( bump, x, y, z ) {
  * @param {object} definition the face rig (GET /face/rig)
  * @param {Object<string, Float32Array|Float64Array>} rest rest positions of every mesh in
  *   FACE_MESHES, xyz per vertex, in the vertex order of the built GLBs
- * @returns {object} the rig, for applyFaceRig()
+ * @returns {object} the rig, for poseFace()
  */
 export function createFaceRig( definition, rest ) {
 
@@ -108,7 +79,7 @@ export function createFaceRig( definition, rest ) {
 		field,
 		teeth: { upper: teethTable( definition.teeth.upper ), lower: teethTable( definition.teeth.lower ) },
 		meshes,
-		screw: new Float64Array( 11 ),
+		screw: new Float64Array( SCREW_SIZE ),
 		frame: new Float64Array( FRAME_SIZE ),
 		/** The closure vector C of the last pose. */
 		closure: new Float64Array( 3 ),
@@ -130,22 +101,7 @@ export function createFaceRig( definition, rest ) {
  */
 function primeFaceRig( rig ) {
 
-	const p = new Float64Array( 3 );
-	for ( const table of [ rig.teeth.lower, rig.teeth.upper ] ) {
-
-		const { x, n } = table;
-		const middle = Math.floor( n[ T_ROWS ] / 2 ) * n[ T_COLS ] + Math.floor( n[ T_COLS ] / 2 );
-		const y = n[ T_Y0 ] + Math.floor( n[ T_ROWS ] / 2 ) * n[ T_STEP_Y ];
-		const z = n[ T_Z0 ] + Math.floor( n[ T_COLS ] / 2 ) * n[ T_STEP_Z ];
-		for ( const depth of [ - 1, 0.5, n[ T_DEPTH ] + 1, 0.5, - 1 ] ) {
-
-			p[ 0 ] = x[ middle ] - depth; p[ 1 ] = y; p[ 2 ] = z;
-			pushOut( x, n, p );
-
-		}
-
-	}
-
+	primeTeeth( rig.teeth );
 	const angle = 10 * Math.PI / 180;
 	const turned = Float64Array.of( Math.cos( angle ), Math.sin( angle ), 0, 1, - Math.sin( angle ), Math.cos( angle ), 0, - 2, 0, 0, 1, 0 );
 	const still = Float64Array.of( 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 );
@@ -166,8 +122,8 @@ function primeFaceRig( rig ) {
 
 	const scratch = {};
 	for ( const name of FACE_MESHES ) scratch[ name ] = new Float32Array( 3 * rig.meshes[ name ].count );
-	applyFaceRig( rig, values, turned, scratch );
-	applyFaceRig( rig, values, still, scratch );
+	poseFace( rig, values, turned, scratch );
+	poseFace( rig, values, still, scratch );
 	for ( const name of FACE_MESHES ) rig.meshes[ name ].work.set( rig.meshes[ name ].rest );
 
 }
@@ -195,31 +151,7 @@ function prepareMesh( name, spec, rest, field ) {
 
 	const count = spec.vertex_count;
 	const weights = Float64Array.from( spec.jaw_weights );
-	const coeffs = new Float64Array( COEFF_COUNT * count );
-	const { mouth: mouthBump, raise: raiseBump, tuck: tuckBump } = field.bumps;
-	const halfWidth = field.mouth_half_width;
-	const moving = [];
-	for ( let v = 0; v < count; v ++ ) {
-
-		const x = rest[ 3 * v ];
-		const y = rest[ 3 * v + 1 ];
-		const z = rest[ 3 * v + 2 ];
-		const w = weights[ v ];
-		const mouth = bumpAt( mouthBump, x, y, z );
-		const zn = z / halfWidth;
-		const medial = zn * Math.exp( 0.5 * ( 1 - zn * zn ) );
-		const o = COEFF_COUNT * v;
-		coeffs[ o + COEFF_PROTRUSION ] = mouth;
-		coeffs[ o + COEFF_ROUND_X ] = mouth * ( field.rounding_forward * Math.exp( - zn * zn ) + field.rounding_along_arch * Math.abs( medial ) );
-		coeffs[ o + COEFF_ROUND_Z ] = - mouth * medial;
-		coeffs[ o + COEFF_RAISE ] = bumpAt( raiseBump, x, y, z ) * ( 1 - w );
-		coeffs[ o + COEFF_TUCK ] = bumpAt( tuckBump, x, y, z ) * w;
-		coeffs[ o + COEFF_CLOSURE ] = mouth * ( w - field.closure_upper_share );
-		let still = w === 0;
-		for ( let k = 0; k < COEFF_COUNT && still; k ++ ) still = coeffs[ o + k ] === 0;
-		if ( ! still ) moving.push( v );
-
-	}
+	const { coeffs, moving } = fieldCoefficients( rest, weights, field );
 
 	// Every mesh gets the same fields, in the same order (one hidden class for the hot loops).
 	const lip = Boolean( spec.midline_edges );
@@ -231,7 +163,7 @@ function prepareMesh( name, spec, rest, field ) {
 		weights,
 		coeffs,
 		/** Vertices that can move (the others always keep their rest position). */
-		moving: Uint32Array.from( moving ),
+		moving,
 		/** Posed positions, float64, xyz per vertex. */
 		work: Float64Array.from( rest ),
 		teeth: TEETH_MESHES.includes( name ),
@@ -271,48 +203,6 @@ export function lipValues( rig, params, target = new Float64Array( LIP_PARAMETER
 
 }
 
-/**
- * Screw decomposition of a jaw pose (face_rig.jaw_screw): axis u, angle, slide along u, the
- * translation's part perpendicular to u, t_perp, and u x t_perp.
- * @param {ArrayLike<number>} pose row-major 3 x 4 [ R | t ] (jaw.js jawPose())
- * @param {Float64Array} target length 11
- */
-export function jawScrew( pose, target ) {
-
-	const sx = pose[ 9 ] - pose[ 6 ];
-	const sy = pose[ 2 ] - pose[ 8 ];
-	const sz = pose[ 4 ] - pose[ 1 ];
-	const length = Math.sqrt( sx * sx + sy * sy + sz * sz );
-	const sinAngle = 0.5 * length;
-	const cosAngle = 0.5 * ( pose[ 0 ] + pose[ 5 ] + pose[ 10 ] - 1 );
-	let angle = Math.atan2( sinAngle, cosAngle );
-	let ux = 0;
-	let uy = 0;
-	let uz = 1;
-	if ( angle < SCREW_MIN_ANGLE ) {
-
-		angle = 0;
-
-	} else {
-
-		ux = sx / length; uy = sy / length; uz = sz / length;
-
-	}
-
-	const tx = pose[ 3 ];
-	const ty = pose[ 7 ];
-	const tz = pose[ 11 ];
-	const slide = ux * tx + uy * ty + uz * tz;
-	const px = tx - slide * ux;
-	const py = ty - slide * uy;
-	const pz = tz - slide * uz;
-	target[ 0 ] = ux; target[ 1 ] = uy; target[ 2 ] = uz; target[ 3 ] = angle; target[ 4 ] = slide;
-	target[ 5 ] = px; target[ 6 ] = py; target[ 7 ] = pz;
-	target[ 8 ] = uy * pz - uz * py; target[ 9 ] = uz * px - ux * pz; target[ 10 ] = ux * py - uy * px;
-	return target;
-
-}
-
 /** Layout of rig.frame: the per-pose numbers the vertex loops read. */
 const F_ROUNDING = 0;
 const F_FORWARD = 1;
@@ -323,8 +213,8 @@ const F_RAISE_DIR = 5; // 3 numbers
 const F_TUCK_DIR = 8; // 3 numbers
 const F_TURNING = 11; // 1 when the jaw turns, 0 for a pure slide
 const F_HALF_COT = 12; // cot( angle / 2 ) / 2
-const F_SCREW = 13; // the 11 numbers of jawScrew()
-const FRAME_SIZE = F_SCREW + 11;
+const F_SCREW = 13; // the SCREW_SIZE numbers of jawScrew()
+const FRAME_SIZE = F_SCREW + SCREW_SIZE;
 
 /** The per-pose numbers of steps 1 and 2, into rig.frame. */
 function frameNumbers( rig, values, pose ) {
@@ -390,85 +280,6 @@ function shapeAndSkin( rest, weights, coeffs, moving, work, frame ) {
 
 }
 
-// Hot paths pass numbers through typed arrays, never as arguments or return values of calls that
-// may not be inlined: a boxed double per call would make garbage every frame.
-
-/**
- * The midline crossings of a lip: for each edge with ends on both sides of z = 0, the height
- * where it crosses (mesh.crossY) and the closure factor there (mesh.crossF).
- */
-function crossings( mesh, positions ) {
-
-	const { edges, coeffs, crossY, crossF } = mesh;
-	for ( let k = 0; k < crossY.length; k ++ ) {
-
-		const a = edges[ 2 * k ];
-		const b = edges[ 2 * k + 1 ];
-		const za = positions[ 3 * a + 2 ];
-		const t = za / ( za - positions[ 3 * b + 2 ] );
-		crossY[ k ] = positions[ 3 * a + 1 ] + t * ( positions[ 3 * b + 1 ] - positions[ 3 * a + 1 ] );
-		crossF[ k ] = ( 1 - t ) * coeffs[ COEFF_COUNT * a + COEFF_CLOSURE ] + t * coeffs[ COEFF_COUNT * b + COEFF_CLOSURE ];
-
-	}
-
-}
-
-/**
- * The lips' mid-sagittal gap, mm: the lowest crossing of the upper lip above the highest of the
- * lower lip; 0 when they touch or overlap.
- * @param {object} rig from createFaceRig()
- * @param {ArrayLike<number>} upper posed upper-lip positions (xyz per vertex)
- * @param {ArrayLike<number>} lower posed lower-lip positions
- */
-export function lipGap( rig, upper, lower ) {
-
-	measureGap( rig, upper, lower, GAP_SCRATCH );
-	return rig.gaps[ GAP_SCRATCH ];
-
-}
-
-/** lipGap() into rig.gaps[ slot ]. */
-function measureGap( rig, upper, lower, slot ) {
-
-	const up = rig.meshes.upper_lip;
-	const low = rig.meshes.lower_lip;
-	crossings( up, upper );
-	crossings( low, lower );
-	let upperLowest = Infinity;
-	for ( let k = 0; k < up.crossY.length; k ++ ) if ( up.crossY[ k ] < upperLowest ) upperLowest = up.crossY[ k ];
-	let lowerHighest = - Infinity;
-	for ( let k = 0; k < low.crossY.length; k ++ ) if ( low.crossY[ k ] > lowerHighest ) lowerHighest = low.crossY[ k ];
-	rig.gaps[ slot ] = Math.max( 0, upperLowest - lowerHighest );
-
-}
-
-/**
- * Vertical closure c (mm) bringing the gap to `target` (face_rig.solve_closure), from the
- * crossings of the last lipGap(): a crossing's height becomes y + factor * c, the gap is piecewise
- * linear and decreasing in c, and each step is a Newton step on the current extreme pair.
- */
-function solveClosure( up, low, target, iterations, closure ) {
-
-	const { crossY: uy, crossF: uf } = up;
-	const { crossY: ly, crossF: lf } = low;
-	let c = 0;
-	for ( let step = 0; step < iterations; step ++ ) {
-
-		let iu = 0;
-		for ( let k = 1; k < uy.length; k ++ ) if ( uy[ k ] + uf[ k ] * c < uy[ iu ] + uf[ iu ] * c ) iu = k;
-		let il = 0;
-		for ( let k = 1; k < ly.length; k ++ ) if ( ly[ k ] + lf[ k ] * c > ly[ il ] + lf[ il ] * c ) il = k;
-		const gap = ( uy[ iu ] + uf[ iu ] * c ) - ( ly[ il ] + lf[ il ] * c );
-		const slope = lf[ il ] - uf[ iu ];
-		if ( slope <= 0 || Math.abs( gap - target ) < 1e-9 ) break;
-		c += ( gap - target ) / slope;
-
-	}
-
-	closure[ 1 ] = c;
-
-}
-
 /**
  * Pose the face: every mesh in FACE_MESHES, written into `out`.
  * @param {object} rig from createFaceRig()
@@ -478,7 +289,7 @@ function solveClosure( up, low, target, iterations, closure ) {
  *   holding the rest positions where vertices never move (restFaceRig() once)
  * @returns {object} the rig: its lip gap in rig.gaps[ GAP_LIPS ], closure and counts
  */
-export function applyFaceRig( rig, values, pose, out ) {
+export function poseFace( rig, values, pose, out ) {
 
 	const { field, meshes } = rig;
 	frameNumbers( rig, values, pose );
@@ -546,158 +357,12 @@ export function applyFaceRig( rig, values, pose, out ) {
 }
 
 /**
- * Copy every mesh's rest positions into `out` (the vertices applyFaceRig() never moves keep
+ * Copy every mesh's rest positions into `out` (the vertices poseFace() never moves keep
  * them from then on).
  */
 export function restFaceRig( rig, out ) {
 
 	for ( const name of FACE_MESHES ) out[ name ].set( rig.meshes[ name ].rest );
 	return out;
-
-}
-
-// --- Teeth (face_teeth.py) ------------------------------------------------------------------------
-
-/** Layout of a table's numbers (table.n, Float64Array), read by the per-vertex code. */
-const T_Y0 = 0;
-const T_Z0 = 1;
-const T_STEP_Y = 2;
-const T_STEP_Z = 3;
-const T_ROWS = 4;
-const T_COLS = 5;
-const T_RECESSION = 6;
-const T_DEPTH = 7;
-const T_STEPS = 8;
-const T_X_MAX = 9;
-
-/** A table of the definition as typed arrays: values x and numbers n (T_* layout). */
-function teethTable( table ) {
-
-	const x = Float64Array.from( table.x );
-	// The face never lies in front of its largest table value: a cheap exact early-out.
-	const n = Float64Array.of( table.y0, table.z0, table.step_y, table.step_z, table.rows, table.cols, table.recession, table.depth ?? 0, table.steps ?? 0, Math.max( ...x ) );
-	return { x, n };
-
-}
-
-const scratchBound = new Float64Array( 3 );
-const scratchQuery = new Float64Array( 3 );
-
-/**
- * The labial face x = F( y, z ) of a row of incisors (a table of the definition), bilinear in
- * its table, receding by recession * ( distance outside, mm )^2 beyond it; F, dF/dy and dF/dz
- * into target.
- */
-export function teethBound( table, y, z, target ) {
-
-	const { x, n } = teethTable( table );
-	scratchQuery[ 1 ] = y;
-	scratchQuery[ 2 ] = z;
-	return teethBoundAt( x, n, scratchQuery, target );
-
-}
-
-/** teethBound() at the point p ( y = p[ 1 ], z = p[ 2 ] ) for table values x and numbers n. */
-function teethBoundAt( x, n, p, target ) {
-
-	const rows = n[ T_ROWS ];
-	const cols = n[ T_COLS ];
-	const stepY = n[ T_STEP_Y ];
-	const stepZ = n[ T_STEP_Z ];
-	const recession = n[ T_RECESSION ];
-	const fy = ( p[ 1 ] - n[ T_Y0 ] ) / stepY;
-	const fz = ( p[ 2 ] - n[ T_Z0 ] ) / stepZ;
-	const cy = fy < 0 ? 0 : ( fy > rows - 1 ? rows - 1 : fy );
-	const cz = fz < 0 ? 0 : ( fz > cols - 1 ? cols - 1 : fz );
-	const iy = Math.min( Math.floor( cy ), rows - 2 );
-	const iz = Math.min( Math.floor( cz ), cols - 2 );
-	const ty = cy - iy;
-	const tz = cz - iz;
-	const v00 = x[ iy * cols + iz ];
-	const v01 = x[ iy * cols + iz + 1 ];
-	const v10 = x[ ( iy + 1 ) * cols + iz ];
-	const v11 = x[ ( iy + 1 ) * cols + iz + 1 ];
-	const low = ( 1 - tz ) * v00 + tz * v01;
-	const high = ( 1 - tz ) * v10 + tz * v11;
-	const outY = ( fy - cy ) * stepY;
-	const outZ = ( fz - cz ) * stepZ;
-	target[ 0 ] = ( 1 - ty ) * low + ty * high - recession * ( outY * outY + outZ * outZ );
-	const left = ( 1 - ty ) * v00 + ty * v10;
-	const right = ( 1 - ty ) * v01 + ty * v11;
-	target[ 1 ] = ( outY === 0 ? ( high - low ) / stepY : 0 ) - 2 * recession * outY;
-	target[ 2 ] = ( outZ === 0 ? ( right - left ) / stepZ : 0 ) - 2 * recession * outZ;
-	return target;
-
-}
-
-/**
- * Push one point (in the table's frame, in p[ 0..2 ]) out of a face (values x, numbers n);
- * returns 1 if it moved, else 0. Everything is read from typed arrays and the moves are written
- * as arithmetic rather than branches (a step that does not move adds 0): the compiled code has
- * seen every operation before its first frame.
- */
-function pushOut( x, n, p ) {
-
-	let moved = 0;
-	for ( let step = 0; step < n[ T_STEPS ]; step ++ ) {
-
-		// F <= xMax - recession * ( distance outside the table )^2: most points are in front.
-		const fy = ( p[ 1 ] - n[ T_Y0 ] ) / n[ T_STEP_Y ];
-		const fz = ( p[ 2 ] - n[ T_Z0 ] ) / n[ T_STEP_Z ];
-		const outY = ( fy < 0 ? fy : ( fy > n[ T_ROWS ] - 1 ? fy - n[ T_ROWS ] + 1 : 0 ) ) * n[ T_STEP_Y ];
-		const outZ = ( fz < 0 ? fz : ( fz > n[ T_COLS ] - 1 ? fz - n[ T_COLS ] + 1 : 0 ) ) * n[ T_STEP_Z ];
-		if ( p[ 0 ] >= n[ T_X_MAX ] - n[ T_RECESSION ] * ( outY * outY + outZ * outZ ) ) break;
-		teethBoundAt( x, n, p, scratchBound );
-		const behind = scratchBound[ 0 ] - p[ 0 ];
-		const hit = behind > 0 && behind < n[ T_DEPTH ] ? 1 : 0;
-		const dy = scratchBound[ 1 ];
-		const dz = scratchBound[ 2 ];
-		const s = hit * behind / ( 1 + dy * dy + dz * dz );
-		p[ 0 ] += s;
-		p[ 1 ] -= s * dy;
-		p[ 2 ] -= s * dz;
-		moved |= hit;
-
-	}
-
-	return moved;
-
-}
-
-const scratchPoint = new Float64Array( 3 );
-
-/** Step 4 for one mesh: the lower row in the rest mandible's frame, then the upper row. */
-function clampToTeeth( moving, work, teeth, pose ) {
-
-	const p = scratchPoint;
-	const lowerX = teeth.lower.x;
-	const lowerN = teeth.lower.n;
-	const upperX = teeth.upper.x;
-	const upperN = teeth.upper.n;
-	let count = 0;
-	for ( let k = 0; k < moving.length; k ++ ) {
-
-		const o = 3 * moving[ k ];
-		// Rest mandible frame: R^T ( x - t ).
-		const dx = work[ o ] - pose[ 3 ];
-		const dy = work[ o + 1 ] - pose[ 7 ];
-		const dz = work[ o + 2 ] - pose[ 11 ];
-		p[ 0 ] = pose[ 0 ] * dx + pose[ 4 ] * dy + pose[ 8 ] * dz;
-		p[ 1 ] = pose[ 1 ] * dx + pose[ 5 ] * dy + pose[ 9 ] * dz;
-		p[ 2 ] = pose[ 2 ] * dx + pose[ 6 ] * dy + pose[ 10 ] * dz;
-		const lower = pushOut( lowerX, lowerN, p );
-		// Back to the posed frame only when moved (lower = 1): a point left alone keeps its
-		// exact coordinates, not their round trip.
-		work[ o ] += lower * ( pose[ 0 ] * p[ 0 ] + pose[ 1 ] * p[ 1 ] + pose[ 2 ] * p[ 2 ] + pose[ 3 ] - work[ o ] );
-		work[ o + 1 ] += lower * ( pose[ 4 ] * p[ 0 ] + pose[ 5 ] * p[ 1 ] + pose[ 6 ] * p[ 2 ] + pose[ 7 ] - work[ o + 1 ] );
-		work[ o + 2 ] += lower * ( pose[ 8 ] * p[ 0 ] + pose[ 9 ] * p[ 1 ] + pose[ 10 ] * p[ 2 ] + pose[ 11 ] - work[ o + 2 ] );
-		p[ 0 ] = work[ o ]; p[ 1 ] = work[ o + 1 ]; p[ 2 ] = work[ o + 2 ];
-		const upper = pushOut( upperX, upperN, p );
-		work[ o ] = p[ 0 ]; work[ o + 1 ] = p[ 1 ]; work[ o + 2 ] = p[ 2 ];
-		count += lower + upper;
-
-	}
-
-	return count;
 
 }

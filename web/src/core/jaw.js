@@ -61,3 +61,53 @@ export function applyJawPose( pose, points, count, stride, weights, target ) {
 	return target;
 
 }
+
+// --- Screw decomposition (for the face rig's skinning, faceRig.js) -------------------------------
+
+/** Numbers in a screw: axis u (3), angle, slide along u, t_perp (3), u x t_perp (3). */
+export const SCREW_SIZE = 3 + 1 + 1 + 3 + 3;
+/** Below this rotation (radians) the jaw motion is a pure translation. */
+export const SCREW_MIN_ANGLE = 1e-9;
+
+/**
+ * Screw decomposition of a jaw pose (face_rig.jaw_screw): the rigid motion as a turn about an
+ * axis and a slide along it (Chasles' theorem). Writes axis u, angle, slide along u, the
+ * translation's part perpendicular to u, t_perp, and u x t_perp.
+ * @param {ArrayLike<number>} pose row-major 3 x 4 [ R | t ] (jawPose())
+ * @param {Float64Array} target length SCREW_SIZE
+ */
+export function jawScrew( pose, target ) {
+
+	const sx = pose[ 9 ] - pose[ 6 ];
+	const sy = pose[ 2 ] - pose[ 8 ];
+	const sz = pose[ 4 ] - pose[ 1 ];
+	const length = Math.sqrt( sx * sx + sy * sy + sz * sz );
+	const sinAngle = 0.5 * length;
+	const cosAngle = 0.5 * ( pose[ 0 ] + pose[ 5 ] + pose[ 10 ] - 1 );
+	let angle = Math.atan2( sinAngle, cosAngle );
+	let ux = 0;
+	let uy = 0;
+	let uz = 1;
+	if ( angle < SCREW_MIN_ANGLE ) {
+
+		angle = 0;
+
+	} else {
+
+		ux = sx / length; uy = sy / length; uz = sz / length;
+
+	}
+
+	const tx = pose[ 3 ];
+	const ty = pose[ 7 ];
+	const tz = pose[ 11 ];
+	const slide = ux * tx + uy * ty + uz * tz;
+	const px = tx - slide * ux;
+	const py = ty - slide * uy;
+	const pz = tz - slide * uz;
+	target[ 0 ] = ux; target[ 1 ] = uy; target[ 2 ] = uz; target[ 3 ] = angle; target[ 4 ] = slide;
+	target[ 5 ] = px; target[ 6 ] = py; target[ 7 ] = pz;
+	target[ 8 ] = uy * pz - uz * py; target[ 9 ] = uz * px - ux * pz; target[ 10 ] = ux * py - uy * px;
+	return target;
+
+}

@@ -14,7 +14,8 @@
 
 import { BufferAttribute, BufferGeometry, Matrix4 } from 'three';
 import { jawPose, POSE_LENGTH } from '../core/jaw.js';
-import { meshVolume, TongueRig, vertexNormals } from '../core/tongue.js';
+import { meshVolume, vertexNormals } from '../core/meshVolume.js';
+import { TongueRig } from '../core/tongue.js';
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../core/collision.js';
 import { ParamState } from '../core/paramState.js';
 import { registerDebug } from '../debug.js';

@@ -11,7 +11,7 @@
 
 import { registerDebug } from '../debug.js';
 import { EPG_ELECTRODES } from '../core/constants.js';
-import { contactRows, createContactModel, epgContacts } from '../core/epgContacts.js';
+import { contactRows, createContactModel, electrodeContacts } from '../core/epgContacts.js';
 import { epgIndices, INDEX_SLOTS, INDEX_STRIDE, SLOT_PERCENT } from '../core/epgIndices.js';
 
 /**
@@ -40,8 +40,8 @@ export function createEpgLive( { layout, tongueTriangles, vertexCount, dense = f
 		update( positions ) {
 
 			const start = performance.now();
-			this.contacted = epgContacts( reading, positions, this.frame );
-			if ( denseModel ) epgContacts( denseModel, positions, this.denseFrame );
+			this.contacted = electrodeContacts( reading, positions, this.frame );
+			if ( denseModel ) electrodeContacts( denseModel, positions, this.denseFrame );
 			epgIndices( this.frame, 0, this.indices );
 			this.updates ++;
 			this.lastMs = performance.now() - start;

@@ -4,8 +4,8 @@
 // seam where the face skin meets the head shell. Nothing is allocated per pose. Without one, the
 // lower lip rides rigidly on the jaw and the lip gap is measured here (midlineLips, lipGap).
 
-import { applyFaceRig, createFaceRig, FACE_MESHES, GAP_LIPS, LIP_PARAMETER_NAMES, restFaceRig } from '../core/faceRig.js';
-import { vertexNormals } from '../core/tongue.js';
+import { createFaceRig, FACE_MESHES, GAP_LIPS, LIP_PARAMETER_NAMES, poseFace, restFaceRig } from '../core/faceRig.js';
+import { vertexNormals } from '../core/meshVolume.js';
 
 /** Skin vertices closer than this (mm) are one point of the seam (as the head welds it at load). */
 const SEAM_TOLERANCE_MM = 0.01;
@@ -53,7 +53,7 @@ export class FacePose {
 	pose( values, jawPose ) {
 
 		for ( let k = 0; k < this.lipIndex.length; k ++ ) this.lipValues[ k ] = values[ this.lipIndex[ k ] ];
-		applyFaceRig( this.rig, this.lipValues, jawPose, this.out );
+		poseFace( this.rig, this.lipValues, jawPose, this.out );
 		for ( let m = 0; m < this.meshes.length; m ++ ) {
 
 			const { part, index, sums } = this.meshes[ m ];

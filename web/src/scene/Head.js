@@ -1,47 +1,25 @@
 // The head: the anatomy meshes, their materials, the skin transparency and the sagittal cutaway.
+// How each part looks at a transparency and with or without the cut is headAppearance.js.
 //
 // Every mesh sits in its own Group (`head.part( name ).group`) so that others can move it (the jaw
 // rotates about a lateral axis) or swap its geometry (`setGeometry`, for the parametric tongue),
 // and its section outline moves with it.
 
-import {
-	BackSide,
-	DoubleSide,
-	Box3,
-	FrontSide,
-	Group,
-	LessEqualDepth,
-	Mesh,
-	MeshBasicMaterial,
-	Plane,
-	Vector3,
-} from 'three';
-import { createTissueMaterial, tissueOf, TISSUE_COLORS } from './materials.js';
-import { LIP_RENDER_ORDER, lipOpacity, SKIN_RENDER_ORDER, skinPassState } from './skinPasses.js';
+import { Box3, Group, Mesh, Plane, Vector3 } from 'three';
+import { tissueOf } from './materials.js';
+import { skinPassState } from './skinPasses.js';
 import { SectionOutline } from './SectionOutline.js';
 import { SectionCap } from './SectionCap.js';
 import { colorJawVertices, lowestY } from './jawColors.js';
 import { weldNormals } from '../core/weldNormals.js';
 import { buildOpeningMeshes } from './FaceOpenings.js';
+import { applyPartAppearance, applySkinAppearance, CAPPED_TISSUES, capRenderOrder, createPartMaterial, createSkinMaterials, plainBone } from './headAppearance.js';
 
 /** Clipping plane offset that keeps everything (cutaway off) without recompiling shaders. */
 const NO_CUT = 1e6;
 
 /** Skin vertices closer than this (mm) are the same point of the seam. */
 const WELD_TOLERANCE_MM = 0.01;
-
-/** Depth bias of the skin passes (glPolygonOffset factor and units). */
-const SKIN_DEPTH_BIAS = Object.freeze( { factor: 1, units: 2 } );
-
-/** Tissues whose meshes are open surfaces (not watertight); drawn two-sided. */
-const OPEN_TISSUES = new Set( [ 'maxilla', 'bone' ] );
-
-/** Closed tissues whose cut gets a cap on the plane (SectionCap), and their cut colours. The tongue
- * and the lips are pressed against the teeth, which would show through their sections otherwise. */
-const CAPPED_TISSUES = Object.freeze( { tongue: TISSUE_COLORS.tongueCut, lip: TISSUE_COLORS.lipCut } );
-
-/** Render order of the first cap: after the opaque anatomy, before the section outlines (5). */
-const CAP_RENDER_ORDER = 1;
 
 export class Head {
 
@@ -78,11 +56,7 @@ export class Head {
 
 		} else {
 
-			const material = createTissueMaterial( tissue, { closed: ! OPEN_TISSUES.has( tissue ) } );
-			// Two-sided always: a closed mesh's back faces only show through the cut, as its section.
-			material.side = DoubleSide;
-			material.clippingPlanes = [ this.clipPlane ];
-			const mesh = new Mesh( geometry, material );
+			const mesh = new Mesh( geometry, createPartMaterial( tissue, this.clipPlane ) );
 			mesh.name = entry.name;
 			part.meshes.push( mesh );
 			group.add( mesh );
@@ -92,7 +66,7 @@ export class Head {
 		if ( tissue in CAPPED_TISSUES ) {
 
 			const capped = [ ...this.parts.values() ].filter( ( other ) => other.cap ).length;
-			part.cap = new SectionCap( geometry, this.clipPlane, CAPPED_TISSUES[ tissue ], CAP_RENDER_ORDER + capped );
+			part.cap = new SectionCap( geometry, this.clipPlane, CAPPED_TISSUES[ tissue ], capRenderOrder( capped ) );
 			group.add( ...part.cap.meshes );
 
 		}
@@ -111,32 +85,7 @@ export class Head {
 	/** The skin is drawn in three ordered passes (see skinPasses.js); materials shared by all skin parts. */
 	addSkinPasses( part ) {
 
-		if ( ! this.skinMaterials ) {
-
-			const back = createTissueMaterial( 'skin' );
-			back.side = BackSide;
-			const front = createTissueMaterial( 'skin' );
-			front.side = FrontSide;
-			front.depthFunc = LessEqualDepth;
-			const prepass = new MeshBasicMaterial( { colorWrite: false, transparent: true, side: FrontSide } );
-			for ( const material of [ back, front, prepass ] ) {
-
-				material.clippingPlanes = [ this.clipPlane ];
-				// Where the lips and other anatomy touch the skin, their surfaces nearly coincide; a
-				// small depth bias lets the anatomy win instead of flickering through the skin.
-				material.polygonOffset = true;
-				material.polygonOffsetFactor = SKIN_DEPTH_BIAS.factor;
-				material.polygonOffsetUnits = SKIN_DEPTH_BIAS.units;
-
-			}
-
-			// The inside of the skin is background: pushed further back than its outside.
-			back.polygonOffsetFactor = 2 * SKIN_DEPTH_BIAS.factor;
-			back.polygonOffsetUnits = 4 * SKIN_DEPTH_BIAS.units;
-			this.skinMaterials = { back, front, prepass };
-
-		}
-
+		this.skinMaterials ??= createSkinMaterials( this.clipPlane );
 		for ( const pass of [ 'back', 'prepass', 'front' ] ) {
 
 			const mesh = new Mesh( part.geometry, this.skinMaterials[ pass ] );
@@ -173,8 +122,7 @@ export class Head {
 				if ( occlusalY === undefined ) {
 
 					// Without an upper jaw there is no occlusal level: plain bone.
-					part.meshes[ 0 ].material.vertexColors = false;
-					part.meshes[ 0 ].material.color.set( TISSUE_COLORS.bone );
+					plainBone( part.meshes[ 0 ].material );
 
 				} else part.dental = colorJawVertices( part.geometry, 'mandible', { occlusalY } );
 
@@ -266,33 +214,12 @@ export class Head {
 
 	}
 
+	/** Show the transparency and the cutaway on every part (the policy: headAppearance.js). */
 	applyState() {
 
 		const state = skinPassState( this.transparency );
 		this.clipPlane.constant = this.cutaway ? 0 : NO_CUT;
-
-		if ( this.skinMaterials ) {
-
-			const { back, front } = this.skinMaterials;
-			for ( const material of [ back, front ] ) {
-
-				material.transparent = state.transparent;
-				material.opacity = state.opacity;
-				material.depthWrite = state.depthWrite;
-				material.userData.section.rim.value = state.rim;
-				material.needsUpdate = true; // `transparent` changes the shader's OPAQUE define
-
-			}
-
-			// The inside of the skin: the cut tissue when cut away; a dark cavity behind the eye and
-			// nostril openings when the skin is opaque; shaded as skin when seen through the skin.
-			const inside = back.userData.section;
-			inside.rim.value = 0;
-			inside.sectionOn.value = this.cutaway || ! state.transparent ? 1 : 0;
-			inside.sectionColor.value.set( this.cutaway ? TISSUE_COLORS.skinCut : TISSUE_COLORS.skinCavity );
-
-		}
-
+		if ( this.skinMaterials ) applySkinAppearance( this.skinMaterials, state, this.cutaway );
 		for ( const part of this.parts.values() ) {
 
 			if ( this.cutaway && part.outlineStale ) {
@@ -302,62 +229,7 @@ export class Head {
 
 			}
 
-			part.outline.visible = this.cutaway;
-			// Faded lips are seen through anyway; their cut stays as faded as they are.
-			part.cap?.setVisible( this.cutaway && ( part.tissue !== 'lip' || lipOpacity( this.transparency ) === 1 ) );
-			for ( const mesh of part.meshes ) {
-
-				const pass = mesh.userData.skinPass;
-				if ( mesh.userData.opening ) {
-
-					// Eyes and nostrils belong to the skin: they fade and disappear with it.
-					const material = mesh.material;
-					if ( material.transparent !== state.transparent ) {
-
-						material.transparent = state.transparent;
-						material.needsUpdate = true;
-
-					}
-
-					material.opacity = state.opacity;
-					material.depthWrite = state.depthWrite;
-					material.userData.section.sectionOn.value = this.cutaway ? 1 : 0;
-					mesh.renderOrder = SKIN_RENDER_ORDER.front;
-					mesh.visible = state.visible;
-
-				} else if ( pass ) {
-
-					mesh.renderOrder = SKIN_RENDER_ORDER[ pass ];
-					if ( pass === 'back' ) mesh.visible = state.visible;
-					else if ( pass === 'prepass' ) mesh.visible = state.prepass;
-					else mesh.visible = state.visible;
-
-				} else {
-
-					if ( part.tissue === 'lip' ) {
-
-						const opacity = lipOpacity( this.transparency );
-						mesh.material.opacity = opacity;
-						if ( mesh.material.transparent !== opacity < 1 ) {
-
-							mesh.material.transparent = opacity < 1;
-							mesh.material.needsUpdate = true;
-
-						}
-
-						mesh.renderOrder = opacity < 1 ? LIP_RENDER_ORDER : 0;
-						// Faded lips show only their outer surface (their inside would add clutter),
-						// unless the cut needs the inside to draw the section.
-						mesh.material.side = opacity < 1 && ! this.cutaway ? FrontSide : DoubleSide;
-
-					}
-
-					const sectionable = mesh.material.userData.sectionable;
-					mesh.material.userData.section.sectionOn.value = this.cutaway && sectionable ? 1 : 0;
-
-				}
-
-			}
+			applyPartAppearance( part, state, this.transparency, this.cutaway );
 
 		}
 
