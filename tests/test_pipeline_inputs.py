@@ -5,14 +5,14 @@ import shutil
 import pytest
 
 from glasshead.cli import main
-from glasshead.pipeline.sources import BADIN, CBCT
+from glasshead.pipeline.sources import BADIN, CBCT, TRACT
 
 
 @pytest.fixture
 def data_copy(tmp_path, data_dir):
     """A writable copy of the anatomy folders the build reads."""
     copy = tmp_path / "data"
-    for folder in (BADIN, CBCT):
+    for folder in (BADIN, CBCT, TRACT):
         shutil.copytree(data_dir / folder, copy / folder)
     return copy
 

@@ -1,4 +1,5 @@
-"""The anatomy step of `glasshead build`: every mesh of the head, in the project frame, as GLB.
+"""The anatomy step of `glasshead build`: every mesh of the head and vocal tract, in the project
+frame, as GLB.
 
 Writes into a staging directory (see ``build.py``): one GLB per mesh (smooth vertex normals,
 outward winding), ``face_skin_nodes.json`` (the face.node id of each skin vertex, for the jaw
@@ -24,6 +25,7 @@ from glasshead.pipeline.maxilla_lods import (
     mouth_residual,
 )
 from glasshead.pipeline.register_cbct import register_cbct
+from glasshead.pipeline.tract import build_tract, read_tract_sources
 
 
 def write_glb(path, vertices, faces):
@@ -55,17 +57,19 @@ def build_anatomy(data_dir, stage_dir, log=print):
     timer = Timer(log)
     entries, report = [], {}
 
-    def emit(name, vertices, faces, role, source, lod="full", scene=True):
+    def emit(name, vertices, faces, role, source, lod="full", scene=True, **extra):
         file = f"{name}.glb"
         digest = write_glb(Path(stage_dir) / file, vertices, faces)
         entries.append({"name": name, "file": file, "sha256": digest, "triangles": len(faces),
                         "vertices": len(vertices), "lod": str(lod), "frame": "project-mm",
-                        "scene": scene, "role": role, "source": source})
+                        "scene": scene, "role": role, "source": source} | extra)
 
     badin = {}
     for stem, (name, _role) in sources.BADIN_MESHES.items():
         badin[name] = timer.run(f"read {stem}.obj", sources.read_badin_mesh, data_dir, stem)
     cranium_vertices = badin["cranium"][0]
+    # Read (and check) the vocal tract and neck now, so a bad file stops the build at once.
+    tract_sources = timer.run("read vocal tract and neck", read_tract_sources, data_dir)
 
     face_dir = Path(data_dir) / sources.BADIN
     node_ids, nodes = read_face_nodes(face_dir / "face.node")
@@ -105,6 +109,14 @@ def build_anatomy(data_dir, stage_dir, log=print):
         chosen = choice["mesh"] == "cbct" and choice["level"] == lod["level"]
         emit("maxilla" if chosen else f"maxilla_cbct_lod{lod['level']}", lod["vertices"],
              lod["faces"], "bone", "artisynth-dynjaw/maxilla.obj", lod=lod["level"], scene=chosen)
+
+    # The vocal tract and neck: not in the scene yet (the web app shows scene meshes only).
+    tract_meshes, report["tract"] = timer.run(
+        "vocal tract and neck", build_tract, tract_sources, cbct_vertices, placed, registration,
+        badin, log)
+    for mesh in tract_meshes:
+        emit(mesh["name"], mesh["vertices"], mesh["faces"], mesh["role"], mesh["source"],
+             scene=False, **mesh["extra"])
 
     report["cbct_registration"] = registration
     report["cbct_lods"] = [{k: v for k, v in lod.items() if k not in ("vertices", "faces")}

@@ -37,7 +37,8 @@ class BuildContext:
 ANATOMY_SOURCES = ["constants.py", "geometry/frame.py", "geometry/meshio.py", "pipeline/sources.py",
                    "pipeline/anatomy.py", "pipeline/face_skin.py", "pipeline/head_shell.py",
                    "pipeline/register_cbct.py", "pipeline/maxilla_lods.py",
-                   "pipeline/surface_distance.py"]
+                   "pipeline/surface_distance.py", "pipeline/tract.py", "pipeline/tract_checks.py",
+                   "pipeline/larynx.py"]
 
 
 def inputs_digest(data_dir, package_files=None):
