@@ -20,6 +20,7 @@ order on the same values, so they agree bit for bit on the same vertices.
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.constants import (
     COLLISION_TOL,
@@ -47,7 +48,7 @@ class Probes:
     origins: np.ndarray
     directions: np.ndarray
     cells: np.ndarray
-    ids: list
+    ids: list[str]
     rows: int
     columns: int
     tolerance: float = EPG_CONTACT_TOLERANCE_MM
@@ -58,8 +59,8 @@ class Probes:
         return len(self.origins)
 
 
-def probes_from_layout(grid_layout: dict, tolerance=EPG_CONTACT_TOLERANCE_MM,
-                       behind=EPG_CONTACT_BEHIND_MM) -> Probes:
+def probes_from_layout(grid_layout: dict, tolerance: float = EPG_CONTACT_TOLERANCE_MM,
+                       behind: float = EPG_CONTACT_BEHIND_MM) -> Probes:
     """Probes of one grid of a layout document (``layout["grids"][name]``)."""
     electrodes = grid_layout["electrodes"]
     if not electrodes:
@@ -83,7 +84,8 @@ def probes_from_layout(grid_layout: dict, tolerance=EPG_CONTACT_TOLERANCE_MM,
                   [e["id"] for e in electrodes], rows, columns, float(tolerance), float(behind))
 
 
-def _check_mesh(vertices, triangles):
+def _check_mesh(vertices: npt.ArrayLike,
+                triangles: npt.ArrayLike) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
     v = np.asarray(vertices, dtype=np.float64)
     t = np.asarray(triangles)
     if v.ndim != 2 or v.shape[1] != 3:
@@ -97,7 +99,8 @@ def _check_mesh(vertices, triangles):
     return v, t.astype(np.int64)
 
 
-def probe_hits(origin, direction, a, b, c, tolerance, behind):
+def probe_hits(origin: np.ndarray, direction: np.ndarray, a: np.ndarray, b: np.ndarray,
+               c: np.ndarray, tolerance: float, behind: float) -> npt.NDArray[np.bool_]:
     """Which triangles (a, b, c each (m, 3) float64) the probe crosses: (m,) bool.
 
     Two-sided Moller-Trumbore (1997) from ``origin`` along ``direction`` (``ray_triangle``).
@@ -111,7 +114,8 @@ def probe_hits(origin, direction, a, b, c, tolerance, behind):
     return inside_triangle(det, u, v, BARYCENTRIC_SLACK) & (t >= -behind) & (t <= tolerance)
 
 
-def electrode_contacts(vertices, triangles, probes: Probes) -> np.ndarray:
+def electrode_contacts(vertices: npt.ArrayLike, triangles: npt.ArrayLike,
+                       probes: Probes) -> npt.NDArray[np.uint8]:
     """Contact (1) or not (0) of each electrode: (k,) uint8.
 
     vertices : (n, 3) float, the corrected tongue, project frame (mm). triangles : (m, 3) int.
@@ -135,7 +139,7 @@ def electrode_contacts(vertices, triangles, probes: Probes) -> np.ndarray:
     return out
 
 
-def contact_grid(contacts, probes: Probes) -> np.ndarray:
+def contact_grid(contacts: npt.ArrayLike, probes: Probes) -> npt.NDArray[np.uint8]:
     """Electrode contacts (k,) laid out on the grid: (rows, columns) uint8, 0 where a cell has
     no electrode (the R1 corners of the Reading palate)."""
     contacts = np.asarray(contacts, dtype=np.uint8)

@@ -21,6 +21,7 @@ the cases that prove it.
 """
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.constants import (
     CELL_LIST,
@@ -33,10 +34,11 @@ from glasshead.constants import (
     VOXEL_NOT_OK,
     VOXEL_OK,
 )
+from glasshead.geometry.collision_format import CollisionTables
 from glasshead.geometry.ray_triangle import inside_triangle, ray_triangle
 
 
-def screen(points, tables):
+def screen(points: npt.NDArray[np.float64], tables: CollisionTables) -> npt.NDArray[np.uint8]:
     """Voxel class of each point (VOXEL_OK below the floor; VOXEL_BORDER outside the grid).
 
     points : (n, 3) float64, project frame. Returns (n,) uint8.
@@ -57,7 +59,8 @@ def screen(points, tables):
     return classes
 
 
-def correct_vertices(vertices, tables):
+def correct_vertices(vertices: npt.ArrayLike, tables: CollisionTables,
+                     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.uint8], dict[str, int]]:
     """Correct tongue vertices against the collision tables.
 
     vertices : (n, 3) float, project frame (mm). tables : ``collision_format.CollisionTables``.
@@ -117,7 +120,8 @@ def correct_vertices(vertices, tables):
     return out, flags, counts
 
 
-def _first_hits(px, py, pz, cell, tables):
+def _first_hits(px: np.ndarray, py: np.ndarray, pz: np.ndarray, cell: np.ndarray,
+                tables: CollisionTables) -> npt.NDArray[np.float64]:
     """Smallest Moller-Trumbore t > 0 over each point's cell list (+inf when none)."""
     offsets = tables["cell_offsets"]
     start = offsets[cell].astype(np.int64)
@@ -130,7 +134,8 @@ def _first_hits(px, py, pz, cell, tables):
     return t
 
 
-def moller_trumbore(dx, dy, dz, tri):
+def moller_trumbore(dx: np.ndarray, dy: np.ndarray, dz: np.ndarray,
+                    tri: np.ndarray) -> npt.NDArray[np.float64]:
     """Two-sided Moller-Trumbore from O along (dx, dy, dz), written operation by operation as in
     ``collision.js`` so that both twins round alike.
 

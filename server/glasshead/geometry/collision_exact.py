@@ -14,19 +14,22 @@
 """
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.constants import COLLISION_TOL
+
+Floats = npt.NDArray[np.float64]
 
 #: Squared sine of the angle at a below which a triangle counts as flat (a segment or a point):
 #: the closest point is then taken on its edges, wrong by at most its width, 1e-6 of an edge.
 FLAT_SIN2 = 1e-12
 
 
-def _dot(u, v):
+def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.einsum("...i,...i->...", u, v)
 
 
-def _flat(a, b, c):
+def _flat(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
     """True where triangle (a, b, c) is flat: |ab x ac|^2 <= FLAT_SIN2 |ab|^2 |ac|^2, written
     with Lagrange's identity |ab x ac|^2 = |ab|^2 |ac|^2 - (ab . ac)^2."""
     ab, ac = b - a, c - a
@@ -34,7 +37,7 @@ def _flat(a, b, c):
     return _dot(ab, ac) ** 2 >= (1.0 - FLAT_SIN2) * product
 
 
-def closest_points_on_segments(p, a, b):
+def closest_points_on_segments(p: npt.ArrayLike, a: npt.ArrayLike, b: npt.ArrayLike) -> Floats:
     """Closest points on segments (a, b) to points p, all (..., 3) broadcast together; a
     zero-length segment answers a. Returns (..., 3) float64."""
     p, a, b = np.broadcast_arrays(*(np.asarray(x, dtype=np.float64) for x in (p, a, b)))
@@ -45,7 +48,8 @@ def closest_points_on_segments(p, a, b):
     return a + ab * np.clip(t, 0.0, 1.0)[..., None]
 
 
-def closest_points_on_triangles(p, a, b, c):
+def closest_points_on_triangles(p: npt.ArrayLike, a: npt.ArrayLike, b: npt.ArrayLike,
+                                c: npt.ArrayLike) -> Floats:
     """Closest points on triangles (a, b, c) to points p (Ericson 5.1.5), all broadcast together.
 
     p, a, b, c : (..., 3) float, mm or any one unit. Returns (..., 3) float64 in that unit.
@@ -94,7 +98,8 @@ def closest_points_on_triangles(p, a, b, c):
     return out
 
 
-def ray_triangle_hits(direction, a, e1, e2, origin=None):
+def ray_triangle_hits(direction: npt.ArrayLike, a: npt.ArrayLike, e1: npt.ArrayLike,
+                      e2: npt.ArrayLike, origin: npt.ArrayLike | None = None) -> Floats:
     """Two-sided Moller-Trumbore hits of rays ``origin + t * direction`` with triangles.
 
     direction, a, e1, e2 : (..., 3) float, broadcast together; e1 = b - a, e2 = c - a.
@@ -119,7 +124,8 @@ def ray_triangle_hits(direction, a, e1, e2, origin=None):
     return np.where(hit, t, np.inf)
 
 
-def first_hits_from_origin(points, origin, vertices, faces, chunk=256):
+def first_hits_from_origin(points: npt.ArrayLike, origin: npt.ArrayLike, vertices: npt.ArrayLike,
+                           faces: npt.ArrayLike, chunk: int = 256) -> tuple[Floats, Floats]:
     """Exact first crossing of each segment O -> P with a triangle mesh, brute force.
 
     points : (n, 3) float; origin : (3,) float; vertices : (v, 3) float; faces : (m, 3) int.
@@ -145,7 +151,8 @@ def first_hits_from_origin(points, origin, vertices, faces, chunk=256):
     return t, radius
 
 
-def project_onto_closest(points, vertices, faces, chunk=128):
+def project_onto_closest(points: npt.ArrayLike, vertices: npt.ArrayLike, faces: npt.ArrayLike,
+                         chunk: int = 128) -> tuple[Floats, npt.NDArray[np.bool_]]:
     """The paper's exact slow correction: project penetrating points onto the closest triangle.
 
     For each point the closest point on the mesh (closest triangle, edge or vertex, Ericson

@@ -19,7 +19,9 @@ what it expects; it never guesses.
 
 import json
 import zlib
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -51,18 +53,19 @@ class CollisionTablesError(ValueError):
 class CollisionTables:
     """Collision tables read from a file: ``header`` (dict) and ``arrays`` (name -> ndarray)."""
 
-    header: dict
-    arrays: dict
+    header: dict[str, Any]
+    arrays: dict[str, np.ndarray]
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> np.ndarray:
         return self.arrays[name]
 
 
-def _pad(n):
+def _pad(n: int) -> int:
     return (-n) % ALIGN
 
 
-def encode_collision_tables(header, arrays):
+def encode_collision_tables(header: Mapping[str, Any],
+                            arrays: Mapping[str, np.ndarray]) -> bytes:
     """Serialise ``header`` (dict without array entries) and ``arrays`` into the file's bytes."""
     missing = set(ARRAY_DTYPES) - set(arrays)
     if missing:
@@ -86,7 +89,7 @@ def encode_collision_tables(header, arrays):
     return prefix + text + payload
 
 
-def decode_collision_header(data):
+def decode_collision_header(data: bytes | bytearray | memoryview) -> dict[str, Any]:
     """The JSON header of a tables file, after checking the magic and the format version."""
     data = memoryview(data)
     if len(data) < PREFIX_BYTES or bytes(data[:8]) != COLLISION_TABLES_MAGIC:
@@ -111,7 +114,7 @@ def decode_collision_header(data):
     return header
 
 
-def decode_collision_tables(data):
+def decode_collision_tables(data: bytes | bytearray | memoryview) -> CollisionTables:
     """Parse and check a whole tables file. data : bytes. Returns ``CollisionTables``."""
     data = bytes(data)
     header = decode_collision_header(data)
@@ -143,7 +146,7 @@ def decode_collision_tables(data):
     return CollisionTables(header=header, arrays=arrays)
 
 
-def _check_consistency(header, arrays):
+def _check_consistency(header: dict[str, Any], arrays: dict[str, np.ndarray]) -> None:
     liner, vox = header["liner"], header["voxels"]
     nlat, nlon = int(liner["nlat"]), int(liner["nlon"])
     m = len(arrays["triangles"])

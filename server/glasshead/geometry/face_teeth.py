@@ -3,17 +3,22 @@
 Twin of the teeth part of ``web/src/core/faceRig.js``. Each row of incisors is tabulated (by
 ``glasshead.pipeline.face_rig_teeth``) as x = F(y, z), the front-most surface along -x on a
 regular grid; a point with x < F(y, z) is behind the teeth and is moved out onto them along the
-face's normal. Only points less than the table's ``depth`` behind the face count: deeper ones are behind the
-teeth altogether (inside the mouth, or the back of the head in the same band of y and z), not in
-them. The upper row is fixed to the maxilla, so F is read at the point itself; the lower row is
-tabulated on the mandible at rest, so the point is first taken into the rest mandible's frame
-(R^T (p - t)), corrected there, and brought back.
+face's normal. Only points less than the table's ``depth`` behind the face count: deeper ones
+are behind the teeth altogether (inside the mouth, or the back of the head in the same band of y
+and z), not in them. The upper row is fixed to the maxilla, so F is read at the point itself; the
+lower row is tabulated on the mandible at rest, so the point is first taken into the rest
+mandible's frame (R^T (p - t)), corrected there, and brought back.
 """
 
+from collections.abc import Mapping
+from typing import Any
+
 import numpy as np
+import numpy.typing as npt
 
 
-def teeth_bound(y, z, surface, gradient=False):
+def teeth_bound(y: npt.ArrayLike, z: npt.ArrayLike, surface: Mapping[str, Any],
+                gradient: bool = False) -> Any:
     """The labial face x = F(y, z) of a row of incisors, receding outside its table.
 
     ``surface`` tabulates F on a regular grid (``y0``, ``z0``, ``step_y``, ``step_z``, ``rows``
@@ -48,7 +53,8 @@ def teeth_bound(y, z, surface, gradient=False):
     return value, dy, dz
 
 
-def push_out(points, surface):
+def push_out(points: npt.NDArray[np.float64],
+             surface: Mapping[str, Any]) -> npt.NDArray[np.bool_]:
     """Move the points lying behind a face (by less than ``depth``) onto it, in place.
 
     Each is moved along the face's normal (1, -F_y, -F_z) onto its tangent plane, ``steps``
@@ -71,7 +77,8 @@ def push_out(points, surface):
     return moved
 
 
-def clamp_to_teeth(points, teeth, rotation, translation):
+def clamp_to_teeth(points: npt.NDArray[np.float64], teeth: Mapping[str, Any],
+                   rotation: npt.NDArray[np.float64], translation: npt.NDArray[np.float64]) -> int:
     """Push points out of both incisor rows, in place (see ``push_out``).
 
     points : (n, 3) float64 array, posed.  teeth : the rig's ``teeth`` dict (``upper`` in the

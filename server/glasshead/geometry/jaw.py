@@ -14,8 +14,11 @@ weight: ``p + w * (pose(p) - p)``; weight 1 rides fully, 0 stays.
 """
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 #: Height of the band at the top of each condyle whose centre is taken as the pivot, mm.
 CONDYLE_BAND_MM = 5.0
@@ -41,7 +44,7 @@ def jaw_definition(pivot, translation_per_degree=TRANSLATION_PER_DEGREE, paramet
     }
 
 
-def jaw_pose(opening_deg, jaw):
+def jaw_pose(opening_deg: float, jaw: Mapping[str, Any]) -> npt.NDArray[np.float64]:
     """(3, 4) float64 pose [R | t] for an opening in degrees and a jaw block."""
     opening = float(opening_deg)
     if not math.isfinite(opening):
@@ -57,30 +60,31 @@ def jaw_pose(opening_deg, jaw):
     return pose
 
 
-def apply_jaw_pose(points, pose, weights=None):
+def apply_jaw_pose(points: npt.ArrayLike, pose: npt.ArrayLike,
+                   weights: npt.ArrayLike | None = None) -> npt.NDArray[np.float64]:
     """Move points with the jaw, each by its weight.
 
     points : (n, 2) or (n, 3) float, mm (2-column points are in the mid-sagittal plane).
     pose : (3, 4) float from ``jaw_pose``. weights : (n,) float or None (all 1).
     Returns float64 of the same shape.
     """
-    points = np.asarray(points, dtype=np.float64)
-    if points.ndim != 2 or points.shape[1] not in (2, 3):
-        raise ValueError(f"points must be (n, 2) or (n, 3), got {points.shape}")
-    pose = np.asarray(pose, dtype=np.float64)
-    if pose.shape != (3, 4):
-        raise ValueError(f"pose must be (3, 4), got {pose.shape}")
-    dims = points.shape[1]
-    moved = points @ pose[:dims, :dims].T + pose[:dims, 3]
+    p = np.asarray(points, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] not in (2, 3):
+        raise ValueError(f"points must be (n, 2) or (n, 3), got {p.shape}")
+    matrix = np.asarray(pose, dtype=np.float64)
+    if matrix.shape != (3, 4):
+        raise ValueError(f"pose must be (3, 4), got {matrix.shape}")
+    dims = p.shape[1]
+    moved = p @ matrix[:dims, :dims].T + matrix[:dims, 3]
     if weights is None:
         return moved
-    weights = np.asarray(weights, dtype=np.float64).reshape(-1, 1)
-    if weights.shape[0] != points.shape[0]:
+    w = np.asarray(weights, dtype=np.float64).reshape(-1, 1)
+    if w.shape[0] != p.shape[0]:
         raise ValueError("weights must have one value per point")
-    return points + weights * (moved - points)
+    return p + w * (moved - p)
 
 
-def estimate_condyle(jaw_vertices):
+def estimate_condyle(jaw_vertices: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Pivot (x, y), mm, of the temporomandibular axis from a mandible mesh in the project frame.
 
     jaw_vertices : (n, 3) float, mm. The condyles are the highest points of the back half of the

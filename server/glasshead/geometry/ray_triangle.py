@@ -5,10 +5,31 @@ operation by operation as in ``web/src/core/collision.js`` and ``epgContacts.js`
 Python and JavaScript twins round alike.
 """
 
+from typing import overload
+
 import numpy as np
+import numpy.typing as npt
+
+Floats = npt.NDArray[np.float64]
+#: A coordinate: one float, or an (m,) float64 array of them.
+Coordinate = float | Floats
 
 
-def ray_triangle(sx, sy, sz, dx, dy, dz, e1x, e1y, e1z, e2x, e2y, e2z):
+@overload
+def ray_triangle(sx: float, sy: float, sz: float, dx: float, dy: float, dz: float,
+                 e1x: float, e1y: float, e1z: float, e2x: float, e2y: float, e2z: float,
+                 ) -> tuple[float, float, float, float]: ...
+@overload
+def ray_triangle(sx: Floats, sy: Coordinate, sz: Coordinate,
+                 dx: Coordinate, dy: Coordinate, dz: Coordinate,
+                 e1x: Coordinate, e1y: Coordinate, e1z: Coordinate,
+                 e2x: Coordinate, e2y: Coordinate, e2z: Coordinate,
+                 ) -> tuple[Floats, Floats, Floats, Floats]: ...
+def ray_triangle(sx: Coordinate, sy: Coordinate, sz: Coordinate,
+                 dx: Coordinate, dy: Coordinate, dz: Coordinate,
+                 e1x: Coordinate, e1y: Coordinate, e1z: Coordinate,
+                 e2x: Coordinate, e2y: Coordinate, e2z: Coordinate,
+                 ) -> tuple[Coordinate, Coordinate, Coordinate, Coordinate]:
     """Barycentric (u, v), ray parameter t and determinant of rays against triangles.
 
     s = ray origin minus the triangle's first corner a; d = ray direction; e1 = b - a, e2 = c - a.
@@ -30,6 +51,13 @@ def ray_triangle(sx, sy, sz, dx, dy, dz, e1x, e1y, e1z, e2x, e2y, e2z):
     return det, u, v, t
 
 
-def inside_triangle(det, u, v, slack):
-    """(m,) bool: a non-degenerate triangle contains the hit, with ``slack`` on its edges."""
+@overload
+def inside_triangle(det: float, u: float, v: float, slack: float) -> bool: ...
+@overload
+def inside_triangle(det: Floats, u: Coordinate, v: Coordinate,
+                    slack: float) -> npt.NDArray[np.bool_]: ...
+def inside_triangle(det: Coordinate, u: Coordinate, v: Coordinate,
+                    slack: float) -> bool | npt.NDArray[np.bool_]:
+    """(m,) bool (a bool for float inputs): a non-degenerate triangle contains the hit, with
+    ``slack`` on its edges."""
     return (det != 0.0) & (u >= -slack) & (v >= -slack) & (u + v <= 1.0 + slack)
