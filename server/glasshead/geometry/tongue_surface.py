@@ -21,13 +21,17 @@ move singly and in pairs under articulation parameters.
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.geometry.bspline import basis_matrix
 from glasshead.geometry.jaw import apply_jaw_pose, jaw_pose
 from glasshead.geometry.mesh_volume import mesh_volume, vertex_normals
 from glasshead.geometry.tongue_rig import validate_definition
+
+Floats = npt.NDArray[np.float64]
 
 
 class ParameterError(ValueError):
@@ -49,7 +53,7 @@ class TongueSurface:
     volume: float
 
 
-def surface_triangles(stations, page_samples):
+def surface_triangles(stations: int, page_samples: int) -> npt.NDArray[np.int64]:
     """Triangles (2 * stations * page_samples, 3) int64 of the surface layout (see tongue_rig).
 
     Vertex 0 is the right pole, 1 the left pole, ring vertex (i, j) is 2 + i * page_samples + j.
@@ -72,7 +76,7 @@ def surface_triangles(stations, page_samples):
 class TongueRig:
     """A loaded rig definition with its parameter-independent tables."""
 
-    def __init__(self, definition):
+    def __init__(self, definition: dict[str, Any]):
         validate_definition(definition)
         self.definition = definition
         table = definition["parameters"]
@@ -138,7 +142,7 @@ class TongueRig:
 
     # --- parameters ---------------------------------------------------------------------------
 
-    def values_from(self, params: Mapping[str, float] | None = None):
+    def values_from(self, params: Mapping[str, float] | None = None) -> Floats:
         """(P,) float64 parameter values from a name -> value mapping; missing names are neutral.
 
         Raises ParameterError for an unknown name or a value that is not finite or out of range.
@@ -158,7 +162,7 @@ class TongueRig:
             values[self._index[name]] = float(value)
         return values
 
-    def _checked(self, values):
+    def _checked(self, values: npt.ArrayLike) -> Floats:
         values = np.asarray(values, dtype=np.float64)
         if values.shape != self.neutral.shape:
             raise ValueError(f"values must have shape {self.neutral.shape}, got {values.shape}")
@@ -168,7 +172,7 @@ class TongueRig:
 
     # --- evaluation -----------------------------------------------------------------------------
 
-    def control_points(self, values):
+    def control_points(self, values: npt.ArrayLike) -> tuple[Floats, Floats, Floats, Floats]:
         """Posed sagittal control points (n, 2), hub (2,), coronal offsets (sections, controls)
         and section stretches (sections,)."""
         values = self._checked(values)
@@ -181,7 +185,7 @@ class TongueRig:
         hub = apply_jaw_pose(self.hub[None, :], pose, [self.hub_jaw_weight])[0]
         return points, hub, offsets, stretch
 
-    def page_radii(self, values):
+    def page_radii(self, values: npt.ArrayLike) -> tuple[Floats, Floats, Floats, Floats, Floats]:
         """Hub (2,), stations (s, 2), page directions (s, 2), radii (s, page_samples) and
         sideways stretch (s,) of the surface."""
         points, hub, offsets, stretch = self.control_points(values)
@@ -196,7 +200,7 @@ class TongueRig:
         controls[:, self.pole_controls] = self.pole_half_width
         return hub, stations, direction, controls @ self.page_basis.T, self.station_blend @ stretch
 
-    def vertices(self, values):
+    def vertices(self, values: npt.ArrayLike) -> Floats:
         """(vertex_count, 3) float64 surface vertices for parameter values (P,)."""
         hub, _stations, direction, radii, stretch = self.page_radii(values)
         ring = np.empty((self.stations, self.page_samples, 3))
@@ -208,18 +212,18 @@ class TongueRig:
                           [hub[0], hub[1], self.pole_half_width]])
         return np.concatenate([poles, ring.reshape(-1, 3)])
 
-    def evaluate(self, values):
+    def evaluate(self, values: npt.ArrayLike) -> TongueSurface:
         """The surface (vertices, normals, triangles, volume) for parameter values (P,), as a
         TongueSurface; ``values_from`` turns a name -> value mapping into values."""
         vertices = self.vertices(values)
         return TongueSurface(vertices, vertex_normals(vertices, self.triangles), self.triangles,
                              mesh_volume(vertices, self.triangles))
 
-    def volume(self, values):
+    def volume(self, values: npt.ArrayLike) -> float:
         """Enclosed volume, mm^3, for parameter values (P,)."""
         return mesh_volume(self.vertices(values), self.triangles)
 
-    def pages_in_order(self, values):
+    def pages_in_order(self, values: npt.ArrayLike) -> bool:
         """True when the pages turn once round the hub in order, every radius is positive and
         every stretch keeps the rays of its page in order (-1 < k < 1/4, see tongue_rig.STRETCH):
         then the surface is closed and free of self-intersection."""
