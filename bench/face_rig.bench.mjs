@@ -14,7 +14,8 @@ import { readFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-import { createFaceRig, FACE_MESHES, lipValues, poseFace, restFaceRig } from '../web/src/core/faceRig.js';
+import { createFaceRig, lipValues, poseFace, restFaceRig } from '../web/src/core/faceRig.js';
+import { FACE_RIG_MESHES } from '../web/src/core/constants.js';
 import { jawPose, POSE_LENGTH } from '../web/src/core/jaw.js';
 import { vertexNormals } from '../web/src/core/meshVolume.js';
 import { median, random } from './support/stats.mjs';
@@ -43,15 +44,15 @@ function time( run ) {
 
 }
 
-const vectors = JSON.parse( readFileSync( join( REPO, 'tests', 'vectors', 'face-rig.json' ), 'utf8' ) );
-const rest = Object.fromEntries( FACE_MESHES.map( ( name ) => [ name, Float32Array.from( vectors.rest[ name ] ) ] ) );
+const vectors = JSON.parse( readFileSync( join( REPO, 'tests', 'vectors', 'face-rig.json' ), 'utf8' ) ).fixtures;
+const rest = Object.fromEntries( FACE_RIG_MESHES.map( ( name ) => [ name, Float32Array.from( vectors.rest[ name ] ) ] ) );
 const rig = createFaceRig( vectors.rig, rest );
-const out = restFaceRig( rig, Object.fromEntries( FACE_MESHES.map( ( name ) => [ name, new Float32Array( rest[ name ].length ) ] ) ) );
-const vertexCount = FACE_MESHES.reduce( ( total, name ) => total + rest[ name ].length / 3, 0 );
+const out = restFaceRig( rig, Object.fromEntries( FACE_RIG_MESHES.map( ( name ) => [ name, new Float32Array( rest[ name ].length ) ] ) ) );
+const vertexCount = FACE_RIG_MESHES.reduce( ( total, name ) => total + rest[ name ].length / 3, 0 );
 
 // Triangles for the normals: the vectors carry positions only, so a fan over each mesh's vertex
 // list stands in, with the meshes' real triangle counts (about twice the vertices).
-const normals = FACE_MESHES.map( ( name ) => {
+const normals = FACE_RIG_MESHES.map( ( name ) => {
 
 	const count = rest[ name ].length / 3;
 	const index = new Uint32Array( 3 * ( 2 * count - 4 ) );
@@ -78,10 +79,10 @@ for ( let k = 0; k < SETS; k ++ ) {
 
 }
 
-const weights = Object.fromEntries( FACE_MESHES.map( ( name ) => [ name, rig.meshes[ name ].weights ] ) );
+const weights = Object.fromEntries( FACE_RIG_MESHES.map( ( name ) => [ name, rig.meshes[ name ].weights ] ) );
 function baseline( pose ) {
 
-	for ( const name of FACE_MESHES ) {
+	for ( const name of FACE_RIG_MESHES ) {
 
 		const p = rest[ name ];
 		const q = out[ name ];
@@ -112,7 +113,7 @@ const frame = time( ( k ) => {
 } );
 restFaceRig( rig, out );
 const floor = time( ( k ) => baseline( poses[ k % SETS ] ) );
-const moving = FACE_MESHES.reduce( ( total, name ) => total + rig.meshes[ name ].moving.length, 0 );
+const moving = FACE_RIG_MESHES.reduce( ( total, name ) => total + rig.meshes[ name ].moving.length, 0 );
 
 console.log( `face rig: ${ vertexCount } vertices (${ moving } can move), ${ SETS } seeded sets (seed ${ SEED }), median of ${ SAMPLES } x ${ CALLS } poses` );
 console.log( `  ours      ${ ours.toFixed( 3 ) } ms per pose` );

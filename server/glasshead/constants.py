@@ -1,13 +1,17 @@
 """Project-wide constants: the frame, tolerances and table formats.
 
-Mirrored in ``web/src/core/constants.js``; the shared vectors in ``tests/vectors/constants.json``
-assert that both sides agree.
+Written once, here: ``python -m glasshead.shared_constants`` generates the browser's copy of
+every upper-case name, ``web/src/core/shared.generated.js``, and ``tests/test_shared_constants.py``
+fails while that file is stale. The shared vectors in ``tests/vectors/constants.json`` assert that
+both sides agree.
 
 The project frame: millimetres; +x anterior (toward the lips), +y superior, +z toward the
 subject's left; the mid-sagittal plane is z = 0.  Note that (anterior, superior, left) is a
 mirror of a right-handed anatomical frame, so converting a right-handed source flips the
 winding of its triangles; ``geometry.frame`` handles that.
 """
+
+from typing import Any
 
 import numpy as np
 
@@ -47,6 +51,26 @@ EPG_ELECTRODES = EPG_CELLS - 2
 EPG_MISSING_CELLS = (0, 7)
 #: Zones as half-open row ranges: alveolar R1-R2, palatal R3-R5, velar R6-R8.
 EPG_ZONES = {"alveolar": (0, 2), "palatal": (2, 5), "velar": (5, 8)}
+#: The panels of the EPG index plots (epg.plot draws them as SVG, web/src/ui/IndexPlot.js on a
+#: canvas): per index its title, a short label for a narrow axis, and the range its definition
+#: bounds it to (emuR: percentages 0-100, the centre of gravity 0-8 rows, the rest 0-1).
+EPG_PLOT_PANELS: dict[str, dict[str, Any]] = {
+    "percent": {"label": "Percent contact", "short_label": "% contact", "range": (0.0, 100.0)},
+    "cog": {"label": "Centre of gravity", "short_label": "COG", "range": (0.0, float(EPG_ROWS))},
+    "anteriority": {"label": "Anteriority index", "short_label": "anteriority",
+                    "range": (0.0, 1.0)},
+    "centrality": {"label": "Centrality index", "short_label": "centrality", "range": (0.0, 1.0)},
+    "dorsopalatal": {"label": "Dorsopalatal index", "short_label": "dorsopalatal",
+                     "range": (0.0, 1.0)},
+    "alveolar_percent": {"label": "Alveolar contact %", "short_label": "% alveolar",
+                         "range": (0.0, 100.0)},
+    "palatal_percent": {"label": "Palatal contact %", "short_label": "% palatal",
+                        "range": (0.0, 100.0)},
+    "velar_percent": {"label": "Velar contact %", "short_label": "% velar",
+                      "range": (0.0, 100.0)},
+}
+#: The panels an index plot shows unless asked for others, top to bottom.
+EPG_PLOT_DEFAULT_PANELS = ("percent", "cog", "anteriority", "centrality", "dorsopalatal")
 
 # --- Tongue-palate collision (the paper's liner and voxel table) -------------------------------
 # Tables are built by glasshead.pipeline.collision_tables and read by geometry.collision and
@@ -70,6 +94,19 @@ CELL_EMPTY, CELL_PLANE, CELL_LIST = 0, 1, 2
 FLAG_SCREENED, FLAG_TESTED, FLAG_CORRECTED = 0, 1, 2
 #: Largest vertex count accepted by POST /collision/correct.
 COLLISION_MAX_VERTICES = 20000
+#: The arrays of the tables' payload, in payload order, with their dtypes (numpy's notation:
+#: "<f4" little-endian float32, "<u4" uint32, "|u1" uint8); see geometry.collision_format.
+COLLISION_TABLES_ARRAYS = {
+    "node_radius": "<f4",
+    "cell_kind": "|u1",
+    "cell_rmin": "<f4",
+    "cell_rmax": "<f4",
+    "cell_offsets": "<u4",
+    "cell_triangles": "<u4",
+    "triangles": "<f4",
+    "planes": "<f4",
+    "voxels": "|u1",
+}
 
 
 class CollisionTolerance:
@@ -134,6 +171,19 @@ EPG_DENSE_ROWS = 12
 FACE_RIG_FORMAT_VERSION = 1
 #: mm. Largest difference allowed between the Python and JavaScript face vertices.
 FACE_VERTEX_TOLERANCE_MM = 1e-3
+#: The meshes the rig deforms, in the definition's order: the skin, the lips and the shell that
+#: closes the head (it shares the skin's rim, which rides on the jaw under the chin).
+FACE_RIG_MESHES = ("face_skin", "upper_lip", "lower_lip", "head_shell")
+#: The two lips, whose mid-sagittal gap the rig measures and closes.
+FACE_RIG_LIP_MESHES = ("upper_lip", "lower_lip")
+#: Meshes kept in front of the incisors (the shell never comes near them).
+FACE_RIG_TEETH_MESHES = ("face_skin", "upper_lip", "lower_lip")
+#: Lip parameter names, in the order of the definition's table and of the values both evaluators
+#: read.
+FACE_RIG_LIP_PARAMETERS = ("lip_opening", "lip_rounding", "lip_protrusion", "upper_lip_raise",
+                           "lower_lip_tuck")
+#: Field coefficients per vertex: protrusion, rounding (x and z), raise, tuck, closure.
+FACE_RIG_COEFF_COUNT = 6
 
 # --- Built assets: what `glasshead build` writes to the assets directory -------------------------
 # Written by glasshead.pipeline, loaded once by glasshead.asset_store and served by the API.

@@ -16,15 +16,15 @@ import { Articulation, parameterDefinitions } from '../../web/src/scene/Articula
 import { createApi } from '../../web/src/api.js';
 import { loadArticulation } from '../../web/src/ui/loaders.js';
 import { FacePose, seamGroups, weldSeam } from '../../web/src/scene/FacePose.js';
-import { FACE_MESHES } from '../../web/src/core/faceRig.js';
+import { FACE_RIG_MESHES } from '../../web/src/core/constants.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import { ParamState } from '../../web/src/core/paramState.js';
 import { debugObject } from '../../web/src/debug.js';
 
 const VECTORS = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
-const TONGUE = JSON.parse( readFileSync( join( VECTORS, 'tongue-surface.json' ), 'utf8' ) ).rig;
-const FACE = JSON.parse( readFileSync( join( VECTORS, 'face-rig.json' ), 'utf8' ) );
+const TONGUE = JSON.parse( readFileSync( join( VECTORS, 'tongue-surface.json' ), 'utf8' ) ).fixtures.rig;
+const FACE = JSON.parse( readFileSync( join( VECTORS, 'face-rig.json' ), 'utf8' ) ).fixtures;
 
 /** A geometry of the rest positions with stand-in triangles (consecutive vertex triples). */
 function restGeometry( name ) {
@@ -43,7 +43,7 @@ function restGeometry( name ) {
 /** The parts FacePose reads, without a renderer: name, tissue, geometry, group, outline. */
 function faceHead() {
 
-	const parts = new Map( FACE_MESHES.map( ( name ) => [ name, {
+	const parts = new Map( FACE_RIG_MESHES.map( ( name ) => [ name, {
 		name, tissue: name === 'face_skin' || name === 'head_shell' ? 'skin' : 'lip', geometry: restGeometry( name ),
 		group: new Group(), outline: { update() {} }, outlineStale: false,
 	} ] ) );

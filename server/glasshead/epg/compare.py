@@ -12,7 +12,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from glasshead.constants import EPG_ELECTRODES, EPG_MISSING_CELLS
+from glasshead.constants import (
+    EPG_CELLS,
+    EPG_COLUMNS,
+    EPG_ELECTRODES,
+    EPG_MISSING_CELLS,
+    EPG_ROWS,
+)
 from glasshead.epg.indices import INDEX_SLOTS, as_frames, index_table
 
 #: Per-electrode codes in ``Comparison.codes``.
@@ -21,7 +27,7 @@ BOTH_OFF, BOTH_ON, ONLY_RECORDING, ONLY_REFERENCE, NO_ELECTRODE = 0, 1, 2, 3, 9
 COMPARED_INDICES = ("percent", "alveolar_percent", "palatal_percent", "velar_percent",
                     "cog", "anteriority", "centrality", "dorsopalatal")
 
-_HAS_ELECTRODE = np.ones(64, dtype=bool)
+_HAS_ELECTRODE = np.ones(EPG_CELLS, dtype=bool)
 _HAS_ELECTRODE[list(EPG_MISSING_CELLS)] = False
 
 
@@ -99,8 +105,8 @@ def compare(frames, t_s, ref_frames, ref_t_s=None) -> Comparison:
     which = align_reference(t_s, ref_t_s, len(ref_frames))
     aligned = ref_frames[which]
 
-    a = frames.reshape(len(frames), 64).astype(bool)
-    b = aligned.reshape(len(frames), 64).astype(bool)
+    a = frames.reshape(len(frames), EPG_CELLS).astype(bool)
+    b = aligned.reshape(len(frames), EPG_CELLS).astype(bool)
     codes = np.where(a & b, BOTH_ON, np.where(a, ONLY_RECORDING,
                                               np.where(b, ONLY_REFERENCE, BOTH_OFF)))
     codes[:, ~_HAS_ELECTRODE] = NO_ELECTRODE
@@ -116,9 +122,9 @@ def compare(frames, t_s, ref_frames, ref_t_s=None) -> Comparison:
     reference_indices = {k: theirs[:, slot[k]] for k in COMPARED_INDICES}
     return Comparison(
         t_s=t_s,
-        codes=codes.reshape(-1, 8, 8).astype(np.uint8),
+        codes=codes.reshape(-1, EPG_ROWS, EPG_COLUMNS).astype(np.uint8),
         agreement=agreement,
-        electrode_agreement=per_electrode.reshape(8, 8),
+        electrode_agreement=per_electrode.reshape(EPG_ROWS, EPG_COLUMNS),
         recording_indices=recording_indices,
         reference_indices=reference_indices,
         index_difference={k: recording_indices[k] - reference_indices[k]

@@ -9,18 +9,16 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
-#: Panels drawn by default, with their fixed value ranges (fixed so figures compare at a glance).
-PANELS = {
-    "percent": ("Percent contact", 0.0, 100.0),
-    "cog": ("Centre of gravity", 0.0, 8.0),
-    "anteriority": ("Anteriority index", 0.0, 1.0),
-    "centrality": ("Centrality index", 0.0, 1.0),
-    "dorsopalatal": ("Dorsopalatal index", 0.0, 1.0),
-    "alveolar_percent": ("Alveolar contact %", 0.0, 100.0),
-    "palatal_percent": ("Palatal contact %", 0.0, 100.0),
-    "velar_percent": ("Velar contact %", 0.0, 100.0),
+from glasshead.constants import EPG_PLOT_DEFAULT_PANELS, EPG_PLOT_PANELS
+
+#: Panels that can be drawn: name -> (title, low, high). The value ranges are fixed, so figures
+#: compare at a glance; the spec is constants.EPG_PLOT_PANELS, which the browser's plots read too.
+PANELS: dict[str, tuple[str, float, float]] = {
+    name: (panel["label"], float(panel["range"][0]), float(panel["range"][1]))
+    for name, panel in EPG_PLOT_PANELS.items()
 }
-DEFAULT_PANELS = ("percent", "cog", "anteriority", "centrality", "dorsopalatal")
+#: Panels drawn by default.
+DEFAULT_PANELS = EPG_PLOT_DEFAULT_PANELS
 COLOURS = ("#1f5fbf", "#c4452b", "#2e8b57", "#8a4fb5")
 
 #: Figure geometry in SVG user units (px).
@@ -83,9 +81,9 @@ def index_tracks_svg(tracks: list[Track], panels=DEFAULT_PANELS, title: str = ""
             tx, _ = to_xy(np.array([tick]), np.array([lo]), span_s, k, lo, hi)
             out.append(f'<text x="{tx[0]:.1f}" y="{bottom + 13}" text-anchor="middle">'
                        f'{tick:g} s</text>')
-        for i, (track, t) in enumerate(zip(tracks, relative)):
+        for i, (track, t) in enumerate(zip(tracks, relative, strict=True)):
             xs, ys = to_xy(t, np.asarray(track.values[name], dtype=float), span_s, k, lo, hi)
-            points = " ".join(f"{x:.2f},{y:.2f}" for x, y in zip(xs, ys))
+            points = " ".join(f"{x:.2f},{y:.2f}" for x, y in zip(xs, ys, strict=True))
             out.append(f'<polyline data-track="{i}" fill="none" stroke="{_colour(i)}" '
                        f'stroke-width="1.5"{_dash(i)} points="{points}"/>')
         out.append("</g>")

@@ -25,24 +25,18 @@ from typing import Any
 
 import numpy as np
 
-from glasshead.constants import COLLISION_TABLES_FORMAT_VERSION, COLLISION_TABLES_MAGIC
+from glasshead.constants import (
+    COLLISION_TABLES_ARRAYS,
+    COLLISION_TABLES_FORMAT_VERSION,
+    COLLISION_TABLES_MAGIC,
+)
 
 FORMAT_NAME = "glasshead-collision-tables"
 PREFIX_BYTES = 16
 ALIGN = 8
 
-#: Array name -> dtype, in payload order.
-ARRAY_DTYPES = {
-    "node_radius": "<f4",
-    "cell_kind": "|u1",
-    "cell_rmin": "<f4",
-    "cell_rmax": "<f4",
-    "cell_offsets": "<u4",
-    "cell_triangles": "<u4",
-    "triangles": "<f4",
-    "planes": "<f4",
-    "voxels": "|u1",
-}
+#: Array name -> dtype, in payload order (declared once, in constants.py, for both readers).
+ARRAY_DTYPES = COLLISION_TABLES_ARRAYS
 
 
 class CollisionTablesError(ValueError):

@@ -30,11 +30,19 @@ leave) that is kept: 1 leaves the lips as the jaw takes them, 0 closes them (/p 
 
 import numpy as np
 
+from glasshead.constants import (
+    FACE_RIG_COEFF_COUNT,
+    FACE_RIG_LIP_MESHES,
+    FACE_RIG_LIP_PARAMETERS,
+    FACE_RIG_MESHES,
+    FACE_RIG_TEETH_MESHES,
+)
 from glasshead.geometry.face_teeth import clamp_to_teeth
 
 #: Row layout of the per-vertex field coefficients (``field_coefficients``).
-COEFF_PROTRUSION, COEFF_ROUND_X, COEFF_ROUND_Z, COEFF_RAISE, COEFF_TUCK, COEFF_CLOSURE = range(6)
-COEFF_COUNT = 6
+COEFF_COUNT = FACE_RIG_COEFF_COUNT
+(COEFF_PROTRUSION, COEFF_ROUND_X, COEFF_ROUND_Z, COEFF_RAISE, COEFF_TUCK,
+ COEFF_CLOSURE) = range(COEFF_COUNT)
 
 #: Layout of the jaw screw (``jaw_screw``): axis u, angle, slide along u, t_perp, u x t_perp.
 SCREW_SIZE = 11
@@ -42,17 +50,12 @@ SCREW_SIZE = 11
 #: Below this rotation (radians) the jaw motion is treated as a pure translation.
 SCREW_MIN_ANGLE = 1e-9
 
-#: Names of the meshes the rig deforms: the skin, the lips and the shell that closes the head
-#: (it shares the skin's rim, which rides on the jaw under the chin).
-MESH_NAMES = ("face_skin", "upper_lip", "lower_lip", "head_shell")
-#: The two lips, whose mid-sagittal gap the rig measures and closes.
-LIP_MESHES = ("upper_lip", "lower_lip")
-#: Meshes kept in front of the incisors (the shell never comes near them).
-TEETH_MESHES = ("face_skin", "upper_lip", "lower_lip")
-
-#: Lip parameter names, in table order.
-LIP_PARAMETER_NAMES = ("lip_opening", "lip_rounding", "lip_protrusion", "upper_lip_raise",
-                       "lower_lip_tuck")
+#: The meshes the rig deforms, the lips, the meshes kept in front of the incisors and the lip
+#: parameters in table order (declared once, in constants.py, for both evaluators).
+MESH_NAMES = FACE_RIG_MESHES
+LIP_MESHES = FACE_RIG_LIP_MESHES
+TEETH_MESHES = FACE_RIG_TEETH_MESHES
+LIP_PARAMETER_NAMES = FACE_RIG_LIP_PARAMETERS
 
 
 def _points(name, array):

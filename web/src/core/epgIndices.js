@@ -12,7 +12,7 @@
 // Frames are flat Uint8Arrays of 64 contacts (0/1) per frame, row-major: row 0 = R1 (front),
 // column 0 = electrode column 1. The R1 corners (cells 0 and 7) have no electrode and hold 0.
 
-import { EPG_CELLS, EPG_ELECTRODES } from './constants.js';
+import { EPG_CELLS, EPG_COLUMNS, EPG_ELECTRODES, EPG_MISSING_CELLS, EPG_ROWS, EPG_ZONES } from './constants.js';
 
 /** Names of the values written per frame, in target order (same as INDEX_SLOTS in Python). */
 export const INDEX_SLOTS = Object.freeze( [
@@ -23,18 +23,30 @@ export const INDEX_SLOTS = Object.freeze( [
 	'cog', 'anteriority', 'centrality', 'dorsopalatal',
 ] );
 /** Float64 values written per frame: 2 + 8 rows + 3 zones + 3 zone percents + 4 indices. */
-export const INDEX_STRIDE = 2 + 8 + 3 + 3 + 4;
+export const INDEX_STRIDE = 2 + EPG_ROWS + 3 + 3 + 4;
 
 /** Offsets within one frame's values. */
 export const SLOT_CONTACTS = 0;
 export const SLOT_PERCENT = 1;
 export const SLOT_ROW1 = 2;
-export const SLOT_ALVEOLAR = 10;
-export const SLOT_ALVEOLAR_PERCENT = 13;
-export const SLOT_COG = 16;
-export const SLOT_ANTERIORITY = 17;
-export const SLOT_CENTRALITY = 18;
-export const SLOT_DORSOPALATAL = 19;
+export const SLOT_ALVEOLAR = SLOT_ROW1 + EPG_ROWS;
+export const SLOT_ALVEOLAR_PERCENT = SLOT_ALVEOLAR + 3;
+export const SLOT_COG = SLOT_ALVEOLAR_PERCENT + 3;
+export const SLOT_ANTERIORITY = SLOT_COG + 1;
+export const SLOT_CENTRALITY = SLOT_COG + 2;
+export const SLOT_DORSOPALATAL = SLOT_COG + 3;
+
+/** Electrodes in a zone of EPG_ZONES: its cells less the missing ones (alveolar 6 + 8, else 3 * 8). */
+function zoneElectrodes( [ first, end ] ) {
+
+	const missing = EPG_MISSING_CELLS.filter( ( cell ) => cell >= first * EPG_COLUMNS && cell < end * EPG_COLUMNS ).length;
+	return ( end - first ) * EPG_COLUMNS - missing;
+
+}
+
+const ALVEOLAR_ELECTRODES = zoneElectrodes( EPG_ZONES.alveolar );
+const PALATAL_ELECTRODES = zoneElectrodes( EPG_ZONES.palatal );
+const VELAR_ELECTRODES = zoneElectrodes( EPG_ZONES.velar );
 
 /** epgai weights of rows R1..R5 over their electrode counts; 4921 = round(9^4 * 6/8). */
 const AI_R1 = 4921 / 6, AI_R2 = 729 / 8, AI_R3 = 81 / 8, AI_R4 = 9 / 8, AI_R5 = 1 / 8;
@@ -57,9 +69,9 @@ export function epgIndices( frames, frameIndex, target, targetOffset = 0 ) {
 	const base = frameIndex * EPG_CELLS;
 	let total = 0, cogSum = 0;
 	let outer = 0, second = 0, third = 0, central = 0;
-	for ( let r = 0; r < 8; r ++ ) {
+	for ( let r = 0; r < EPG_ROWS; r ++ ) {
 
-		const o = base + r * 8;
+		const o = base + r * EPG_COLUMNS;
 		const c1 = frames[ o ], c2 = frames[ o + 1 ], c3 = frames[ o + 2 ], c4 = frames[ o + 3 ];
 		const c5 = frames[ o + 4 ], c6 = frames[ o + 5 ], c7 = frames[ o + 6 ], c8 = frames[ o + 7 ];
 		const rowSum = c1 + c2 + c3 + c4 + c5 + c6 + c7 + c8;
@@ -74,8 +86,9 @@ export function epgIndices( frames, frameIndex, target, targetOffset = 0 ) {
 	}
 
 	const t = targetOffset;
-	const r1 = target[ t + 2 ], r2 = target[ t + 3 ], r3 = target[ t + 4 ], r4 = target[ t + 5 ];
-	const r5 = target[ t + 6 ], r6 = target[ t + 7 ], r7 = target[ t + 8 ], r8 = target[ t + 9 ];
+	const row = t + SLOT_ROW1;
+	const r1 = target[ row ], r2 = target[ row + 1 ], r3 = target[ row + 2 ], r4 = target[ row + 3 ];
+	const r5 = target[ row + 4 ], r6 = target[ row + 5 ], r7 = target[ row + 6 ], r8 = target[ row + 7 ];
 	const alveolar = r1 + r2, palatal = r3 + r4 + r5, velar = r6 + r7 + r8;
 
 	target[ t + SLOT_CONTACTS ] = total;
@@ -83,15 +96,15 @@ export function epgIndices( frames, frameIndex, target, targetOffset = 0 ) {
 	target[ t + SLOT_ALVEOLAR ] = alveolar;
 	target[ t + SLOT_ALVEOLAR + 1 ] = palatal;
 	target[ t + SLOT_ALVEOLAR + 2 ] = velar;
-	target[ t + SLOT_ALVEOLAR_PERCENT ] = 100 * alveolar / 14;
-	target[ t + SLOT_ALVEOLAR_PERCENT + 1 ] = 100 * palatal / 24;
-	target[ t + SLOT_ALVEOLAR_PERCENT + 2 ] = 100 * velar / 24;
+	target[ t + SLOT_ALVEOLAR_PERCENT ] = 100 * alveolar / ALVEOLAR_ELECTRODES;
+	target[ t + SLOT_ALVEOLAR_PERCENT + 1 ] = 100 * palatal / PALATAL_ELECTRODES;
+	target[ t + SLOT_ALVEOLAR_PERCENT + 2 ] = 100 * velar / VELAR_ELECTRODES;
 	target[ t + SLOT_COG ] = total > 0 ? cogSum / total : 0;
 	target[ t + SLOT_ANTERIORITY ] =
 		Math.log( 1 + AI_R1 * r1 + AI_R2 * r2 + AI_R3 * r3 + AI_R4 * r4 + AI_R5 * r5 ) / AI_LOG_TOTAL;
 	target[ t + SLOT_CENTRALITY ] =
 		Math.log( 1 + CI_18 * outer + CI_27 * second + CI_36 * third + CI_45 * central ) / CI_LOG_TOTAL;
-	target[ t + SLOT_DORSOPALATAL ] = velar / 24;
+	target[ t + SLOT_DORSOPALATAL ] = velar / VELAR_ELECTRODES;
 	return target;
 
 }
@@ -121,17 +134,17 @@ export function epgIndicesAll( frames, frameCount, target ) {
  */
 export function rowsToFrame( rows, frames, frameIndex ) {
 
-	if ( rows.length !== 8 ) throw new RangeError( `rowsToFrame: expected 8 rows, got ${rows.length}` );
+	if ( rows.length !== EPG_ROWS ) throw new RangeError( `rowsToFrame: expected ${EPG_ROWS} rows, got ${rows.length}` );
 	const base = frameIndex * EPG_CELLS;
-	for ( let r = 0; r < 8; r ++ ) {
+	for ( let r = 0; r < EPG_ROWS; r ++ ) {
 
 		const row = rows[ r ];
-		if ( row.length !== 8 ) throw new RangeError( `rowsToFrame: row ${r + 1} has ${row.length} contacts, not 8` );
-		for ( let c = 0; c < 8; c ++ ) {
+		if ( row.length !== EPG_COLUMNS ) throw new RangeError( `rowsToFrame: row ${r + 1} has ${row.length} contacts, not ${EPG_COLUMNS}` );
+		for ( let c = 0; c < EPG_COLUMNS; c ++ ) {
 
 			const ch = row.charCodeAt( c ) - 48;
 			if ( ch !== 0 && ch !== 1 ) throw new RangeError( `rowsToFrame: row ${r + 1} column ${c + 1} is '${row[ c ]}', not 0 or 1` );
-			frames[ base + r * 8 + c ] = ch;
+			frames[ base + r * EPG_COLUMNS + c ] = ch;
 
 		}
 

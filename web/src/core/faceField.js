@@ -3,6 +3,8 @@
 // position and jaw weight (face_rig.field_coefficients and smooth_bump in
 // server/glasshead/geometry/face_rig.py). faceRig.js reads them per pose.
 
+import { FACE_RIG_COEFF_COUNT } from './constants.js';
+
 /** Per-vertex field coefficients, COEFF_COUNT per vertex (as in face_rig.py). */
 export const COEFF_PROTRUSION = 0;
 export const COEFF_ROUND_X = 1;
@@ -10,7 +12,7 @@ export const COEFF_ROUND_Z = 2;
 export const COEFF_RAISE = 3;
 export const COEFF_TUCK = 4;
 export const COEFF_CLOSURE = 5;
-export const COEFF_COUNT = 6;
+export const COEFF_COUNT = FACE_RIG_COEFF_COUNT;
 
 /** The quintic smoothstep 6t^5 - 15t^4 + 10t^3 of t clamped to [0, 1]. */
 function smoothstep5( t ) {

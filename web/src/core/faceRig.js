@@ -17,18 +17,16 @@
 //      faces' normals (upper faces on the maxilla, lower ones carried by the jaw; faceTeeth.js).
 // Vertices whose weight and field coefficients are all 0 never move and are skipped.
 
-import { FACE_RIG_FORMAT_VERSION } from './constants.js';
+import { FACE_RIG_FORMAT_VERSION, FACE_RIG_LIP_PARAMETERS, FACE_RIG_MESHES, FACE_RIG_TEETH_MESHES } from './constants.js';
 import { COEFF_CLOSURE, COEFF_COUNT, COEFF_PROTRUSION, COEFF_RAISE, COEFF_ROUND_X, COEFF_ROUND_Z, COEFF_TUCK, fieldCoefficients } from './faceField.js';
 import { clampToTeeth, primeTeeth, teethTable } from './faceTeeth.js';
 import { GAP_LIPS, GAP_NATURAL, measureGap, solveClosure } from './lipClosure.js';
 import { jawScrew, SCREW_MIN_ANGLE, SCREW_SIZE } from './jaw.js';
 
-/** Meshes the rig deforms, in the definition's order. */
-export const FACE_MESHES = Object.freeze( [ 'face_skin', 'upper_lip', 'lower_lip', 'head_shell' ] );
-/** Meshes kept in front of the incisors (the head shell never comes near them). */
-export const TEETH_MESHES = Object.freeze( [ 'face_skin', 'upper_lip', 'lower_lip' ] );
-/** Lip parameter names in table order: the order of the values poseFace() reads. */
-export const LIP_PARAMETER_NAMES = Object.freeze( [ 'lip_opening', 'lip_rounding', 'lip_protrusion', 'upper_lip_raise', 'lower_lip_tuck' ] );
+// The meshes (FACE_RIG_MESHES), those kept in front of the incisors (FACE_RIG_TEETH_MESHES) and
+// the lip parameters in the order of the values poseFace() reads (FACE_RIG_LIP_PARAMETERS) are
+// declared once, in server/glasshead/constants.py; the definition carries them too, and a rig
+// whose definition does not match them is refused.
 
 const OPENING = 0;
 const ROUNDING = 1;
@@ -46,7 +44,7 @@ export const PROBE_TOLERANCE_MM = 1e-3;
  * here once.
  * @param {object} definition the face rig (GET /face/rig)
  * @param {Object<string, Float32Array|Float64Array>} rest rest positions of every mesh in
- *   FACE_MESHES, xyz per vertex, in the vertex order of the built GLBs
+ *   FACE_RIG_MESHES, xyz per vertex, in the vertex order of the built GLBs
  * @returns {object} the rig, for poseFace()
  */
 export function createFaceRig( definition, rest ) {
@@ -58,10 +56,10 @@ export function createFaceRig( definition, rest ) {
 	}
 
 	const names = definition.parameters.map( ( p ) => p.name );
-	if ( names.join() !== LIP_PARAMETER_NAMES.join() ) throw new Error( `face rig parameters are ${ names.join( ', ' ) }, expected ${ LIP_PARAMETER_NAMES.join( ', ' ) }` );
+	if ( names.join() !== FACE_RIG_LIP_PARAMETERS.join() ) throw new Error( `face rig parameters are ${ names.join( ', ' ) }, expected ${ FACE_RIG_LIP_PARAMETERS.join( ', ' ) }` );
 	const field = definition.field;
 	const meshes = {};
-	for ( const name of FACE_MESHES ) {
+	for ( const name of FACE_RIG_MESHES ) {
 
 		const spec = definition.meshes[ name ];
 		const positions = rest[ name ];
@@ -109,7 +107,7 @@ function primeFaceRig( rig ) {
 	for ( const pose of [ still, turned ] ) {
 
 		frameNumbers( rig, values, pose );
-		for ( const name of FACE_MESHES ) {
+		for ( const name of FACE_RIG_MESHES ) {
 
 			const mesh = rig.meshes[ name ];
 			const few = mesh.moving.slice( 0, 16 );
@@ -121,10 +119,10 @@ function primeFaceRig( rig ) {
 	}
 
 	const scratch = {};
-	for ( const name of FACE_MESHES ) scratch[ name ] = new Float32Array( 3 * rig.meshes[ name ].count );
+	for ( const name of FACE_RIG_MESHES ) scratch[ name ] = new Float32Array( 3 * rig.meshes[ name ].count );
 	poseFace( rig, values, turned, scratch );
 	poseFace( rig, values, still, scratch );
-	for ( const name of FACE_MESHES ) rig.meshes[ name ].work.set( rig.meshes[ name ].rest );
+	for ( const name of FACE_RIG_MESHES ) rig.meshes[ name ].work.set( rig.meshes[ name ].rest );
 
 }
 
@@ -166,7 +164,7 @@ function prepareMesh( name, spec, rest, field ) {
 		moving,
 		/** Posed positions, float64, xyz per vertex. */
 		work: Float64Array.from( rest ),
-		teeth: TEETH_MESHES.includes( name ),
+		teeth: FACE_RIG_TEETH_MESHES.includes( name ),
 		/** Lips only: midline edges (vertex pairs), the reference vertex, crossing scratch. */
 		edges: Uint32Array.from( lip ? spec.midline_edges.flat() : [] ),
 		reference: lip ? spec.reference_vertex : - 1,
@@ -178,14 +176,14 @@ function prepareMesh( name, spec, rest, field ) {
 }
 
 /**
- * Lip values in LIP_PARAMETER_NAMES order from an object of named values (neutral when absent),
+ * Lip values in FACE_RIG_LIP_PARAMETERS order from an object of named values (neutral when absent),
  * refusing a value that is not a finite number within its range.
  * @param {object} rig from createFaceRig()
  * @param {Object<string, number>} params
  * @param {Float64Array} target length 5
  * @returns {Float64Array} target
  */
-export function lipValues( rig, params, target = new Float64Array( LIP_PARAMETER_NAMES.length ) ) {
+export function lipValues( rig, params, target = new Float64Array( FACE_RIG_LIP_PARAMETERS.length ) ) {
 
 	rig.definition.parameters.forEach( ( spec, k ) => {
 
@@ -281,9 +279,9 @@ function shapeAndSkin( rest, weights, coeffs, moving, work, frame ) {
 }
 
 /**
- * Pose the face: every mesh in FACE_MESHES, written into `out`.
+ * Pose the face: every mesh in FACE_RIG_MESHES, written into `out`.
  * @param {object} rig from createFaceRig()
- * @param {ArrayLike<number>} values the lip parameters in LIP_PARAMETER_NAMES order, in range
+ * @param {ArrayLike<number>} values the lip parameters in FACE_RIG_LIP_PARAMETERS order, in range
  * @param {ArrayLike<number>} pose the jaw pose, row-major 3 x 4 (jaw.js jawPose())
  * @param {Object<string, Float32Array|Float64Array>} out posed positions per mesh (xyz per vertex),
  *   holding the rest positions where vertices never move (restFaceRig() once)
@@ -293,9 +291,9 @@ export function poseFace( rig, values, pose, out ) {
 
 	const { field, meshes } = rig;
 	frameNumbers( rig, values, pose );
-	for ( let m = 0; m < FACE_MESHES.length; m ++ ) {
+	for ( let m = 0; m < FACE_RIG_MESHES.length; m ++ ) {
 
-		const mesh = meshes[ FACE_MESHES[ m ] ];
+		const mesh = meshes[ FACE_RIG_MESHES[ m ] ];
 		shapeAndSkin( mesh.rest, mesh.weights, mesh.coeffs, mesh.moving, mesh.work, rig.frame );
 
 	}
@@ -322,9 +320,9 @@ export function poseFace( rig, values, pose, out ) {
 	}
 
 	let clamped = 0;
-	for ( let m = 0; m < FACE_MESHES.length; m ++ ) {
+	for ( let m = 0; m < FACE_RIG_MESHES.length; m ++ ) {
 
-		const name = FACE_MESHES[ m ];
+		const name = FACE_RIG_MESHES[ m ];
 		const mesh = meshes[ name ];
 		const { coeffs, moving, work } = mesh;
 		for ( let k = 0; k < moving.length; k ++ ) {
@@ -362,7 +360,7 @@ export function poseFace( rig, values, pose, out ) {
  */
 export function restFaceRig( rig, out ) {
 
-	for ( const name of FACE_MESHES ) out[ name ].set( rig.meshes[ name ].rest );
+	for ( const name of FACE_RIG_MESHES ) out[ name ].set( rig.meshes[ name ].rest );
 	return out;
 
 }

@@ -5,7 +5,7 @@
 // offset and nbytes, guarded by the payload's CRC-32. Anything unexpected is refused with a
 // message; nothing is guessed.
 
-import { COLLISION_TABLES_FORMAT_VERSION, COLLISION_TABLES_MAGIC } from './constants.js';
+import { COLLISION_TABLES_ARRAYS, COLLISION_TABLES_FORMAT_VERSION, COLLISION_TABLES_MAGIC } from './constants.js';
 
 /** Collision tables that cannot be read as this version of the format. */
 export class CollisionTablesError extends Error {
@@ -22,18 +22,8 @@ export class CollisionTablesError extends Error {
 /** Bytes before the JSON header: magic (8) + version (4) + header length (4). */
 const PREFIX_BYTES = 8 + 4 + 4;
 
-/** Array name -> [dtype string in the header, typed array constructor]. */
-const ARRAYS = Object.freeze( {
-	node_radius: [ '<f4', Float32Array ],
-	cell_kind: [ '|u1', Uint8Array ],
-	cell_rmin: [ '<f4', Float32Array ],
-	cell_rmax: [ '<f4', Float32Array ],
-	cell_offsets: [ '<u4', Uint32Array ],
-	cell_triangles: [ '<u4', Uint32Array ],
-	triangles: [ '<f4', Float32Array ],
-	planes: [ '<f4', Float32Array ],
-	voxels: [ '|u1', Uint8Array ],
-} );
+/** The typed array of each dtype of the payload (COLLISION_TABLES_ARRAYS, in numpy's notation). */
+const TYPED_ARRAYS = Object.freeze( { '<f4': Float32Array, '<u4': Uint32Array, '|u1': Uint8Array } );
 
 let crcTable = null;
 
@@ -137,7 +127,9 @@ export function decodeCollisionTables( data ) {
 	if ( crc32( payload ) !== header.payload_crc32 ) throw new CollisionTablesError( 'collision tables payload fails its CRC-32 check (corrupt)' );
 
 	const arrays = {};
-	for ( const [ name, [ dtype, Type ] ] of Object.entries( ARRAYS ) ) {
+	for ( const [ name, dtype ] of Object.entries( COLLISION_TABLES_ARRAYS ) ) {
+
+		const Type = TYPED_ARRAYS[ dtype ];
 
 		const entry = header.arrays && header.arrays[ name ];
 		if ( ! entry ) throw new CollisionTablesError( `collision tables lack the array "${ name }"` );

@@ -4,7 +4,7 @@
 // seam where the face skin meets the head shell. Nothing is allocated per pose. Without one, the
 // lower lip rides rigidly on the jaw and the lip gap is measured here (midlineLips, lipGap).
 
-import { createFaceRig, FACE_MESHES, GAP_LIPS, LIP_PARAMETER_NAMES, poseFace, restFaceRig } from '../core/faceRig.js';
+import { createFaceRig, GAP_LIPS, poseFace, restFaceRig } from '../core/faceRig.js';
 import { vertexNormals } from '../core/meshVolume.js';
 
 /** Skin vertices closer than this (mm) are one point of the seam (as the head welds it at load). */
@@ -14,14 +14,15 @@ export class FacePose {
 
 	/**
 	 * @param {object} definition the face rig (GET /face/rig)
-	 * @param {import('./Head.js').Head} head with every mesh of FACE_MESHES loaded, at rest
+	 * @param {import('./Head.js').Head} head with every mesh of the definition loaded, at rest
 	 * @param {import('../core/paramState.js').ParamState} state holding the lip parameters
 	 * Throws when a mesh is missing or is not the one the rig was built for.
 	 */
 	constructor( definition, head, state ) {
 
 		this.head = head;
-		this.parts = FACE_MESHES.map( ( name ) => {
+		// The definition names the meshes it poses and the lip parameters, in its own order.
+		this.parts = Object.keys( definition.meshes ?? {} ).map( ( name ) => {
 
 			const part = head.part( name );
 			if ( ! part ) throw new Error( `the face rig needs the mesh "${ name }", which is not loaded` );
@@ -32,8 +33,9 @@ export class FacePose {
 		this.rig = createFaceRig( definition, rest );
 		this.out = Object.fromEntries( this.parts.map( ( part ) => [ part.name, part.geometry.attributes.position.array ] ) );
 		restFaceRig( this.rig, this.out );
-		this.lipIndex = Int32Array.from( LIP_PARAMETER_NAMES, ( name ) => state.indexOf( name ) );
-		this.lipValues = new Float64Array( LIP_PARAMETER_NAMES.length );
+		const lipNames = definition.parameters.map( ( p ) => p.name );
+		this.lipIndex = Int32Array.from( lipNames, ( name ) => state.indexOf( name ) );
+		this.lipValues = new Float64Array( lipNames.length );
 		this.meshes = this.parts.map( ( part ) => {
 
 			const geometry = part.geometry;

@@ -7,6 +7,7 @@
 // as it was, with a warning.
 
 import { registerDebug } from '../debug.js';
+import { EPG_COLUMNS, EPG_ELECTRODES, EPG_ROWS } from '../core/constants.js';
 import { Electrodes } from '../scene/Electrodes.js';
 import { createEpgLive } from '../scene/EpgLive.js';
 import { h } from './Controls.js';
@@ -14,6 +15,8 @@ import { loadEpgLayout } from './loaders.js';
 import { Palatogram } from './Palatogram.js';
 import './epg.css';
 
+/** The rows of a frame without contact (emuR strings, R1 first). */
+const EMPTY_ROWS = Object.freeze( Array.from( { length: EPG_ROWS }, () => '0'.repeat( EPG_COLUMNS ) ) );
 /** Size of the live palatogram, CSS pixels. */
 const PANEL_SIZE = Object.freeze( { width: 170, height: 196 } );
 
@@ -49,7 +52,7 @@ export async function attachHeadEpg( view, { api } = {} ) {
 
 		electrodes.show( frame );
 		palatogram.set( frame );
-		percent.textContent = `${ Math.round( 100 * contacted / 62 ) }% contact`;
+		percent.textContent = `${ Math.round( 100 * contacted / EPG_ELECTRODES ) }% contact`;
 		view.viewer?.requestRender();
 
 	};
@@ -65,7 +68,7 @@ export async function attachHeadEpg( view, { api } = {} ) {
 	} else {
 
 		show( null, 0 );
-		cleanups.push( registerDebug( 'epg', () => ( { source: 'rest tongue', rows: [ '00000000', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000' ], contacted: 0, percent: 0 } ) ) );
+		cleanups.push( registerDebug( 'epg', () => ( { source: 'rest tongue', rows: EMPTY_ROWS, contacted: 0, percent: 0 } ) ) );
 
 	}
 

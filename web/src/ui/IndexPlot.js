@@ -6,22 +6,11 @@
 // Drawing goes through an injected 2D context (drawIndexPlot), so it can be tested without a
 // browser; scaleLinear is the one mapping every line and the cursor use.
 
-/** Ranges of the indices (emuR's definitions bound them). */
-export const INDEX_RANGES = Object.freeze( {
-	percent: Object.freeze( [ 0, 100 ] ),
-	alveolar_percent: Object.freeze( [ 0, 100 ] ),
-	palatal_percent: Object.freeze( [ 0, 100 ] ),
-	velar_percent: Object.freeze( [ 0, 100 ] ),
-	cog: Object.freeze( [ 0, 8 ] ),
-	anteriority: Object.freeze( [ 0, 1 ] ),
-	centrality: Object.freeze( [ 0, 1 ] ),
-	dorsopalatal: Object.freeze( [ 0, 1 ] ),
-} );
-export const DEFAULT_PANELS = Object.freeze( [ 'percent', 'cog', 'anteriority', 'centrality', 'dorsopalatal' ] );
-export const INDEX_LABELS = Object.freeze( {
-	percent: '% contact', alveolar_percent: '% alveolar', palatal_percent: '% palatal', velar_percent: '% velar',
-	cog: 'COG', anteriority: 'anteriority', centrality: 'centrality', dorsopalatal: 'dorsopalatal',
-} );
+import { EPG_PLOT_DEFAULT_PANELS, EPG_PLOT_PANELS } from '../core/constants.js';
+
+// The panels (each index's label and fixed range, and the default choice) are the server's plot
+// spec, EPG_PLOT_PANELS and EPG_PLOT_DEFAULT_PANELS of constants.py.
+
 const COLORS = Object.freeze( { axis: '#8c959f', text: '#57606a', cursor: '#b4384a', grid: '#e4e8ec' } );
 const LEFT = 92;
 
@@ -41,7 +30,7 @@ export function scaleLinear( d0, d1, r0, r1 ) {
  *   `current` is a frame index
  * @returns {{panelHeight: number, x: Function}} the geometry used
  */
-export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = DEFAULT_PANELS, current = null } ) {
+export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = EPG_PLOT_DEFAULT_PANELS, current = null } ) {
 
 	const n = t_s.length;
 	const t0 = n ? t_s[ 0 ] : 0;
@@ -55,7 +44,7 @@ export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = DEFAU
 	panels.forEach( ( name, p ) => {
 
 		const top = p * panelHeight + 4;
-		const [ lo, hi ] = INDEX_RANGES[ name ] ?? [ 0, 1 ];
+		const [ lo, hi ] = EPG_PLOT_PANELS[ name ]?.range ?? [ 0, 1 ];
 		const y = scaleLinear( lo, hi, top + panelHeight - 8, top );
 		ctx.strokeStyle = COLORS.grid;
 		ctx.lineWidth = 1;
@@ -63,7 +52,7 @@ export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = DEFAU
 		ctx.strokeRect( LEFT, top, width - 8 - LEFT, panelHeight - 8 );
 		ctx.fillStyle = COLORS.text;
 		ctx.textAlign = 'right';
-		ctx.fillText( INDEX_LABELS[ name ] ?? name, LEFT - 8, top + ( panelHeight - 8 ) / 2 );
+		ctx.fillText( EPG_PLOT_PANELS[ name ]?.short_label ?? name, LEFT - 8, top + ( panelHeight - 8 ) / 2 );
 		ctx.fillText( String( hi ), LEFT - 8, top + 6 );
 		for ( const track of tracks ) {
 
@@ -118,7 +107,7 @@ export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = DEFAU
 /** A plot on its own <canvas>; `set( { t_s, tracks, current } )` redraws it. */
 export class IndexPlot {
 
-	constructor( { width = 640, height = 300, document = globalThis.document, panels = DEFAULT_PANELS } = {} ) {
+	constructor( { width = 640, height = 300, document = globalThis.document, panels = EPG_PLOT_DEFAULT_PANELS } = {} ) {
 
 		this.width = width;
 		this.height = height;

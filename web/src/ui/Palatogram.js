@@ -5,6 +5,8 @@
 // Drawing goes through an injected 2D context (drawPalatogram), so it can be tested without a
 // browser; the Palatogram class owns a <canvas> and redraws it when given a new frame.
 
+import { EPG_COLUMNS, EPG_MISSING_CELLS, EPG_ROWS } from '../core/constants.js';
+
 /** Colours of the drawing (the app's ink and accent). */
 export const PALATOGRAM_COLORS = Object.freeze( {
 	outline: '#8c959f',
@@ -24,7 +26,7 @@ export const CODE_ONLY_REFERENCE = 3;
 export const CODE_NO_ELECTRODE = 9;
 
 /** Reading layout: 8 x 8, R1 without columns 1 and 8. */
-export const READING_GRID = Object.freeze( { rows: 8, columns: 8, missing: Object.freeze( [ 0, 7 ] ) } );
+export const READING_GRID = Object.freeze( { rows: EPG_ROWS, columns: EPG_COLUMNS, missing: EPG_MISSING_CELLS } );
 
 /**
  * Where the cells of a palatogram fall inside the box { x, y, width, height }: the cell pitch,

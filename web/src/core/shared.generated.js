@@ -1,0 +1,216 @@
+// Generated from server/glasshead/constants.py by server/glasshead/shared_constants.py:
+// do not edit. After changing constants.py, regenerate it from the repository root with
+//   .venv/bin/python -m glasshead.shared_constants
+// (tests/test_shared_constants.py fails while it is stale). Import from ./constants.js.
+
+/** Units of every length in the project frame. */
+export const FRAME_UNITS = 'mm';
+export const FRAME_AXES = Object.freeze( { x: 'anterior', y: 'superior', z: 'left' } );
+/**
+ * Origin of the project frame, given as a point of the Badin (ArtiSynth) source frame, in metres.
+ * It is a round point inside the oral cavity, above the tongue dorsum and behind the incisors, so
+ * that every anatomical coordinate stays within about +-150 mm.
+ */
+export const BADIN_ORIGIN_M = Object.freeze( [ 0.08, 0.0, 0.1 ] );
+/**
+ * Rows map Badin axes (x posterior, y subject's right, z superior; right-handed) to project axes.
+ */
+export const BADIN_TO_PROJECT_AXES = Object.freeze( [
+	Object.freeze( [ - 1.0, 0.0, 0.0 ] ),
+	Object.freeze( [ 0.0, 0.0, 1.0 ] ),
+	Object.freeze( [ 0.0, - 1.0, 0.0 ] ),
+] );
+/** Metres to millimetres. */
+export const M_TO_MM = 1000.0;
+/** Rows and columns of the EPG grid. */
+export const EPG_ROWS = 8;
+export const EPG_COLUMNS = 8;
+/** Cells per frame in the flat layout (row-major, R1 first): 8 * 8. */
+export const EPG_CELLS = 64;
+/** Electrodes on the palate: 8 * 8 minus the two missing corners of R1. */
+export const EPG_ELECTRODES = 62;
+/** Flat cell indices (row * 8 + column) that have no electrode: R1 columns 1 and 8. */
+export const EPG_MISSING_CELLS = Object.freeze( [ 0, 7 ] );
+/** Zones as half-open row ranges: alveolar R1-R2, palatal R3-R5, velar R6-R8. */
+export const EPG_ZONES = Object.freeze( {
+	alveolar: Object.freeze( [ 0, 2 ] ),
+	palatal: Object.freeze( [ 2, 5 ] ),
+	velar: Object.freeze( [ 5, 8 ] ),
+} );
+/**
+ * The panels of the EPG index plots (epg.plot draws them as SVG, web/src/ui/IndexPlot.js on a
+ * canvas): per index its title, a short label for a narrow axis, and the range its definition
+ * bounds it to (emuR: percentages 0-100, the centre of gravity 0-8 rows, the rest 0-1).
+ */
+export const EPG_PLOT_PANELS = Object.freeze( {
+	percent: Object.freeze( {
+		label: 'Percent contact',
+		short_label: '% contact',
+		range: Object.freeze( [ 0.0, 100.0 ] ),
+	} ),
+	cog: Object.freeze( {
+		label: 'Centre of gravity',
+		short_label: 'COG',
+		range: Object.freeze( [ 0.0, 8.0 ] ),
+	} ),
+	anteriority: Object.freeze( {
+		label: 'Anteriority index',
+		short_label: 'anteriority',
+		range: Object.freeze( [ 0.0, 1.0 ] ),
+	} ),
+	centrality: Object.freeze( {
+		label: 'Centrality index',
+		short_label: 'centrality',
+		range: Object.freeze( [ 0.0, 1.0 ] ),
+	} ),
+	dorsopalatal: Object.freeze( {
+		label: 'Dorsopalatal index',
+		short_label: 'dorsopalatal',
+		range: Object.freeze( [ 0.0, 1.0 ] ),
+	} ),
+	alveolar_percent: Object.freeze( {
+		label: 'Alveolar contact %',
+		short_label: '% alveolar',
+		range: Object.freeze( [ 0.0, 100.0 ] ),
+	} ),
+	palatal_percent: Object.freeze( {
+		label: 'Palatal contact %',
+		short_label: '% palatal',
+		range: Object.freeze( [ 0.0, 100.0 ] ),
+	} ),
+	velar_percent: Object.freeze( {
+		label: 'Velar contact %',
+		short_label: '% velar',
+		range: Object.freeze( [ 0.0, 100.0 ] ),
+	} ),
+} );
+/** The panels an index plot shows unless asked for others, top to bottom. */
+export const EPG_PLOT_DEFAULT_PANELS = Object.freeze( [
+	'percent',
+	'cog',
+	'anteriority',
+	'centrality',
+	'dorsopalatal',
+] );
+/** Format version of the binary collision tables; a reader refuses any other version. */
+export const COLLISION_TABLES_FORMAT_VERSION = 1;
+/** Magic bytes that open a collision tables file. */
+export const COLLISION_TABLES_MAGIC = 'GHCOLTAB';
+/** Liner step in longitude and in latitude, degrees (see docs in geometry/liner.py). */
+export const COLLISION_LINER_STEP_DEG = 0.5;
+/** Voxels per axis of the voxel table (the paper's 32 x 32 x 32). */
+export const COLLISION_VOXELS = 32;
+/** Voxel classes: certainly outside, straddling the surface, certainly inside. */
+export const VOXEL_OK = 0;
+export const VOXEL_BORDER = 1;
+export const VOXEL_NOT_OK = 2;
+/**
+ * Liner cell kinds: no triangle seen from O in the cell (every ray misses); one triangle covers the
+ * cell and is the first hit everywhere in it (a plane test); a short triangle list.
+ */
+export const CELL_EMPTY = 0;
+export const CELL_PLANE = 1;
+export const CELL_LIST = 2;
+/**
+ * Per-vertex flags: screened by the voxel table (untouched), tested against the liner and found
+ * outside (untouched), corrected (moved along the line toward O onto the surface).
+ */
+export const FLAG_SCREENED = 0;
+export const FLAG_TESTED = 1;
+export const FLAG_CORRECTED = 2;
+/** Largest vertex count accepted by POST /collision/correct. */
+export const COLLISION_MAX_VERTICES = 20000;
+/**
+ * The arrays of the tables' payload, in payload order, with their dtypes (numpy's notation: "<f4"
+ * little-endian float32, "<u4" uint32, "|u1" uint8); see geometry.collision_format.
+ */
+export const COLLISION_TABLES_ARRAYS = Object.freeze( {
+	node_radius: '<f4',
+	cell_kind: '|u1',
+	cell_rmin: '<f4',
+	cell_rmax: '<f4',
+	cell_offsets: '<u4',
+	cell_triangles: '<u4',
+	triangles: '<f4',
+	planes: '<f4',
+	voxels: '|u1',
+} );
+/** Every tolerance of the collision tables in one place, with the reason for each. */
+export const COLLISION_TOL = Object.freeze( {
+	angle: 1e-9,
+	length: 1e-5,
+	barycentric: 1e-9,
+	surface: 0.001,
+	depth: 0.1,
+} );
+/** Format version of the tongue rig definition; both evaluators refuse any other version. */
+export const TONGUE_RIG_FORMAT_VERSION = 1;
+/**
+ * mm. Largest difference allowed between the Python and JavaScript tongue vertices (JS returns
+ * float32 positions: about 4e-6 mm of rounding at 50 mm, far inside this).
+ */
+export const TONGUE_VERTEX_TOLERANCE_MM = 0.001;
+/** Largest relative difference allowed between the two sides' tongue volumes. */
+export const TONGUE_VOLUME_RELATIVE_TOLERANCE = 0.0001;
+/** Format version of the electrode layout file; both readers refuse any other version. */
+export const EPG_LAYOUT_FORMAT_VERSION = 1;
+/**
+ * mm. An electrode is contacted when the tongue surface crosses its probe: the segment along the
+ * electrode's normal from EPG_CONTACT_BEHIND_MM behind it (inside the palate) to this far in front
+ * of it (toward the tongue). 1 mm is about the thickness of a real EPG plate's electrode and of the
+ * saliva film that closes the circuit.
+ */
+export const EPG_CONTACT_TOLERANCE_MM = 1.0;
+/**
+ * mm. How far behind the electrode the probe reaches: a corrected tongue lies on the palate within
+ * 0.1 mm (COLLISION_TOL.depth), so half a millimetre catches every touch.
+ */
+export const EPG_CONTACT_BEHIND_MM = 0.5;
+/** Electrode grids: the Reading 62-electrode palate and a dense grid of 12 rows of 8. */
+export const EPG_GRIDS = Object.freeze( [ 'reading62', 'dense96' ] );
+export const EPG_DENSE_ROWS = 12;
+/** Format version of the face rig definition; both evaluators refuse any other version. */
+export const FACE_RIG_FORMAT_VERSION = 1;
+/** mm. Largest difference allowed between the Python and JavaScript face vertices. */
+export const FACE_VERTEX_TOLERANCE_MM = 0.001;
+/**
+ * The meshes the rig deforms, in the definition's order: the skin, the lips and the shell that
+ * closes the head (it shares the skin's rim, which rides on the jaw under the chin).
+ */
+export const FACE_RIG_MESHES = Object.freeze( [
+	'face_skin',
+	'upper_lip',
+	'lower_lip',
+	'head_shell',
+] );
+/** The two lips, whose mid-sagittal gap the rig measures and closes. */
+export const FACE_RIG_LIP_MESHES = Object.freeze( [ 'upper_lip', 'lower_lip' ] );
+/** Meshes kept in front of the incisors (the shell never comes near them). */
+export const FACE_RIG_TEETH_MESHES = Object.freeze( [ 'face_skin', 'upper_lip', 'lower_lip' ] );
+/**
+ * Lip parameter names, in the order of the definition's table and of the values both evaluators
+ * read.
+ */
+export const FACE_RIG_LIP_PARAMETERS = Object.freeze( [
+	'lip_opening',
+	'lip_rounding',
+	'lip_protrusion',
+	'upper_lip_raise',
+	'lower_lip_tuck',
+] );
+/** Field coefficients per vertex: protrusion, rounding (x and z), raise, tuck, closure. */
+export const FACE_RIG_COEFF_COUNT = 6;
+/** The build manifest (meshes, content hashes); written last, so it names only finished files. */
+export const MANIFEST_FILE = 'manifest.json';
+/** Format version of the manifest; the asset store refuses any other version. */
+export const MANIFEST_FORMAT_VERSION = 1;
+/** The tongue rig definition (glasshead.geometry.tongue_rig). */
+export const TONGUE_RIG_FILE = 'tongue-rig.json';
+/** The face rig definition (glasshead.geometry.face). */
+export const FACE_RIG_FILE = 'face-rig.json';
+/** The liner and voxel tables (glasshead.geometry.collision_format). */
+export const COLLISION_TABLES_FILE = 'collision-tables.bin';
+/** The EPG electrode layouts (glasshead.epg.layout). */
+export const EPG_LAYOUT_FILE = 'epg-layout.json';
+/** The command that rebuilds every asset, named in the API's 503 answers. */
+export const REBUILD_COMMAND = 'glasshead build';
