@@ -37,7 +37,7 @@ SCENE_HYOID = {
     "mesh": "hyoid",
     "reason": "the Badin speaker's own hyoid: the same person as the tongue, airway and pharynx, "
               "in their frame with no registration; the CBCT subject's (hyoid_cbct) is another "
-              "person's, carried about 100 mm from the maxilla it was registered on",
+              "person's, carried by a registration fitted on the maxilla some 70 mm above it",
 }
 
 
@@ -47,12 +47,14 @@ class TractSources:
 
     tract: name -> (vertices (n, 3) float64 project mm, faces (m, 3) int64), Badin tract.
     neck: name -> (vertices (n, 3) float64 CBCT mm, faces (m, 3) int64), CBCT's own axes.
-    vertebrae_transform: (4, 4) float64, the Amira matrix of vertebrae.obj.
+    vertebrae_transform: (4, 4) float64, the Amira matrix of vertebrae.obj, read from
+    transform_path.
     """
 
     tract: dict
     neck: dict
     vertebrae_transform: np.ndarray
+    transform_path: Path
 
 
 def read_tract_sources(data_dir):
@@ -63,8 +65,8 @@ def read_tract_sources(data_dir):
     check_velum_topology(data_dir, tract)
     neck = {name: sources.read_cbct_mesh(data_dir, stem)
             for stem, (name, _role) in sources.CBCT_NECK_MESHES.items()}
-    matrix = sources.read_amira_transform(data_dir / sources.VERTEBRAE_TRANSFORM)
-    return TractSources(tract, neck, matrix)
+    transform_path = data_dir / sources.VERTEBRAE_TRANSFORM
+    return TractSources(tract, neck, sources.read_amira_transform(transform_path), transform_path)
 
 
 def check_velum_topology(data_dir, tract):
@@ -107,7 +109,7 @@ def build_tract(src, cbct_vertices, placed_vertices, registration, head, log=pri
     others = {"pharynx": placed["pharynx"][0], "cricoid": placed["cricoid"][0],
               "cranium": head["cranium"][0]}
     vertebrae, placement = place_vertebrae(stored, src.vertebrae_transform, to_project, others,
-                                           sources.VERTEBRAE_TRANSFORM)
+                                           src.transform_path)
     placed["vertebrae"] = carry(to_project, vertebrae, vertebra_faces)
     log(f"    vertebrae: {placement['placement']}")
 
@@ -145,10 +147,10 @@ def build_tract(src, cbct_vertices, placed_vertices, registration, head, log=pri
                                                         trimeshes["hyoid_cbct"]),
     }
     residual = registration_residual(registration, placed_vertices, report["hyoid_agreement"])
-    for name in sources.CBCT_NECK_MESHES.values():
-        vertices = placed[name[0]][0]
-        lever = float(np.linalg.norm(vertices.mean(axis=0) - placed_vertices.mean(axis=0)))
-        report["meshes"][name[0]]["registration"] = residual | {
+    for name, _role in sources.CBCT_NECK_MESHES.values():
+        centroid = placed[name][0].mean(axis=0)
+        lever = float(np.linalg.norm(centroid - np.mean(placed_vertices, axis=0)))
+        report["meshes"][name]["registration"] = residual | {
             "distance_from_registered_maxilla_mm": round(lever, 1)}
     return meshes, report
 
