@@ -24,6 +24,7 @@ const HERE = dirname( fileURLToPath( import.meta.url ) );
 const REPO = resolve( HERE, '..' );
 const ASSETS = process.env.GLASSHEAD_ASSETS_DIR ?? join( REPO, 'assets', 'build' );
 const VECTORS = JSON.parse( readFileSync( join( REPO, 'tests', 'vectors', 'epg-contacts.json' ), 'utf8' ) );
+const FIXTURES = VECTORS.fixtures;
 const RUNS = 201;
 const WARMUP = 30;
 const BASELINE_RUNS = 5;
@@ -32,14 +33,14 @@ const GOAL_MS = 0.05;
 const read = ( path ) => readFileSync( path );
 const builtFiles = [ 'tongue-rig.json', 'collision-tables.bin', 'epg-layout.json' ].map( ( name ) => join( ASSETS, name ) );
 const useBuilt = ! process.argv.includes( '--vectors' ) && builtFiles.every( existsSync );
-const rigDefinition = useBuilt ? JSON.parse( read( builtFiles[ 0 ] ) ) : VECTORS.rig;
-const tablesBytes = useBuilt ? read( builtFiles[ 1 ] ) : read( join( REPO, 'tests', 'vectors', VECTORS.tables.file ) );
-const layout = useBuilt ? JSON.parse( read( builtFiles[ 2 ] ) ) : VECTORS.layout;
-const source = useBuilt ? `built assets in ${ ASSETS }` : `the contact vectors' palate (${ VECTORS.tables.maxilla_triangles } triangles)`;
+const rigDefinition = useBuilt ? JSON.parse( read( builtFiles[ 0 ] ) ) : FIXTURES.rig;
+const tablesBytes = useBuilt ? read( builtFiles[ 1 ] ) : read( join( REPO, 'tests', 'vectors', FIXTURES.tables.file ) );
+const layout = useBuilt ? JSON.parse( read( builtFiles[ 2 ] ) ) : FIXTURES.layout;
+const source = useBuilt ? `built assets in ${ ASSETS }` : `the contact vectors' palate (${ FIXTURES.tables.maxilla_triangles } triangles)`;
 
 const rig = new TongueRig( rigDefinition );
 const tables = decodeCollisionTables( tablesBytes );
-const poses = [ {}, ...VECTORS.cases.map( ( c ) => c.input.params ) ];
+const poses = [ {}, ...VECTORS.cases.filter( ( c ) => 'params' in c.input ).map( ( c ) => c.input.params ) ];
 const surface = rig.createSurface();
 const tongues = poses.map( ( params ) => {
 

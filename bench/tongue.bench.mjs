@@ -30,7 +30,7 @@ function loadDefinition() {
 	const built = join( REPO, 'assets', 'build', 'tongue-rig.json' );
 	if ( existsSync( built ) ) return [ JSON.parse( readFileSync( built, 'utf8' ) ), relative( REPO, built ) ];
 	const vectors = join( REPO, 'tests', 'vectors', 'tongue-surface.json' );
-	return [ JSON.parse( readFileSync( vectors, 'utf8' ) ).rig, `${relative( REPO, vectors )} (rig)` ];
+	return [ JSON.parse( readFileSync( vectors, 'utf8' ) ).fixtures.rig, `${relative( REPO, vectors )} (rig)` ];
 
 }
 

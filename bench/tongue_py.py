@@ -28,7 +28,8 @@ def load_definition():
     if built.is_file():
         return json.loads(built.read_text()), str(built.relative_to(REPO))
     vectors = REPO / "tests" / "vectors" / "tongue-surface.json"
-    return json.loads(vectors.read_text())["rig"], str(vectors.relative_to(REPO)) + " (rig)"
+    return json.loads(vectors.read_text())["fixtures"]["rig"], \
+        str(vectors.relative_to(REPO)) + " (rig)"
 
 
 def main(argv=None):

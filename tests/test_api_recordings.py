@@ -10,8 +10,8 @@ from fastapi.testclient import TestClient
 from glasshead.api.app import create_app
 from glasshead.api.routes import recordings
 from glasshead.epg.formats import CSV_ELECTRODES, CSV_MAGIC
-from glasshead.epg.vectors import emur_path
 from glasshead.settings import get_settings
+from glasshead.vectors.sources import emur_path
 
 API = "/api/v1"
 
@@ -126,7 +126,8 @@ def test_a_bad_csv_upload_gets_422_naming_frame_and_field_and_stores_nothing(cli
 
 def test_one_bad_frame_in_the_last_segment_keeps_the_whole_file_out(client, emur_bytes):
     document = json.loads(emur_bytes)
-    document["segments"][-1]["frames"][7]["rows"] = document["segments"][-1]["frames"][7]["rows"][:7]
+    frame = document["segments"][-1]["frames"][7]
+    frame["rows"] = frame["rows"][:7]
     response = client.post(f"{API}/epg/recordings",
                            files={"file": ("bad.json", json.dumps(document).encode())})
     assert response.status_code == 422

@@ -1,6 +1,5 @@
 """GET /collision/tables and POST /collision/correct over HTTP, on the shared vector tables."""
 
-import json
 import shutil
 
 import numpy as np
@@ -9,12 +8,12 @@ from fastapi.testclient import TestClient
 
 from glasshead.api.app import create_app
 from glasshead.constants import COLLISION_MAX_VERTICES, COLLISION_TABLES_FORMAT_VERSION
-from glasshead.geometry import collision_vectors
 from glasshead.pipeline.collision_tables import TABLES_FILE
 from glasshead.settings import get_settings
+from vector_support import VECTORS_DIR, read_vectors, tol
 
-VECTORS = json.loads((collision_vectors.VECTORS_DIR / collision_vectors.CASES_NAME).read_text())
-TABLES_PATH = collision_vectors.VECTORS_DIR / collision_vectors.TABLES_NAME
+VECTORS = read_vectors("collision-correct.json")
+TABLES_PATH = VECTORS_DIR / VECTORS["fixtures"]["tables"]["file"]
 
 
 def _client(tmp_path, monkeypatch, tables=True):
@@ -47,14 +46,17 @@ def test_tables_answer_with_their_header_and_a_url_that_serves_the_binary(client
     assert body["bytes"] == len(binary.content)
 
 
+@pytest.mark.vectors
 def test_correct_returns_the_reference_vertices_flags_and_counts(client):
-    case = VECTORS["cases"][-1]
+    case = max((c for c in VECTORS["cases"] if "vertices" in c["input"]),
+               key=lambda c: len(c["input"]["vertices"]))
     response = client.post("/api/v1/collision/correct", json=case["input"])
     assert response.status_code == 200
     body = response.json()
     assert body["flags"] == case["expected"]["flags"]
     assert body["counts"] == case["expected"]["counts"]
-    np.testing.assert_allclose(body["vertices"], case["expected"]["vertices"], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(body["vertices"], case["expected"]["vertices"], rtol=0,
+                               atol=tol(VECTORS, "reference_mm"))
 
 
 def test_correct_accepts_an_empty_vertex_list(client):

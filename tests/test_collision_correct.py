@@ -5,8 +5,6 @@ ray from O toward P crosses the maxilla before P, computed here by Embree (trime
 scene maxilla, independently of the tables.
 """
 
-import json
-
 import numpy as np
 import pytest
 
@@ -19,49 +17,93 @@ from collision_support import (
     tongue_rig,
 )
 from glasshead.constants import COLLISION_TOL, FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED
-from glasshead.geometry import collision_vectors
 from glasshead.geometry.collision import correct_vertices
-from glasshead.geometry.collision_format import decode_collision_tables
+from glasshead.geometry.collision_format import CollisionTablesError, decode_collision_tables
+from glasshead.vectors.collision import (
+    CASES_NAME,
+    TABLES_NAME,
+    build_vector_tables,
+    cases_document,
+)
+from vector_support import assert_same_document, read_vectors, tol
 
-VECTORS = json.loads((collision_vectors.VECTORS_DIR / collision_vectors.CASES_NAME).read_text())
-TABLES_BYTES = (collision_vectors.VECTORS_DIR / collision_vectors.TABLES_NAME).read_bytes()
+VECTORS = read_vectors(CASES_NAME)
+TABLES_BYTES = read_vectors(TABLES_NAME)
 VECTOR_TABLES = decode_collision_tables(TABLES_BYTES)
+CORRECTIONS = [c for c in VECTORS["cases"] if "error" not in c["expected"]]
+REFUSALS = [c for c in VECTORS["cases"] if "error" in c["expected"]]
+#: mm. Python against its own float64 answers (the file states the reason).
+REFERENCE_MM = tol(VECTORS, "reference_mm")
+#: Table values are float32: a float64 result a last bit away on another CPU can round to the
+#: neighbouring float32, one unit in the last place (2**-23 relative) apart.
+FLOAT32_RTOL = 2.0**-23
 #: Seeded random poses checked here (about a second); bench/collision_exactness.py prints the
 #: figures for the same kind of run.
 POSES = 1000
 SEED = 1998
 
 
-def test_vector_files_are_well_formed_with_unique_descriptions():
-    descriptions = [c["description"] for c in VECTORS["cases"] + VECTORS["refusals"]]
-    assert len(descriptions) == len(set(descriptions))
-    for case in VECTORS["cases"]:
+@pytest.mark.vectors
+def test_vector_cases_are_well_formed():
+    assert len(REFUSALS) >= 4
+    for case in CORRECTIONS:
         n = len(case["input"]["vertices"])
-        assert n > 0 and len(case["expected"]["flags"]) == n
-        assert case["expected"]["counts"]["screened"] == n
+        assert n > 0 and len(case["expected"]["flags"]) == n, case["description"]
+        assert case["expected"]["counts"]["screened"] == n, case["description"]
 
 
-def test_vector_files_are_up_to_date_with_the_python_reference():
-    data, document, consts = collision_vectors.build_all()
-    assert data == TABLES_BYTES, "run python -m glasshead.geometry.collision_vectors"
-    assert document == VECTORS
-    on_disk = json.loads((collision_vectors.VECTORS_DIR
-                          / collision_vectors.CONSTANTS_NAME).read_text())
-    assert consts == on_disk
+@pytest.mark.vectors
+def test_vector_tables_are_up_to_date_with_the_builder():
+    fresh = decode_collision_tables(build_vector_tables())
+    header = {k: v for k, v in fresh.header.items() if k != "payload_crc32"}
+    stored = {k: v for k, v in VECTOR_TABLES.header.items() if k != "payload_crc32"}
+    message = f"run python -m glasshead.vectors {TABLES_NAME}"
+    assert_same_document(header, stored, rtol=FLOAT32_RTOL, path=f"{TABLES_NAME} header")
+    for name, array in VECTOR_TABLES.arrays.items():
+        got = fresh[name]
+        assert got.dtype == array.dtype and got.shape == array.shape, f"{name}: {message}"
+        if np.issubdtype(array.dtype, np.floating):
+            np.testing.assert_allclose(got, array, rtol=FLOAT32_RTOL, atol=1e-6,
+                                       err_msg=f"{name}: {message}")
+        else:
+            np.testing.assert_array_equal(got, array, err_msg=f"{name}: {message}")
 
 
-@pytest.mark.parametrize("case", VECTORS["cases"], ids=lambda c: c["description"])
+@pytest.mark.vectors
+def test_vector_cases_are_up_to_date_with_the_python_reference():
+    fresh = cases_document(TABLES_BYTES, VECTOR_TABLES)
+    assert_same_document(fresh, VECTORS, atol=REFERENCE_MM)
+
+
+@pytest.mark.vectors
+@pytest.mark.parametrize("case", CORRECTIONS, ids=lambda c: c["description"])
 def test_python_twin_answers_each_vector(case):
     out, flags, counts = correct_vertices(case["input"]["vertices"], VECTOR_TABLES)
+    # Flags and counts exactly: every input stays clear of the decision boundaries.
     assert flags.tolist() == case["expected"]["flags"]
     assert counts == case["expected"]["counts"]
-    np.testing.assert_allclose(out, case["expected"]["vertices"], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(out, case["expected"]["vertices"], rtol=0, atol=REFERENCE_MM)
 
 
+@pytest.mark.vectors
+@pytest.mark.parametrize("case", REFUSALS, ids=lambda c: c["description"])
+def test_python_twin_refuses_each_damaged_table(case):
+    data = bytearray(TABLES_BYTES)
+    patch = case["input"].get("patch")
+    if patch:
+        offset = patch["offset"] % len(data)
+        data[offset:offset + len(patch["bytes"])] = bytes(patch["bytes"])
+    if "truncate" in case["input"]:
+        data = data[:case["input"]["truncate"]]
+    with pytest.raises(CollisionTablesError, match=case["expected"]["error"]):
+        decode_collision_tables(bytes(data))
+
+
+@pytest.mark.vectors
 def test_vectors_cover_every_flag_and_a_whole_tongue():
-    flags = {f for c in VECTORS["cases"] for f in c["expected"]["flags"]}
+    flags = {f for c in CORRECTIONS for f in c["expected"]["flags"]}
     assert flags == {FLAG_SCREENED, FLAG_TESTED, FLAG_CORRECTED}
-    assert max(len(c["input"]["vertices"]) for c in VECTORS["cases"]) > 300
+    assert max(len(c["input"]["vertices"]) for c in CORRECTIONS) > 300
 
 
 def test_untouched_vertices_are_returned_bit_for_bit():

@@ -6,24 +6,25 @@ import pytest
 from fastapi.testclient import TestClient
 
 from glasshead.api.app import create_app
-from glasshead.epg import contact_vectors
-from glasshead.epg.contact_vectors import decode_f32
 from glasshead.pipeline.collision_tables import TABLES_FILE
 from glasshead.pipeline.epg_layout import BUILDER_VERSION, LAYOUT_FILE
 from glasshead.settings import get_settings
+from vector_support import decode_f32, read_vectors
 
 API = "/api/v1"
-VECTORS = json.loads((contact_vectors.VECTORS_DIR / contact_vectors.CASES_NAME).read_text())
+VECTORS = read_vectors("epg-contacts.json")
+FIXTURES = VECTORS["fixtures"]
+POSES = [c for c in VECTORS["cases"] if "params" in c["input"]]
+KERNEL_CASES = [c for c in VECTORS["cases"] if "vertices" in c["input"]]
 
 
 def _assets(tmp_path, layout=True):
     assets = tmp_path / "assets"
     assets.mkdir()
-    (assets / TABLES_FILE).write_bytes(
-        (contact_vectors.VECTORS_DIR / contact_vectors.TABLES_NAME).read_bytes())
-    (assets / "tongue-rig.json").write_text(json.dumps(VECTORS["rig"]))
+    (assets / TABLES_FILE).write_bytes(read_vectors(FIXTURES["tables"]["file"]))
+    (assets / "tongue-rig.json").write_text(json.dumps(FIXTURES["rig"]))
     if layout:
-        (assets / LAYOUT_FILE).write_text(json.dumps(dict(VECTORS["layout"],
+        (assets / LAYOUT_FILE).write_text(json.dumps(dict(FIXTURES["layout"],
                                                           builder=BUILDER_VERSION)))
     return assets
 
@@ -43,7 +44,8 @@ def test_the_layout_serves_the_reading_palate_by_default(client):
     body = response.json()
     assert body["grid"] == "reading62" and body["rows"] == 8 and len(body["electrodes"]) == 62
     assert body["missing_cells"] == [0, 7]
-    assert body["electrodes"] == VECTORS["layout"]["grids"]["reading62"]["electrodes"]
+    # Served as read from the layout file: the same numbers, not computed ones.
+    assert body["electrodes"] == FIXTURES["layout"]["grids"]["reading62"]["electrodes"]
     assert body["contact"] == {"tolerance_mm": 1.0, "behind_mm": 0.5}
 
 
@@ -55,8 +57,9 @@ def test_the_layout_serves_the_dense_grid_and_refuses_an_unknown_one(client):
     assert "grid" in bad.json()["detail"] and "reading62" in bad.json()["detail"]
 
 
+@pytest.mark.vectors
 def test_contacts_from_params_are_the_vectors_contacts_with_their_indices(client):
-    case = max(VECTORS["cases"], key=lambda c: c["expected"]["reading62"]["contacted"])
+    case = max(POSES, key=lambda c: c["expected"]["reading62"]["contacted"])
     response = client.post(f"{API}/epg/contacts", json={"params": case["input"]["params"]})
     assert response.status_code == 200
     body = response.json()
@@ -64,28 +67,33 @@ def test_contacts_from_params_are_the_vectors_contacts_with_their_indices(client
     assert sum(body["contacts"]) == case["expected"]["reading62"]["contacted"]
     assert len(body["cells"]) == 64 and body["cells"][0] == 0 and body["cells"][7] == 0
     assert len(body["electrodes"]) == 62 and body["electrodes"][0] == "R1C2"
-    assert body["contacted"] == [i for i, c in zip(body["electrodes"], body["contacts"]) if c]
+    assert body["contacted"] == [i for i, c in zip(body["electrodes"], body["contacts"],
+                                                   strict=True) if c]
     assert body["indices"]["contacts"] == sum(body["contacts"])
-    assert body["indices"]["percent"] == pytest.approx(100 * sum(body["contacts"]) / 62)
+    # One division of integers, computed the same way: a relative 1e-12 allows printing only.
+    assert body["indices"]["percent"] == pytest.approx(100 * sum(body["contacts"]) / 62,
+                                                       rel=1e-12)
     assert body["collision"] == case["expected"]["collision"]
 
 
+@pytest.mark.vectors
 def test_contacts_on_the_dense_grid_come_without_the_reading_indices(client):
-    case = VECTORS["cases"][-1]
+    case = POSES[-1]
     body = client.post(f"{API}/epg/contacts", json={"params": case["input"]["params"],
                                                     "grid": "dense96"}).json()
     assert body["rows"] == case["expected"]["dense96"]["rows"]
     assert body["indices"] is None and len(body["cells"]) == 96
 
 
+@pytest.mark.vectors
 def test_contacts_from_vertices_use_the_rig_triangles_or_those_sent(client):
-    tongue = next(c for c in VECTORS["kernel_cases"] if c["input"]["triangles"] == "rig"
+    tongue = next(c for c in KERNEL_CASES if c["input"]["triangles"] == "rig"
                   and c["expected"]["reading62"]["contacted"] > 0)
     vertices = decode_f32(tongue["input"]["vertices"]).reshape(-1, 3).tolist()
     body = client.post(f"{API}/epg/contacts", json={"vertices": vertices}).json()
     assert body["rows"] == tongue["expected"]["reading62"]["rows"]
     assert body["collision"] is None
-    small = next(c for c in VECTORS["kernel_cases"] if isinstance(c["input"]["triangles"], list)
+    small = next(c for c in KERNEL_CASES if isinstance(c["input"]["triangles"], list)
                  and c["expected"]["contacted"])
     response = client.post(f"{API}/epg/contacts", json={
         "vertices": decode_f32(small["input"]["vertices"]).reshape(-1, 3).tolist(),

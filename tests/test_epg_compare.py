@@ -9,7 +9,7 @@ from glasshead.epg import compare as cmp
 from glasshead.epg.formats import parse
 from glasshead.epg.indices import epg_indices
 from glasshead.epg.plot import PANEL_HEIGHT, Track, index_tracks_svg, panel_geometry, to_xy
-from glasshead.epg.vectors import emur_path
+from glasshead.vectors.sources import emur_path
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -88,7 +88,8 @@ def test_a_reference_of_another_length_without_times_is_refused(sequences):
 
 def test_the_index_plot_draws_one_line_per_track_and_panel_at_the_right_place(sequences):
     a, b = sequences[0], sequences[1]
-    tracks = [Track(a.name, a.t_s, epg_indices(a.frames)), Track(b.name, b.t_s, epg_indices(b.frames))]
+    tracks = [Track(a.name, a.t_s, epg_indices(a.frames)),
+              Track(b.name, b.t_s, epg_indices(b.frames))]
     root = ET.fromstring(index_tracks_svg(tracks, ("percent", "cog"), title="a & b"))
     panels = root.findall(f"{SVG}g")
     assert [p.get("data-index") for p in panels] == ["percent", "cog"]

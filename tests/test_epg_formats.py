@@ -12,7 +12,7 @@ from glasshead.epg.sequence import (
     make_sequence,
     raw_to_frames,
 )
-from glasshead.epg.vectors import emur_path
+from glasshead.vectors.sources import emur_path
 
 
 @pytest.fixture(scope="module")
@@ -64,7 +64,7 @@ def test_every_real_segment_survives_a_round_trip(sequences, fmt):
 def test_the_emur_json_export_reproduces_the_reference_segments(emur_bytes, sequences):
     original = json.loads(emur_bytes)["segments"]
     exported = json.loads(formats.serialise(sequences, "emur-json"))["segments"]
-    for a, b in zip(original, exported):
+    for a, b in zip(original, exported, strict=True):
         assert b["frames"] == a["frames"]
         assert (b["utt"], b["label"], b["word"], b["start_ms"], b["end_ms"]) == \
                (a["utt"], a["label"], a["word"], a["start_ms"], a["end_ms"])

@@ -14,11 +14,11 @@ from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from glasshead.epg.formats import parse
-from glasshead.epg.vectors import emur_path
 from glasshead.settings import Settings, get_settings
 from glasshead.store.base import Base
 from glasshead.store.db import alembic_config, engine_for, get_engine, upgrade_to_head
 from glasshead.store.models import EpgRecording, SavedPose
+from glasshead.vectors.sources import emur_path
 
 
 @pytest.fixture

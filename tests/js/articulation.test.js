@@ -21,7 +21,7 @@ import { FLAG_CORRECTED } from '../../web/src/core/constants.js';
 import { debugObject } from '../../web/src/debug.js';
 
 const VECTORS = join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors' );
-const RIG = JSON.parse( readFileSync( join( VECTORS, 'tongue-surface.json' ), 'utf8' ) ).rig;
+const RIG = JSON.parse( readFileSync( join( VECTORS, 'tongue-surface.json' ), 'utf8' ) ).fixtures.rig;
 const TABLES = decodeCollisionTables( readFileSync( join( VECTORS, 'collision-tables.bin' ) ) );
 
 /** A head of stand-ins: a box for the rest tongue, the mandible and the two lips (in the mouth, touching at y = 0). */

@@ -2,14 +2,15 @@
 // the same values (tests/vectors/constants.json holds the Python side; pytest checks it is fresh).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 
 import * as constants from '../../web/src/core/constants.js';
 
-const HERE = dirname( fileURLToPath( import.meta.url ) );
-const PYTHON = JSON.parse( readFileSync( join( HERE, '..', 'vectors', 'constants.json' ), 'utf8' ) ).constants;
+import { nearRelative, readVectors, tolerance } from './support/vectors.js';
+
+const DOCUMENT = readVectors( 'constants.json' );
+const PYTHON = DOCUMENT.constants;
+/** Relative tolerance of constants written in two languages (the file states the reason). */
+const RELATIVE = tolerance( DOCUMENT, 'value' );
 
 /** A JS value as plain JSON, the way Python writes it (frozen objects and typed arrays unwrapped). */
 function plain( value ) {
@@ -23,7 +24,7 @@ function same( js, py, path ) {
 	if ( typeof py === 'number' ) {
 
 		assert.equal( typeof js, 'number', `${path}: expected a number` );
-		assert.ok( Math.abs( js - py ) <= 1e-12 * Math.max( 1, Math.abs( py ) ), `${path}: JS ${js}, Python ${py}` );
+		nearRelative( js, py, RELATIVE, path );
 	} else if ( Array.isArray( py ) ) {
 
 		assert.ok( Array.isArray( js ) && js.length === py.length, `${path}: JS ${JSON.stringify( js )}, Python ${JSON.stringify( py )}` );

@@ -4,9 +4,6 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { fewestGarbageCollections, garbageCollections } from './support/garbage.js';
-import { readFileSync } from 'node:fs';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 
 import { TongueRig, surfaceTriangles } from '../../web/src/core/tongue.js';
 import { meshVolume } from '../../web/src/core/meshVolume.js';
@@ -15,27 +12,21 @@ import {
 	TONGUE_VERTEX_TOLERANCE_MM, TONGUE_VOLUME_RELATIVE_TOLERANCE,
 } from '../../web/src/core/constants.js';
 
-const HERE = dirname( fileURLToPath( import.meta.url ) );
-const read = ( name ) => JSON.parse( readFileSync( join( HERE, '..', 'vectors', name ), 'utf8' ) );
-const SURFACES = read( 'tongue-surface.json' );
-const JAW = read( 'tongue-jaw.json' );
-const rig = new TongueRig( SURFACES.rig );
+import { near, readVectors, tolerance } from './support/vectors.js';
 
-function near( actual, expected, tolerance, what ) {
-
-	assert.ok( Math.abs( actual - expected ) <= tolerance, `${what}: got ${actual}, expected ${expected} (tolerance ${tolerance})` );
-
-}
+const SURFACES = readVectors( 'tongue-surface.json' );
+const JAW = readVectors( 'tongue-jaw.json' );
+const rig = new TongueRig( SURFACES.fixtures.rig );
 
 test( 'the surface vectors hold 200 or more seeded random sets with unique descriptions', () => {
 
 	const random = SURFACES.cases.filter( ( c ) => c.description.startsWith( 'random set' ) );
 	assert.ok( random.length >= 200, `${random.length} random sets` );
-	assert.ok( random.every( ( c ) => c.description.includes( `seed ${SURFACES.seed}` ) ) );
+	assert.ok( random.every( ( c ) => c.description.includes( `seed ${SURFACES.constants.seed}` ) ) );
 	const descriptions = SURFACES.cases.map( ( c ) => c.description );
 	assert.equal( new Set( descriptions ).size, descriptions.length );
-	assert.equal( SURFACES.tolerance.vertex_mm, TONGUE_VERTEX_TOLERANCE_MM );
-	assert.equal( SURFACES.tolerance.volume_relative, TONGUE_VOLUME_RELATIVE_TOLERANCE );
+	assert.equal( tolerance( SURFACES, 'vertex_mm' ), TONGUE_VERTEX_TOLERANCE_MM );
+	assert.equal( tolerance( SURFACES, 'volume_relative' ), TONGUE_VOLUME_RELATIVE_TOLERANCE );
 
 } );
 
@@ -63,7 +54,9 @@ test( 'every vector set gives the Python probe positions, volume, centroid and b
 
 	const surface = rig.createSurface();
 	const values = new Float64Array( rig.parameterCount );
-	const probes = SURFACES.probe_vertices;
+	const probes = SURFACES.fixtures.probe_vertices;
+	const vertexMm = tolerance( SURFACES, 'vertex_mm' );
+	const volumeRelative = tolerance( SURFACES, 'volume_relative' );
 	let worst = 0;
 	for ( const vector of SURFACES.cases ) {
 
@@ -78,13 +71,13 @@ test( 'every vector set gives the Python probe positions, volume, centroid and b
 
 				const error = Math.abs( positions[ 3 * v + axis ] - expected.probe_positions[ k ][ axis ] );
 				worst = Math.max( worst, error );
-				assert.ok( error <= TONGUE_VERTEX_TOLERANCE_MM, `${vector.description}: vertex ${v} axis ${axis} off by ${error} mm` );
+				assert.ok( error <= vertexMm, `${vector.description}: vertex ${v} axis ${axis} off by ${error} mm` );
 
 			}
 
 		} );
 		const volume = meshVolume( positions, surface.index );
-		near( volume, expected.volume_mm3, TONGUE_VOLUME_RELATIVE_TOLERANCE * expected.volume_mm3, `${vector.description}: volume` );
+		near( volume, expected.volume_mm3, volumeRelative * expected.volume_mm3, `${vector.description}: volume` );
 		for ( let axis = 0; axis < 3; axis ++ ) {
 
 			let sum = 0;
@@ -99,14 +92,15 @@ test( 'every vector set gives the Python probe positions, volume, centroid and b
 
 			}
 
-			near( sum / rig.vertexCount, expected.centroid[ axis ], TONGUE_VERTEX_TOLERANCE_MM, `${vector.description}: centroid` );
-			near( low, expected.bounds_min[ axis ], TONGUE_VERTEX_TOLERANCE_MM, `${vector.description}: bounds min` );
-			near( high, expected.bounds_max[ axis ], TONGUE_VERTEX_TOLERANCE_MM, `${vector.description}: bounds max` );
+			near( sum / rig.vertexCount, expected.centroid[ axis ], vertexMm, `${vector.description}: centroid` );
+			near( low, expected.bounds_min[ axis ], vertexMm, `${vector.description}: bounds min` );
+			near( high, expected.bounds_max[ axis ], vertexMm, `${vector.description}: bounds max` );
 
 		}
 
 	}
 
+	// float32 positions: the worst difference is rounding, far inside the stated tolerance.
 	assert.ok( worst < 1e-4, `largest probe difference ${worst} mm` );
 
 } );
@@ -235,14 +229,17 @@ test( 'the tip pair moves forward with tip advancement and the rest of the tongu
 test( 'jaw poses and posed points match Python', () => {
 
 	const pose = new Float64Array( POSE_LENGTH );
+	const rotation = tolerance( JAW, 'rotation' ), translationMm = tolerance( JAW, 'translation_mm' );
+	const pointMm = tolerance( JAW, 'point_mm' );
 	for ( const vector of JAW.cases ) {
 
-		jawPose( vector.input.opening_deg, JAW.jaw, pose );
-		vector.expected.pose.forEach( ( e, k ) => near( pose[ k ], e, 1e-5, `${vector.description}: pose ${k}` ) );
+		jawPose( vector.input.opening_deg, JAW.fixtures.jaw, pose );
+		// Row-major 3 x 4: entries 3, 7 and 11 are the translation (mm), the others rotation.
+		vector.expected.pose.forEach( ( e, k ) => near( pose[ k ], e, k % 4 === 3 ? translationMm : rotation, `${vector.description}: pose ${k}` ) );
 		const points = Float64Array.from( vector.input.points.flat() );
 		const count = vector.input.points.length;
 		applyJawPose( pose, points, count, 3, vector.input.weights, points );
-		vector.expected.points.flat().forEach( ( e, k ) => near( points[ k ], e, 1e-5, `${vector.description}: point ${k}` ) );
+		vector.expected.points.flat().forEach( ( e, k ) => near( points[ k ], e, pointMm, `${vector.description}: point ${k}` ) );
 
 	}
 
@@ -250,7 +247,7 @@ test( 'jaw poses and posed points match Python', () => {
 
 test( 'opening the jaw moves the chin end down and the tongue with it', () => {
 
-	const pose = jawPose( 20, JAW.jaw, new Float64Array( POSE_LENGTH ) );
+	const pose = jawPose( 20, JAW.fixtures.jaw, new Float64Array( POSE_LENGTH ) );
 	const chin = applyJawPose( pose, Float64Array.from( [ 25, - 30 ] ), 1, 2, null, new Float64Array( 2 ) );
 	assert.ok( chin[ 1 ] < - 40, `chin y ${chin[ 1 ]}` );
 	const closed = rig.evaluate( rig.valuesFrom( {} ), rig.createSurface() ).positions;

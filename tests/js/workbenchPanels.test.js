@@ -17,7 +17,7 @@ import {
 	blendingFunctions, coronalSection, drawSectionsPanel, SECTION_NAMES, sectionControls, sectionStations,
 } from '../../web/src/ui/SectionsPanel.js';
 
-const RIG = JSON.parse( readFileSync( join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors', 'tongue-surface.json' ), 'utf8' ) ).rig;
+const RIG = JSON.parse( readFileSync( join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors', 'tongue-surface.json' ), 'utf8' ) ).fixtures.rig;
 const LETTERS = RIG.sagittal.control_points.map( ( p ) => p.name );
 const SIZE = { width: 380, height: 290 };
 

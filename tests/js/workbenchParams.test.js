@@ -10,7 +10,7 @@ import { fileURLToPath } from 'node:url';
 import { closestName, editDistance, GROUP_ORDER, parseParamsJson, ParamState, roundValue } from '../../web/src/core/paramState.js';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
-const RIG = JSON.parse( readFileSync( join( HERE, '..', 'vectors', 'tongue-surface.json' ), 'utf8' ) ).rig;
+const RIG = JSON.parse( readFileSync( join( HERE, '..', 'vectors', 'tongue-surface.json' ), 'utf8' ) ).fixtures.rig;
 
 /** Lip parameters as the face rig defines them (appended after the tongue rig's). */
 const LIPS = [
