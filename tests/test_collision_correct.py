@@ -112,6 +112,7 @@ def test_untouched_vertices_are_returned_bit_for_bit():
     out, flags, _ = correct_vertices(points, VECTOR_TABLES)
     keep = flags != FLAG_CORRECTED
     assert keep.any() and (~keep).any()
+    # Not computed: the input's own bits, handed back.
     assert np.array_equal(out[keep], points[keep])
 
 
@@ -161,7 +162,8 @@ def test_random_tongue_poses_end_no_deeper_than_a_tenth_of_a_millimetre_and_spar
         after = np.linalg.norm(out[moved] - origin, axis=1)
         depth = after - rays.radius(out[moved])
         worst = max(worst, float(depth.max(initial=0.0)))
-        np.testing.assert_allclose(after, first[moved], atol=1e-4, err_msg=where)
+        # mm: the tables' float32 triangles against Embree's float32 ray hits on the float64 mesh.
+        np.testing.assert_allclose(after, first[moved], rtol=0, atol=1e-4, err_msg=where)
         corrected_per_pose.append(counts["corrected"])
     assert worst <= tol.depth
     assert sum(corrected_per_pose) > POSES, "the poses must actually press into the palate"

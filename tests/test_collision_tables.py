@@ -50,6 +50,7 @@ def _cells(tables):
 def test_origin_lies_in_the_mid_sagittal_plane_at_the_lowest_point_of_the_maxilla(built):
     o = np.array(built["tables"].header["origin"])
     v = built["v"]
+    # Set by the rule, not computed: z is 0 and y is one of the vertices' own values.
     assert o[2] == 0.0
     assert o[1] == v[:, 1].min() == built["tables"].header["floor_y"]
     assert v[:, 0].min() < o[0] < v[:, 0].max()
@@ -103,12 +104,22 @@ def test_node_radii_are_the_exact_first_hits_of_the_grid_rays(built):
     rng = np.random.default_rng(6)
     j = rng.integers(0, liner["nlat"] + 1, 3000)
     i = rng.integers(0, liner["nlon"] + 1, 3000)
-    d = angles_to_direction(liner["lon0"] + i * liner["step"], liner["lat0"] + j * liner["step"])
+    theta, phi = liner["lon0"] + i * liner["step"], liner["lat0"] + j * liner["step"]
     o = np.array(tables.header["origin"])
-    exact = built["rays"].radius(o + d * 100.0)
+    exact = built["rays"].radius(o + angles_to_direction(theta, phi) * 100.0)
     node = tables["node_radius"][j, i]
-    np.testing.assert_array_equal(np.isfinite(node), np.isfinite(exact))
-    np.testing.assert_allclose(node[np.isfinite(node)], exact[np.isfinite(exact)], atol=1e-4)
+    # Hit or miss is compared on rays clear of the maxilla's outline: a ray grazing an edge can
+    # hit in float64 and miss in Embree's float32 (or on another CPU). A ray is clear when
+    # turning it by 1e-7 rad (5e-6 mm at 50 mm) either way in both angles keeps its answer.
+    clear = np.ones(len(j), dtype=bool)
+    for dt, dp in ((1e-7, 0.0), (-1e-7, 0.0), (0.0, 1e-7), (0.0, -1e-7)):
+        turned = built["rays"].radius(o + angles_to_direction(theta + dt, phi + dp) * 100.0)
+        clear &= np.isfinite(turned) == np.isfinite(exact)
+    assert clear.mean() > 0.99, f"only {clear.sum()} of {len(clear)} rays clear of an edge"
+    np.testing.assert_array_equal(np.isfinite(node)[clear], np.isfinite(exact)[clear])
+    both = np.isfinite(node) & np.isfinite(exact)
+    # mm: float32 table values and Embree's float32 hits (a few 1e-6 mm at 50 mm).
+    np.testing.assert_allclose(node[both], exact[both], rtol=0, atol=1e-4)
 
 
 def test_ok_voxels_hold_only_outside_points_and_not_ok_voxels_only_inside_points(built):
@@ -152,7 +163,7 @@ def test_the_file_round_trips_every_array_and_records_format_and_origin(built):
                       "byte_order")},
         tables.arrays))
     for name, array in tables.arrays.items():
-        np.testing.assert_array_equal(again[name], array)
+        np.testing.assert_array_equal(again[name], array)  # a round trip of bytes: exact
     h = tables.header
     assert h["format_version"] == COLLISION_TABLES_FORMAT_VERSION
     assert built["data"][:8] == COLLISION_TABLES_MAGIC
@@ -208,7 +219,7 @@ def test_a_header_whose_shapes_disagree_with_the_grid_is_refused(built):
 
 def test_origin_rule_takes_the_middle_in_x_and_the_lowest_point_in_y():
     v = np.array([[-10.0, 5.0, 3.0], [30.0, -2.0, -4.0], [0.0, 8.0, 1.0]])
-    np.testing.assert_array_equal(collision_origin(v), [10.0, -2.0, 0.0])
+    np.testing.assert_allclose(collision_origin(v), [10.0, -2.0, 0.0], rtol=0, atol=1e-12)
 
 
 def test_the_builder_refuses_non_finite_vertices_and_bad_faces(tmp_path):
@@ -229,7 +240,7 @@ def test_the_builder_refuses_a_maxilla_wound_inside_out(tmp_path):
         build_collision_tables(v, f[:, ::-1], tmp_path)
 
 
-def test_the_builder_refuses_a_maxilla_in_metres_where_O_has_no_room(tmp_path):
+def test_the_builder_refuses_a_maxilla_in_metres_where_the_origin_has_no_room(tmp_path):
     v, f = badin_mesh("maxilla")
     with pytest.raises(ValueError, match="must be at least 3.0 mm inside"):
         build_collision_tables(v / 1000.0, f, tmp_path)
