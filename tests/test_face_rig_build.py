@@ -83,7 +83,7 @@ def test_without_a_build_the_rig_is_made_from_the_sources_in_the_same_vertex_ord
 
 
 def test_a_damaged_rig_is_refused_with_the_reason(tmp_path):
-    rig = json.loads(VECTORS.read_text())["rig"]
+    rig = json.loads(VECTORS.read_text())["fixtures"]["rig"]
     validate_face_rig(rig)
     for damage, message in ((lambda r: r.update(format_version=7), "format_version 7 is not 1"),
                             (lambda r: r["meshes"]["lower_lip"]["jaw_weights"].pop(),
@@ -101,7 +101,7 @@ def test_a_damaged_rig_is_refused_with_the_reason(tmp_path):
 @pytest.fixture
 def client(tmp_path, monkeypatch):
     """An app whose assets directory holds the rig of the shared vectors."""
-    rig = json.loads(VECTORS.read_text())["rig"]
+    rig = json.loads(VECTORS.read_text())["fixtures"]["rig"]
     (tmp_path / "face-rig.json").write_text(json.dumps(rig))
     monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(tmp_path))
     monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))

@@ -17,7 +17,7 @@ VECTORS = Path(__file__).parent / "vectors"
 
 @pytest.fixture(scope="module")
 def definition():
-    return json.loads((VECTORS / "tongue-surface.json").read_text())["rig"]
+    return json.loads((VECTORS / "tongue-surface.json").read_text())["fixtures"]["rig"]
 
 
 @pytest.fixture

@@ -22,7 +22,7 @@ VECTORS = Path(__file__).parent / "vectors"
 
 @pytest.fixture(scope="module")
 def definition():
-    return json.loads((VECTORS / "tongue-surface.json").read_text())["rig"]
+    return json.loads((VECTORS / "tongue-surface.json").read_text())["fixtures"]["rig"]
 
 
 def moves_of(name):
@@ -88,7 +88,8 @@ def test_the_shared_definition_passes_its_own_checks(definition):
     (lambda d: d["parameters"].append(copy.deepcopy(d["parameters"][0])), "duplicate parameter"),
     (lambda d: d["parameters"][0].update(neutral=100.0), "min <= neutral <= max"),
     (lambda d: d["parameters"][0].update(unit="furlong"), "unit"),
-    (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "by": [1, 0]}), "bad sagittal move"),
+    (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "by": [1, 0]}),
+     "bad sagittal move"),
     (lambda d: d["parameters"][12]["moves"].append(
         {"section": "front", "control": "left pole", "by": 1.0}), "pole controls cannot move"),
     (lambda d: d["sagittal"]["control_points"][0].update(section_weights=[0.5, 0.1, 0.1]),
@@ -124,4 +125,5 @@ def test_build_definition_checks_the_shapes_it_is_given(definition):
         build_definition(sagittal_positions=np.zeros((5, 2)), **common)
     built = build_definition(sagittal_positions=rig.rest_points, **common)
     assert built["surface"]["vertex_count"] == rig.vertex_count
-    assert all(v == 0 for k, v in enumerate(built["coronal"]["ratios"]["front"]) if k in POLE_CONTROLS)
+    front = built["coronal"]["ratios"]["front"]
+    assert all(v == 0 for k, v in enumerate(front) if k in POLE_CONTROLS)

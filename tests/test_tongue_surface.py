@@ -16,7 +16,7 @@ VECTORS = Path(__file__).parent / "vectors"
 
 @pytest.fixture(scope="module")
 def rig():
-    return TongueRig(json.loads((VECTORS / "tongue-surface.json").read_text())["rig"])
+    return TongueRig(json.loads((VECTORS / "tongue-surface.json").read_text())["fixtures"]["rig"])
 
 
 def test_the_surface_has_at_least_2000_vertices_and_is_closed_and_consistently_wound(rig):
@@ -78,7 +78,8 @@ def test_parameter_sets_within_range_keep_the_pages_in_order_so_the_surface_cann
     seed = 5
     rng = np.random.default_rng(seed)
     for values in rng.uniform(rig.minimum, rig.maximum, (400, len(rig.neutral))):
-        assert rig.pages_in_order(values), f"seed {seed}: {dict(zip(rig.parameter_names, values))}"
+        named = dict(zip(rig.parameter_names, values, strict=True))
+        assert rig.pages_in_order(values), f"seed {seed}: {named}"
 
 
 def test_every_corner_of_the_sagittal_and_jaw_ranges_keeps_the_pages_in_order(rig):
@@ -87,7 +88,7 @@ def test_every_corner_of_the_sagittal_and_jaw_ranges_keeps_the_pages_in_order(ri
     for corner in itertools.product(*[(rig.minimum[k], rig.maximum[k]) for k in index]):
         values = rig.neutral.copy()
         values[index] = corner
-        assert rig.pages_in_order(values), dict(zip(names, corner))
+        assert rig.pages_in_order(values), dict(zip(names, corner, strict=True))
 
 
 def test_pages_out_of_order_are_detected(rig):

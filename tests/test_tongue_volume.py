@@ -18,7 +18,7 @@ CUBE = trimesh.creation.box(extents=(2.0, 3.0, 5.0))
 
 @pytest.fixture(scope="module")
 def rig():
-    return TongueRig(json.loads((VECTORS / "tongue-surface.json").read_text())["rig"])
+    return TongueRig(json.loads((VECTORS / "tongue-surface.json").read_text())["fixtures"]["rig"])
 
 
 def test_the_volume_of_a_box_is_the_product_of_its_sides_wherever_it_is():
