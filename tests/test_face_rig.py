@@ -154,6 +154,7 @@ def test_skin_away_from_the_mouth_and_jaw_and_the_borders_of_eyes_and_nostrils_k
                                     "lip_protrusion": 8.0}),
                             (15.0, {"upper_lip_raise": 6.0, "lower_lip_tuck": 5.0})):
         posed = face.pose(opening, **params)[0]["face_skin"]
+        # Weight 0 and no shape: not moved at all, the rest positions' own bits (exact).
         np.testing.assert_array_equal(posed[openings], skin[openings])
         np.testing.assert_array_equal(posed[far], skin[far])
 

@@ -23,9 +23,10 @@ def test_without_a_slide_the_pivot_stays_put_and_distances_to_it_are_kept():
     np.testing.assert_allclose(apply_jaw_pose([[-55.0, 40.0]], pose), [[-55.0, 40.0]], atol=1e-12)
     chin = np.array([[25.0, -30.0, 4.0]])
     moved = apply_jaw_pose(chin, pose)
+    # mm, about 100 mm from the pivot: a rotation keeps it up to rounding
     assert np.linalg.norm(moved[0, :2] - [-55, 40]) == pytest.approx(
-        np.linalg.norm(chin[0, :2] - [-55, 40]))
-    assert moved[0, 2] == chin[0, 2]
+        np.linalg.norm(chin[0, :2] - [-55, 40]), abs=1e-9)
+    assert moved[0, 2] == pytest.approx(chin[0, 2], abs=1e-12)  # the jaw turns about z
 
 
 def test_opening_turns_the_chin_down_by_the_opening_angle_and_slides_the_condyle_forward():
@@ -36,7 +37,7 @@ def test_opening_turns_the_chin_down_by_the_opening_angle_and_slides_the_condyle
     before = math.atan2(chin[0, 1] - 40.0, chin[0, 0] + 55.0)
     slid = moved[0] - np.array([0.2, -0.08]) * 20  # undo the slide
     after = math.atan2(slid[1] - 40.0, slid[0] + 55.0)
-    assert math.degrees(before - after) == pytest.approx(20.0)
+    assert math.degrees(before - after) == pytest.approx(20.0, abs=1e-9)  # degrees
     np.testing.assert_allclose(apply_jaw_pose([[-55.0, 40.0]], pose), [[-51.0, 38.4]], atol=1e-12)
 
 
@@ -44,9 +45,10 @@ def test_weights_blend_between_staying_and_riding_fully():
     pose = jaw_pose(12.0, JAW)
     points = np.array([[10.0, -20.0], [10.0, -20.0], [10.0, -20.0]])
     moved = apply_jaw_pose(points, pose, [0.0, 0.5, 1.0])
-    np.testing.assert_allclose(moved[0], points[0])
-    np.testing.assert_allclose(moved[1], 0.5 * (moved[0] + moved[2]))
-    np.testing.assert_allclose(moved[2], apply_jaw_pose(points[:1], pose)[0])
+    # mm: blends of points tens of millimetres out, equal up to rounding
+    np.testing.assert_allclose(moved[0], points[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(moved[1], 0.5 * (moved[0] + moved[2]), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(moved[2], apply_jaw_pose(points[:1], pose)[0], rtol=0, atol=1e-12)
 
 
 def test_bad_input_is_refused():
@@ -66,7 +68,7 @@ def test_the_condyle_estimate_is_the_top_of_the_back_half_of_a_mandible():
     coronoid = np.array([[-30, 30, 40], [-30, 30, -40]], float)
     condyle = np.array([[-60, 44, 50], [-62, 42, 50], [-60, 44, -50], [-62, 42, -50]], float)
     pivot = estimate_condyle(np.vstack([chin, coronoid, condyle]))
-    np.testing.assert_allclose(pivot, [-61.0, 43.0])
+    np.testing.assert_allclose(pivot, [-61.0, 43.0], rtol=0, atol=1e-9)  # means of vertices, mm
 
 
 def test_the_badin_condyles_are_at_the_top_back_of_the_ramus_behind_and_above_the_tongue():
