@@ -81,7 +81,7 @@ def test_a_real_recording_is_stored_as_compact_blobs_and_read_back_unchanged(eng
         assert len(record.times) == 8 * sequence.n_frames
         back = record.to_sequence()
     np.testing.assert_array_equal(back.frames, sequence.frames)
-    np.testing.assert_array_equal(back.t_s, sequence.t_s)
+    np.testing.assert_array_equal(back.t_s, sequence.t_s)  # stored as float64 bytes: exact
     assert (back.name, back.frame_rate_hz, back.meta) == (sequence.name, sequence.frame_rate_hz,
                                                           sequence.meta)
     assert record.first_t_s == sequence.t_s[0] and record.last_t_s == sequence.t_s[-1]

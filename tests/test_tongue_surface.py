@@ -45,7 +45,8 @@ def test_the_triangles_never_change_only_the_vertices_do(rig):
 
 
 def test_missing_parameters_take_their_neutral_values(rig):
-    np.testing.assert_array_equal(rig.values_from({}), rig.neutral)
+    np.testing.assert_array_equal(rig.values_from({}), rig.neutral)  # copied, not computed
+    # the same computation twice in one process: the same bits
     np.testing.assert_array_equal(rig.evaluate(rig.neutral).vertices, rig.vertices(rig.neutral))
 
 
@@ -153,7 +154,8 @@ def test_the_tongue_rides_on_the_jaw_its_floor_points_move_with_the_mandible(rig
     fully = rig.point_jaw_weights == 1.0
     np.testing.assert_allclose(points[fully], apply_jaw_pose(rig.rest_points[fully], pose),
                                atol=1e-12)
-    np.testing.assert_allclose(hub, apply_jaw_pose(rig.hub[None], pose, [rig.hub_jaw_weight])[0])
+    np.testing.assert_allclose(hub, apply_jaw_pose(rig.hub[None], pose, [rig.hub_jaw_weight])[0],
+                               rtol=0, atol=1e-12)  # mm, the same pose by two routes
     rest, opened = rig.evaluate(rig.neutral).vertices, rig.vertices(values)
     assert opened[:, 1].min() < rest[:, 1].min() - 10
 
@@ -161,6 +163,7 @@ def test_the_tongue_rides_on_the_jaw_its_floor_points_move_with_the_mandible(rig
 def test_width_stretches_sideways_and_never_moves_the_poles(rig):
     rest = rig.evaluate(rig.neutral).vertices
     wide = rig.evaluate(rig.values_from({"middle_width": 6.0, "back_width": 6.0})).vertices
+    # Width enters z alone: x and y (and the poles) are the same arithmetic on the same numbers.
     np.testing.assert_array_equal(wide[:2], rest[:2])
     np.testing.assert_array_equal(wide[:, :2], rest[:, :2])
     assert np.all(np.abs(wide[:, 2]) >= np.abs(rest[:, 2]) - 1e-12)
