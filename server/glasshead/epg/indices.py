@@ -108,7 +108,9 @@ def centre_of_gravity(frames) -> np.ndarray:
 
 
 def anteriority_index(frames) -> np.ndarray:
-    """emuR ``epgai``: log(1 + sum_r w_r * c_r / size_r) / log(1 + sum w) over rows R1-R5. ``(n,)``."""
+    """emuR ``epgai``: log(1 + sum_r w_r * c_r / size_r) / log(1 + sum w) over rows R1-R5.
+
+    Returns ``(n,)``."""
     rows = row_contacts(frames)[:, :5]
     numerator = np.log(1.0 + (rows / AI_ROW_SIZES) @ AI_ROW_WEIGHTS)
     return numerator / np.log(1.0 + AI_ROW_WEIGHTS.sum())
@@ -129,7 +131,8 @@ def dorsopalatal_index(frames) -> np.ndarray:
 
 
 def index_table(frames) -> np.ndarray:
-    """All indices per frame: ``(n, len(INDEX_SLOTS))`` float64, columns in ``INDEX_SLOTS`` order."""
+    """All indices per frame: ``(n, len(INDEX_SLOTS))`` float64, columns in ``INDEX_SLOTS``
+    order."""
     frames = as_frames(frames)
     rows = row_contacts(frames)
     table = np.empty((len(frames), len(INDEX_SLOTS)))

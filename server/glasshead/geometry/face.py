@@ -41,7 +41,8 @@ def validate_face_rig(rig):
         missing = [k for k in TABLE_KEYS if k not in table]
         if missing:
             raise ValueError(f"teeth.{row} lacks {missing}")
-        if table["rows"] < 2 or table["cols"] < 2 or len(table["x"]) != table["rows"] * table["cols"]:
+        cells = table["rows"] * table["cols"]
+        if table["rows"] < 2 or table["cols"] < 2 or len(table["x"]) != cells:
             raise ValueError(f"teeth.{row} needs rows * cols (both >= 2) values")
     for name in MESH_NAMES:
         mesh = rig["meshes"].get(name)

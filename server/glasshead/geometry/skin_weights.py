@@ -73,8 +73,8 @@ def harmonic_weights(points, edges, fixed_index, fixed_value):
         raise ValueError("fixed_index repeats a node")
     lengths = np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1)
     k = 1.0 / np.maximum(lengths, MIN_EDGE_MM)
-    adjacency = sp.coo_matrix((np.r_[k, k], (np.r_[edges[:, 0], edges[:, 1]],
-                                             np.r_[edges[:, 1], edges[:, 0]])), shape=(n, n)).tocsr()
+    pairs = (np.r_[edges[:, 0], edges[:, 1]], np.r_[edges[:, 1], edges[:, 0]])
+    adjacency = sp.coo_matrix((np.r_[k, k], pairs), shape=(n, n)).tocsr()
     is_fixed = np.zeros(n, dtype=bool)
     is_fixed[fixed_index] = True
     _, label = connected_components(adjacency, directed=False)

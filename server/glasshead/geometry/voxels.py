@@ -70,7 +70,7 @@ class RangeExtreme2D:
         kj = np.floor(np.log2(j1 - j0 + 1)).astype(np.int64)
         ki = np.floor(np.log2(i1 - i0 + 1)).astype(np.int64)
         out = np.empty(len(j0))
-        for a, b in set(zip(kj.tolist(), ki.tolist())):
+        for a, b in set(zip(kj.tolist(), ki.tolist(), strict=True)):
             sel = np.flatnonzero((kj == a) & (ki == b))
             table = self.level(a, b)
             ja, jb = j0[sel], j1[sel] - (1 << a) + 1
@@ -105,7 +105,7 @@ def _classify_boxes(lo, hi, liner, rmin_table, rmax_table):
     candidates = np.flatnonzero((classes == VOXEL_BORDER) & ~leaves_grid & np.isfinite(rmax))
     corners = np.stack([np.where(np.array([(k >> a) & 1 for a in range(3)], dtype=bool),
                                  hi[candidates], lo[candidates]) for k in range(8)], axis=1)
-    for row, box in zip(candidates, corners):
+    for row, box in zip(candidates, corners, strict=True):
         cells = (slice(j0[row], j1[row] + 1), slice(i0[row], i1[row] + 1))
         if not np.all(liner.kind[cells] == CELL_PLANE):
             continue
