@@ -1,10 +1,11 @@
 // Reading the shared vectors (tests/vectors) and comparing floats with their stated tolerances.
-import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { checkVectorDocument } from './vectorSchema.js';
+
+export { near, nearArray, nearRelative } from './near.js';
 
 export const VECTORS_DIR = join( dirname( fileURLToPath( import.meta.url ) ), '..', '..', 'vectors' );
 
@@ -22,20 +23,6 @@ export function tolerance( document, name ) {
 	const entry = document.tolerance[ name ];
 	if ( ! entry ) throw new Error( `the vector file states no tolerance '${ name }'` );
 	return entry.value;
-
-}
-
-/** |actual - expected| <= tol, or fail with both values and what they are. */
-export function near( actual, expected, tol, what ) {
-
-	assert.ok( Math.abs( actual - expected ) <= tol, `${ what }: got ${ actual }, expected ${ expected } (tolerance ${ tol })` );
-
-}
-
-/** |actual - expected| <= tol * max(1, |expected|): relative above 1, absolute below. */
-export function nearRelative( actual, expected, tol, what ) {
-
-	near( actual, expected, tol * Math.max( 1, Math.abs( expected ) ), what );
 
 }
 
