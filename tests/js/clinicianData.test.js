@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import { ApiError, createApi } from '../../web/src/api.js';
 import { ClinicianData, recordingLabel } from '../../web/src/ui/clinicianData.js';
 import { EPG_CELLS } from '../../web/src/core/constants.js';
+import { near, nearArray } from './support/near.js';
 
 const EMPTY = [ '00000000', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000' ];
 const FRONT = [ '01111110', '11000011', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000' ];
@@ -66,7 +67,7 @@ test( 'a recording becomes typed frames, times and index tracks', async () => {
 	assert.ok( recording.t_s instanceof Float64Array );
 	assert.equal( recording.frames.length, 2 * EPG_CELLS );
 	assert.equal( recording.frames[ EPG_CELLS + 1 ], 1, 'R1 column 2 of the second frame' );
-	assert.deepEqual( Array.from( recording.indices.percent ), [ 0, 1000 / 62 ] );
+	nearArray( recording.indices.percent, [ 0, 1000 / 62 ], 1e-12, 'percent contact' );
 
 } );
 
@@ -79,7 +80,7 @@ test( 'a saved pose target is its synthetic EPG, and the comparison posts it as 
 	assert.equal( target.label, 'alveolar stop' );
 	assert.equal( target.count, 1 );
 	assert.deepEqual( target.params, { tip_height: 6 } );
-	assert.equal( target.indices.percent[ 0 ], 1000 / 62 );
+	near( target.indices.percent[ 0 ], 1000 / 62, 1e-12, 'percent contact' );
 	assert.deepEqual( requests.find( ( r ) => r.key === 'POST epg/contacts' ).body, { params: { tip_height: 6 } } );
 
 	const comparison = await data.compare( await data.recording( '7' ), target );

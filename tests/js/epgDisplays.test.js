@@ -15,7 +15,7 @@ import { debugObject, installDebug } from '../../web/src/debug.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { correctVertices } from '../../web/src/core/collision.js';
 import { decodeCollisionTables } from '../../web/src/core/tables.js';
-import { near, readVectors } from './support/vectors.js';
+import { near, nearArray, readVectors } from './support/vectors.js';
 
 const CONTACTS = readVectors( 'epg-contacts.json' );
 const { fixtures: FIXTURES } = CONTACTS;
@@ -61,7 +61,8 @@ test( 'a palatogram draws a square per contact, a dot per other electrode, nothi
 	const centres = squares.map( ( c ) => [ c.args[ 0 ] + c.args[ 2 ] / 2, c.args[ 1 ] + c.args[ 3 ] / 2 ] );
 	const expected = [];
 	ROWS_T.forEach( ( row, r ) => [ ...row ].forEach( ( v, c ) => v === '1' && expected.push( layout.centre( r, c ) ) ) );
-	assert.deepEqual( centres.map( ( p ) => p.map( Math.round ) ), expected.map( ( p ) => p.map( Math.round ) ) );
+	assert.equal( centres.length, expected.length );
+	centres.forEach( ( p, k ) => nearArray( p, expected[ k ], 1e-9, `square ${ k } centre (px)` ) );
 	const [ , r1y ] = layout.centre( 0, 3 );
 	const [ , r8y ] = layout.centre( 7, 3 );
 	assert.ok( r1y < r8y, 'the front row is drawn at the top' );
@@ -112,7 +113,7 @@ test( 'the strip shows the window of frames around the current one and maps clic
 	// The current frame (the third) is framed.
 	const frame = ctx.calls.filter( ( c ) => c.name === 'strokeRect' && c.strokeStyle === PALATOGRAM_COLORS.onlyRecording );
 	assert.equal( frame.length, 1 );
-	assert.equal( Math.round( frame[ 0 ].args[ 0 ] ), Math.round( 2 * 85 + 1 ) );
+	near( frame[ 0 ].args[ 0 ], 2 * 85 + 1, 0.5, 'the frame of the third palatogram (px)' );
 
 } );
 
@@ -127,14 +128,16 @@ test( 'index curves hold each frame until the next and put the cursor at the cur
 	} );
 	const y = scaleLinear( 0, 100, 4 + 100 - 8, 4 );
 	const line = ctx.calls.filter( ( c ) => ( c.name === 'moveTo' || c.name === 'lineTo' ) && c.strokeStyle === '#000' ).slice( 0, 5 );
-	assert.deepEqual( line.map( ( c ) => c.args.map( ( v ) => Math.round( v * 100 ) / 100 ) ), [
+	const steps = [
 		[ geometry.x( 0 ), y( 0 ) ], [ geometry.x( 0.01 ), y( 0 ) ], [ geometry.x( 0.01 ), y( 50 ) ],
 		[ geometry.x( 0.02 ), y( 50 ) ], [ geometry.x( 0.02 ), y( 100 ) ],
-	].map( ( p ) => p.map( ( v ) => Math.round( v * 100 ) / 100 ) ) );
+	];
+	assert.equal( line.length, steps.length );
+	line.forEach( ( c, k ) => nearArray( c.args, steps[ k ], 1e-9, `step ${ k } (px)` ) );
 	assert.ok( ctx.calls.some( ( c ) => c.name === 'stroke' && c.strokeStyle === '#f00' && c.dash.length === 2 ), 'the target is dashed' );
 	const cursor = ctx.calls.filter( ( c ) => c.strokeStyle === '#b4384a' && c.name === 'moveTo' );
 	assert.equal( cursor.length, 1 );
-	assert.equal( cursor[ 0 ].args[ 0 ], geometry.x( 0.01 ) );
+	near( cursor[ 0 ].args[ 0 ], geometry.x( 0.01 ), 1e-9, 'cursor x (px)' );
 
 } );
 
