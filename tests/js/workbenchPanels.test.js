@@ -13,6 +13,7 @@ import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import { ParamState } from '../../web/src/core/paramState.js';
 import { drawSagittalPanel, fitTransform, MidlineOutline, PANEL_COLORS, sagittalCurve, SAGITTAL_BOX } from '../../web/src/ui/SagittalPanel.js';
 import { BoxGeometry, Matrix4 } from 'three';
+import { nearArray } from './support/near.js';
 import {
 	blendingFunctions, coronalSection, drawSectionsPanel, SECTION_NAMES, sectionControls, sectionStations,
 } from '../../web/src/ui/SectionsPanel.js';
@@ -279,7 +280,7 @@ test( 'a part\'s mid-sagittal outline is its cut by z = 0, posed by its group\'s
 
 	}
 
-	assert.deepEqual( [ Math.min( ...xs ), Math.max( ...xs ), Math.min( ...ys ), Math.max( ...ys ) ], [ 25, 35, - 5, 1 ] );
+	nearArray( [ Math.min( ...xs ), Math.max( ...xs ), Math.min( ...ys ), Math.max( ...ys ) ], [ 25, 35, - 5, 1 ], 1e-6, 'outline bounds (mm, float32)' );
 	const pose = jawPose( 15, RIG.jaw, new Float64Array( POSE_LENGTH ) );
 	outline.pose.forEach( ( value, k ) => assert.ok( Math.abs( value - pose[ k ] ) < 1e-6, `pose entry ${ k }` ) );
 	const scratch = outline.scratch;
