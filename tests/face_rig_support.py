@@ -168,7 +168,8 @@ def skin_showing_through_lips(posed, faces, step=0.5, within=0.5):
     names = ("face_skin", "upper_lip", "lower_lip")
     offsets = np.cumsum([0] + [len(posed[name]) for name in names])
     mesh = trimesh.Trimesh(np.concatenate([posed[name] for name in names]),
-                           np.concatenate([faces[name] + offsets[k] for k, name in enumerate(names)]),
+                           np.concatenate([faces[name] + offsets[k]
+                                           for k, name in enumerate(names)]),
                            process=False)
     owner = np.concatenate([np.full(len(faces[name]), k) for k, name in enumerate(names)])
     lips = np.concatenate([posed["upper_lip"], posed["lower_lip"]])
@@ -182,9 +183,9 @@ def skin_showing_through_lips(posed, faces, step=0.5, within=0.5):
     hits, ray, who = hits[order], ray[order], owner[triangle[order]]
     first = np.r_[True, ray[1:] != ray[:-1]]
     showing, over_lips = set(), set()
-    front_x = dict(zip(ray[first], hits[first, 0]))
-    front_who = dict(zip(ray[first], who[first]))
-    for x, r, k in zip(hits[:, 0], ray, who):
+    front_x = dict(zip(ray[first], hits[first, 0], strict=True))
+    front_who = dict(zip(ray[first], who[first], strict=True))
+    for x, r, k in zip(hits[:, 0], ray, who, strict=True):
         if k == 0:
             continue
         over_lips.add(int(r))

@@ -48,7 +48,8 @@ def test_an_unknown_api_path_gets_a_json_404_naming_the_path(client_with_assets)
 
 def test_the_openapi_document_lists_the_public_operations(client_with_assets):
     document = client_with_assets.get("/api/v1/openapi.json").json()
-    operation_ids = {op["operationId"] for path in document["paths"].values() for op in path.values()}
+    operation_ids = {op["operationId"] for path in document["paths"].values()
+                     for op in path.values()}
     assert {"getHealth", "getAnatomy"} <= operation_ids
     assert client_with_assets.get("/api/v1/docs").status_code == 200
 

@@ -50,7 +50,8 @@ def test_the_coarsest_level_error_recomputed_from_the_glbs_matches_the_report(
     anatomy = build_report["anatomy"]
     coarsest = anatomy["cbct_lods"][-1]
     name = next(m["name"] for m in manifest["meshes"]
-                if m["lod"] == str(coarsest["level"]) and m["source"].startswith("artisynth-dynjaw"))
+                if m["lod"] == str(coarsest["level"])
+                and m["source"].startswith("artisynth-dynjaw"))
     full_v, full_f = _glb(built_assets, manifest, "maxilla_cbct_full")
     lod_v, lod_f = _glb(built_assets, manifest, name)
     assert len(lod_f) == coarsest["triangles"]
