@@ -71,6 +71,14 @@ EPG_PLOT_PANELS: dict[str, dict[str, Any]] = {
 }
 #: The panels an index plot shows unless asked for others, top to bottom.
 EPG_PLOT_DEFAULT_PANELS = ("percent", "cog", "anteriority", "centrality", "dorsopalatal")
+#: Codes of a recording compared with a reference, per electrode (POST
+#: /epg/recordings/{id}/compare and the palatogram that draws it): both off, both on, contacted in
+#: the recording only, in the reference only, and no electrode there (R1 columns 1 and 8).
+EPG_COMPARE_BOTH_OFF = 0
+EPG_COMPARE_BOTH_ON = 1
+EPG_COMPARE_ONLY_RECORDING = 2
+EPG_COMPARE_ONLY_REFERENCE = 3
+EPG_COMPARE_NO_ELECTRODE = 9
 
 # --- Tongue-palate collision (the paper's liner and voxel table) -------------------------------
 # Tables are built by glasshead.pipeline.collision_tables and read by geometry.collision and

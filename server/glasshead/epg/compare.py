@@ -15,6 +15,11 @@ import numpy as np
 from glasshead.constants import (
     EPG_CELLS,
     EPG_COLUMNS,
+    EPG_COMPARE_BOTH_OFF,
+    EPG_COMPARE_BOTH_ON,
+    EPG_COMPARE_NO_ELECTRODE,
+    EPG_COMPARE_ONLY_RECORDING,
+    EPG_COMPARE_ONLY_REFERENCE,
     EPG_ELECTRODES,
     EPG_MISSING_CELLS,
     EPG_ROWS,
@@ -22,7 +27,9 @@ from glasshead.constants import (
 from glasshead.epg.indices import INDEX_SLOTS, as_frames, index_table
 
 #: Per-electrode codes in ``Comparison.codes``.
-BOTH_OFF, BOTH_ON, ONLY_RECORDING, ONLY_REFERENCE, NO_ELECTRODE = 0, 1, 2, 3, 9
+BOTH_OFF, BOTH_ON = EPG_COMPARE_BOTH_OFF, EPG_COMPARE_BOTH_ON
+ONLY_RECORDING, ONLY_REFERENCE = EPG_COMPARE_ONLY_RECORDING, EPG_COMPARE_ONLY_REFERENCE
+NO_ELECTRODE = EPG_COMPARE_NO_ELECTRODE
 #: Indices whose per-frame difference is reported (the percentages carry the counts).
 COMPARED_INDICES = ("percent", "alveolar_percent", "palatal_percent", "velar_percent",
                     "cog", "anteriority", "centrality", "dorsopalatal")

@@ -92,6 +92,16 @@ export const EPG_PLOT_DEFAULT_PANELS = Object.freeze( [
 	'centrality',
 	'dorsopalatal',
 ] );
+/**
+ * Codes of a recording compared with a reference, per electrode (POST /epg/recordings/{id}/compare
+ * and the palatogram that draws it): both off, both on, contacted in the recording only, in the
+ * reference only, and no electrode there (R1 columns 1 and 8).
+ */
+export const EPG_COMPARE_BOTH_OFF = 0;
+export const EPG_COMPARE_BOTH_ON = 1;
+export const EPG_COMPARE_ONLY_RECORDING = 2;
+export const EPG_COMPARE_ONLY_REFERENCE = 3;
+export const EPG_COMPARE_NO_ELECTRODE = 9;
 /** Format version of the binary collision tables; a reader refuses any other version. */
 export const COLLISION_TABLES_FORMAT_VERSION = 1;
 /** Magic bytes that open a collision tables file. */

@@ -5,7 +5,10 @@
 // Drawing goes through an injected 2D context (drawPalatogram), so it can be tested without a
 // browser; the Palatogram class owns a <canvas> and redraws it when given a new frame.
 
-import { EPG_COLUMNS, EPG_MISSING_CELLS, EPG_ROWS } from '../core/constants.js';
+import {
+	EPG_COLUMNS, EPG_COMPARE_BOTH_OFF, EPG_COMPARE_BOTH_ON, EPG_COMPARE_NO_ELECTRODE, EPG_COMPARE_ONLY_RECORDING,
+	EPG_COMPARE_ONLY_REFERENCE, EPG_MISSING_CELLS, EPG_ROWS,
+} from '../core/constants.js';
 
 /** Colours of the drawing (the app's ink and accent). */
 export const PALATOGRAM_COLORS = Object.freeze( {
@@ -19,11 +22,11 @@ export const PALATOGRAM_COLORS = Object.freeze( {
 } );
 
 /** Comparison codes (as POST /epg/recordings/{id}/compare): both off, both on, one side only. */
-export const CODE_BOTH_OFF = 0;
-export const CODE_BOTH_ON = 1;
-export const CODE_ONLY_RECORDING = 2;
-export const CODE_ONLY_REFERENCE = 3;
-export const CODE_NO_ELECTRODE = 9;
+export const CODE_BOTH_OFF = EPG_COMPARE_BOTH_OFF;
+export const CODE_BOTH_ON = EPG_COMPARE_BOTH_ON;
+export const CODE_ONLY_RECORDING = EPG_COMPARE_ONLY_RECORDING;
+export const CODE_ONLY_REFERENCE = EPG_COMPARE_ONLY_REFERENCE;
+export const CODE_NO_ELECTRODE = EPG_COMPARE_NO_ELECTRODE;
 
 /** Reading layout: 8 x 8, R1 without columns 1 and 8. */
 export const READING_GRID = Object.freeze( { rows: EPG_ROWS, columns: EPG_COLUMNS, missing: EPG_MISSING_CELLS } );
