@@ -11,7 +11,8 @@ import { registerDebug } from '../debug.js';
 import { EPG_CELLS } from '../core/constants.js';
 import { h } from './Controls.js';
 import { ClinicianData } from './clinicianData.js';
-import { frameContacts, frameCount, frameTimes, indexRows, plotTracks, targetFrameAt } from './clinicianFrames.js';
+import { clinicianEpgReport, clinicianReport, formatIndexValue } from './clinicianReport.js';
+import { frameCount, frameTimes, indexRows, plotTracks, targetFrameAt } from './clinicianFrames.js';
 import { clinicianLayout, keyHandler } from './clinicianLayout.js';
 import { PlaybackClock } from './playbackClock.js';
 import { TargetPalate3D } from './TargetPalate3D.js';
@@ -341,9 +342,8 @@ export class ClinicianView {
 
 	renderTable( targetFrame ) {
 
-		const format = ( value ) => ( value === undefined || value === null ? '–' : ( Math.abs( value ) >= 10 ? value.toFixed( 1 ) : value.toFixed( 3 ) ) );
 		const head = h( 'tr', {}, h( 'th', {}, 'index' ), h( 'th', {}, 'target' ), h( 'th', {}, 'recording' ), h( 'th', {}, 'difference' ) );
-		const rows = indexRows( this.state, targetFrame, TABLE_INDICES ).map( ( row ) => h( 'tr', {}, h( 'td', {}, row.name ), ...[ row.target, row.recording, row.difference ].map( ( v ) => h( 'td', {}, format( v ) ) ) ) );
+		const rows = indexRows( this.state, targetFrame, TABLE_INDICES ).map( ( row ) => h( 'tr', {}, h( 'td', {}, row.name ), ...[ row.target, row.recording, row.difference ].map( ( v ) => h( 'td', {}, formatIndexValue( v ) ) ) ) );
 		this.table.replaceChildren( head, ...rows );
 
 	}
@@ -351,26 +351,14 @@ export class ClinicianView {
 	/** window.glasshead.clinician */
 	report() {
 
-		const { target, recording, comparison, frame, playing, loaded, error, speed } = this.state;
-		return {
-			loaded, error, frame, frames: this.frameCount(), playing, speed,
-			target: target ? { name: target.name, label: target.label, frames: target.count, frame: this.targetFrameIndex() } : null,
-			recording: recording ? { id: recording.id, name: recording.name, frames: recording.count, frameRateHz: recording.frameRateHz } : null,
-			agreement: comparison ? comparison.agreement[ frame ] : null,
-			target3d: this.state.target3d ? { rows: this.state.target3d.rows, contacted: this.state.target3d.contacted, squares: this.palate3d?.electrodes?.contacted ?? null } : null,
-			meanAgreement: comparison ? comparison.summary.mean_agreement : null,
-		};
+		return clinicianReport( this.state, { frames: this.frameCount(), targetFrame: this.targetFrameIndex(), squares: this.palate3d?.electrodes?.contacted ?? null } );
 
 	}
 
-	/** window.glasshead.epg in this view: the contacts of the frame shown, real and synthetic. */
+	/** window.glasshead.epg in this view. */
 	epgReport() {
 
-		const { target, recording, frame } = this.state;
-		const real = frameContacts( recording?.frames, frame );
-		const synthetic = frameContacts( target?.frames, this.targetFrameIndex() );
-		const shown = real ?? synthetic;
-		return { source: 'clinician', frame, rows: shown?.rows ?? null, contacted: shown?.contacted ?? 0, percent: shown?.percent ?? 0, recording: real, synthetic };
+		return clinicianEpgReport( this.state, this.targetFrameIndex() );
 
 	}
 
