@@ -33,12 +33,14 @@ from glasshead.constants import (
     MANIFEST_FORMAT_VERSION,
     REBUILD_COMMAND,
     TONGUE_RIG_FILE,
+    VELUM_RIG_FILE,
 )
 from glasshead.epg.layout import validate_layout_document
 from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.face import validate_face_rig
 from glasshead.geometry.tongue_rig import validate_definition
 from glasshead.geometry.tongue_surface import TongueRig
+from glasshead.geometry.velum import VelumRig, prepare_velum
 
 log = logging.getLogger("glasshead.assets")
 
@@ -84,6 +86,11 @@ def read_epg_layout(data: bytes) -> dict:
     return validate_layout_document(_json(data))
 
 
+def read_velum_rig(data: bytes) -> VelumRig:
+    """The velum rig, ready to pose; its definition is ``.definition``."""
+    return prepare_velum(_json(data))
+
+
 @dataclass(frozen=True)
 class AssetSpec:
     """One built file: the name routes ask for, its file under the assets directory, and the
@@ -101,6 +108,7 @@ ASSETS: tuple[AssetSpec, ...] = (
     AssetSpec("collision_tables", COLLISION_TABLES_FILE, decode_collision_tables),
     AssetSpec("epg_layout", EPG_LAYOUT_FILE, read_epg_layout),
     AssetSpec("face_rig", FACE_RIG_FILE, read_face_rig),
+    AssetSpec("velum_rig", VELUM_RIG_FILE, read_velum_rig),
 )
 
 

@@ -193,6 +193,22 @@ FACE_RIG_LIP_PARAMETERS = ("lip_opening", "lip_rounding", "lip_protrusion", "upp
 #: Field coefficients per vertex: protrusion, rounding (x and z), raise, tuck, closure.
 FACE_RIG_COEFF_COUNT = 6
 
+# --- Velum rig: the soft palate's three measured poses and the nasal port ------------------------
+# The rig definition (assets/build/velum-rig.json) is built by glasshead.pipeline.velum_rig and read
+# by geometry.velum and web/src/core/velum.js; tests/vectors/velum.json asserts both pose it alike.
+
+#: Format version of the velum rig definition; both evaluators refuse any other version.
+VELUM_RIG_FORMAT_VERSION = 1
+#: The velum's one parameter: 0 raised (nasal port closed), 1 lowered (open), ratio.
+VELUM_PARAMETER = "velum_opening"
+#: The measured poses, in the order the parameter passes them (0, the rest share r, 1).
+VELUM_POSES = ("raised", "rest", "lowered")
+#: mm. Largest difference allowed between the Python and JavaScript velum vertices (float32).
+VELUM_VERTEX_TOLERANCE_MM = 1e-3
+#: mm^2. Largest difference allowed between the two sides' nasal port areas (float32 positions
+#: of about 60 mm carry 4e-6 mm each; a cut sums some 20 gaps of 1 mm width).
+VELUM_PORT_TOLERANCE_MM2 = 1e-3
+
 # --- Built assets: what `glasshead build` writes to the assets directory -------------------------
 # Written by glasshead.pipeline, loaded once by glasshead.asset_store and served by the API.
 
@@ -208,5 +224,7 @@ FACE_RIG_FILE = "face-rig.json"
 COLLISION_TABLES_FILE = "collision-tables.bin"
 #: The EPG electrode layouts (glasshead.epg.layout).
 EPG_LAYOUT_FILE = "epg-layout.json"
+#: The velum rig definition (glasshead.geometry.velum).
+VELUM_RIG_FILE = "velum-rig.json"
 #: The command that rebuilds every asset, named in the API's 503 answers.
 REBUILD_COMMAND = "glasshead build"

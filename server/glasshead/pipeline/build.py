@@ -103,6 +103,11 @@ def face_rig_step(ctx):
     return build_step(ctx)
 
 
+def velum_rig_step(ctx):
+    from glasshead.pipeline.velum_rig import build_step
+    return build_step(ctx)
+
+
 #: (name, step) in the order they run.
 STEPS = [
     ("anatomy", anatomy_step),
@@ -110,6 +115,7 @@ STEPS = [
     ("collision-tables", collision_tables_step),
     ("epg-layout", epg_layout_step),
     ("face-rig", face_rig_step),
+    ("velum-rig", velum_rig_step),
 ]
 
 

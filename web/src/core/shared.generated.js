@@ -210,6 +210,19 @@ export const FACE_RIG_LIP_PARAMETERS = Object.freeze( [
 ] );
 /** Field coefficients per vertex: protrusion, rounding (x and z), raise, tuck, closure. */
 export const FACE_RIG_COEFF_COUNT = 6;
+/** Format version of the velum rig definition; both evaluators refuse any other version. */
+export const VELUM_RIG_FORMAT_VERSION = 1;
+/** The velum's one parameter: 0 raised (nasal port closed), 1 lowered (open), ratio. */
+export const VELUM_PARAMETER = 'velum_opening';
+/** The measured poses, in the order the parameter passes them (0, the rest share r, 1). */
+export const VELUM_POSES = Object.freeze( [ 'raised', 'rest', 'lowered' ] );
+/** mm. Largest difference allowed between the Python and JavaScript velum vertices (float32). */
+export const VELUM_VERTEX_TOLERANCE_MM = 0.001;
+/**
+ * mm^2. Largest difference allowed between the two sides' nasal port areas (float32 positions of
+ * about 60 mm carry 4e-6 mm each; a cut sums some 20 gaps of 1 mm width).
+ */
+export const VELUM_PORT_TOLERANCE_MM2 = 0.001;
 /** The build manifest (meshes, content hashes); written last, so it names only finished files. */
 export const MANIFEST_FILE = 'manifest.json';
 /** Format version of the manifest; the asset store refuses any other version. */
@@ -222,5 +235,7 @@ export const FACE_RIG_FILE = 'face-rig.json';
 export const COLLISION_TABLES_FILE = 'collision-tables.bin';
 /** The EPG electrode layouts (glasshead.epg.layout). */
 export const EPG_LAYOUT_FILE = 'epg-layout.json';
+/** The velum rig definition (glasshead.geometry.velum). */
+export const VELUM_RIG_FILE = 'velum-rig.json';
 /** The command that rebuilds every asset, named in the API's 503 answers. */
 export const REBUILD_COMMAND = 'glasshead build';
