@@ -15,7 +15,7 @@ import trimesh
 from glasshead.cli import main
 from glasshead.geometry.meshio import MeshFormatError
 from glasshead.pipeline import larynx, sources, tract_checks
-from glasshead.pipeline.tract import ORDER
+from glasshead.pipeline.tract import ORDER, SCENE_MESHES
 
 #: Project mesh name -> role, for every mesh this step adds.
 ROLES = {name: role for name, role, _unit in sources.TRACT_MESHES.values()}
@@ -41,7 +41,7 @@ def report(build_report):
     return build_report["anatomy"]["tract"]
 
 
-def test_every_tract_and_neck_mesh_has_a_glb_and_a_manifest_entry_out_of_the_scene(
+def test_every_tract_and_neck_mesh_has_a_glb_and_a_manifest_entry_in_or_out_of_the_scene(
         built_assets, entries):
     assert set(ORDER) == set(ROLES)
     for name in ORDER:
@@ -49,11 +49,18 @@ def test_every_tract_and_neck_mesh_has_a_glb_and_a_manifest_entry_out_of_the_sce
         for key in ("name", "file", "sha256", "triangles", "vertices", "lod", "frame", "role",
                     "scene"):
             assert key in entry, f"{name} lacks {key}"
-        assert entry["scene"] is False, name
+        assert entry["scene"] is (name in SCENE_MESHES), name
         assert entry["role"] == ROLES[name]
         assert entry["frame"] == "project-mm"
         data = (built_assets / entry["file"]).read_bytes()
         assert hashlib.sha256(data).hexdigest() == entry["sha256"], name
+
+
+def test_the_head_shows_the_speakers_own_tract_and_one_velum_pose(entries):
+    shown = {name for name in ORDER if entries[name]["scene"]}
+    assert {"airway", "velum_rest", "pharynx", "hyoid", "vertebrae", "thyroid"} <= shown
+    for name in ("hyoid_cbct", "velum_raised", "velum_lowered", "palate"):
+        assert name not in shown, name
 
 
 def test_every_mesh_keeps_its_sources_triangles_at_full_resolution(data_dir, entries):

@@ -110,13 +110,13 @@ def build_anatomy(data_dir, stage_dir, log=print):
         emit("maxilla" if chosen else f"maxilla_cbct_lod{lod['level']}", lod["vertices"],
              lod["faces"], "bone", "artisynth-dynjaw/maxilla.obj", lod=lod["level"], scene=chosen)
 
-    # The vocal tract and neck: not in the scene yet (the web app shows scene meshes only).
+    # The vocal tract and neck; the head shows those in tract.SCENE_MESHES.
     tract_meshes, report["tract"] = timer.run(
         "vocal tract and neck", build_tract, tract_sources, cbct_vertices, placed, registration,
         badin, log)
     for mesh in tract_meshes:
         emit(mesh["name"], mesh["vertices"], mesh["faces"], mesh["role"], mesh["source"],
-             scene=False, **mesh["extra"])
+             scene=mesh["scene"], **mesh["extra"])
 
     report["cbct_registration"] = registration
     report["cbct_lods"] = [{k: v for k, v in lod.items() if k not in ("vertices", "faces")}

@@ -33,6 +33,14 @@ from glasshead.pipeline.larynx import carry, cbct_affine, place_vertebrae
 ORDER = ["airway", "palate", "velum_raised", "velum_rest", "velum_lowered", "pharynx", "hyoid",
          "hyoid_cbct", "thyroid", "cricoid", "arytenoid_left", "arytenoid_right", "vertebrae"]
 
+#: The meshes the head shows (manifest ``scene: true``). Left out: ``hyoid_cbct`` (another person's,
+#: see ``SCENE_HYOID``), the raised and lowered velum (the web app poses ``velum_rest``'s vertices
+#: from the velum rig, which holds all three poses) and the tract ``palate`` (the maxilla is the
+#: scene's hard palate, 0.2 mm median from this surface, and carries the EPG electrodes; the soft
+#: palate is the velum). The airway is drawn as the air of the cutaway, not as a surface.
+SCENE_MESHES = frozenset({"airway", "velum_rest", "pharynx", "hyoid", "thyroid", "cricoid",
+                          "arytenoid_left", "arytenoid_right", "vertebrae"})
+
 SCENE_HYOID = {
     "mesh": "hyoid",
     "reason": "the Badin speaker's own hyoid: the same person as the tongue, airway and pharynx, "
@@ -97,8 +105,8 @@ def build_tract(src, cbct_vertices, placed_vertices, registration, head, log=pri
     src: ``TractSources``. cbct_vertices (n, 3), placed_vertices (n, 3): the CBCT maxilla before
     and after ``register_cbct``; registration: its report. head: name -> (vertices, faces) of
     the head's meshes in the project frame (needs maxilla, tongue_rest, cranium).
-    Returns (meshes: list of dicts with name, vertices, faces, role, source and extra manifest
-    fields, in ``ORDER``; report dict).
+    Returns (meshes: list of dicts with name, vertices, faces, role, source, scene (whether the
+    head shows it) and extra manifest fields, in ``ORDER``; report dict).
     """
     to_project = cbct_affine(cbct_vertices, placed_vertices)
     placed = dict(src.tract)
@@ -125,7 +133,8 @@ def build_tract(src, cbct_vertices, placed_vertices, registration, head, log=pri
             extra = {"pose_set": "velum", "pose": name.removeprefix("velum_"),
                      "poses": list(sources.VELUM_POSES)}
         meshes.append({"name": name, "vertices": vertices, "faces": faces,
-                       "role": origin[name][1], "source": origin[name][0], "extra": extra})
+                       "role": origin[name][1], "source": origin[name][0],
+                       "scene": name in SCENE_MESHES, "extra": extra})
 
     trimeshes = {name: tract_checks.as_mesh(*placed[name]) for name in placed}
     trimeshes |= {name: tract_checks.as_mesh(*head[name])
@@ -135,6 +144,7 @@ def build_tract(src, cbct_vertices, placed_vertices, registration, head, log=pri
                                "triangles": len(m["faces"])} | edge_stats(m["faces"])
                    for m in meshes},
         "scene_hyoid": SCENE_HYOID,
+        "scene_meshes": sorted(SCENE_MESHES),
         "nasal_cavity": "no mesh in the data; none is built",
         "velum": velum_report(placed),
         "cbct_to_project": np.round(to_project, 6).tolist(),
