@@ -25,6 +25,7 @@ ROUTES = {
     "epg_layout": [("get", "/api/v1/epg/layout", None),
                    ("post", "/api/v1/epg/contacts", {"params": {"tip_height": 2.0}})],
     "face_rig": [("get", "/api/v1/face/rig", None)],
+    "landmarks": [("get", "/api/v1/anatomy/landmarks", None)],
 }
 
 

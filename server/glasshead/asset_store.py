@@ -29,6 +29,7 @@ from glasshead.constants import (
     COLLISION_TABLES_FILE,
     EPG_LAYOUT_FILE,
     FACE_RIG_FILE,
+    LANDMARKS_FILE,
     MANIFEST_FILE,
     MANIFEST_FORMAT_VERSION,
     REBUILD_COMMAND,
@@ -38,6 +39,7 @@ from glasshead.constants import (
 from glasshead.epg.layout import validate_layout_document
 from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.face import validate_face_rig
+from glasshead.geometry.landmarks import validate_landmarks
 from glasshead.geometry.tongue_rig import validate_definition
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.geometry.velum import VelumRig, prepare_velum
@@ -91,6 +93,11 @@ def read_velum_rig(data: bytes) -> VelumRig:
     return prepare_velum(_json(data))
 
 
+def read_landmarks(data: bytes) -> dict:
+    """The teaching landmarks (parts and places of articulation), checked."""
+    return validate_landmarks(_json(data))
+
+
 @dataclass(frozen=True)
 class AssetSpec:
     """One built file: the name routes ask for, its file under the assets directory, and the
@@ -109,6 +116,7 @@ ASSETS: tuple[AssetSpec, ...] = (
     AssetSpec("epg_layout", EPG_LAYOUT_FILE, read_epg_layout),
     AssetSpec("face_rig", FACE_RIG_FILE, read_face_rig),
     AssetSpec("velum_rig", VELUM_RIG_FILE, read_velum_rig),
+    AssetSpec("landmarks", LANDMARKS_FILE, read_landmarks),
 )
 
 

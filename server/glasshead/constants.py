@@ -226,5 +226,9 @@ COLLISION_TABLES_FILE = "collision-tables.bin"
 EPG_LAYOUT_FILE = "epg-layout.json"
 #: The velum rig definition (glasshead.geometry.velum).
 VELUM_RIG_FILE = "velum-rig.json"
+#: The teaching landmarks: parts and places of articulation (glasshead.pipeline.landmarks).
+LANDMARKS_FILE = "landmarks.json"
+#: Format version of the landmarks file; its readers refuse any other version.
+LANDMARKS_FORMAT_VERSION = 1
 #: The command that rebuilds every asset, named in the API's 503 answers.
 REBUILD_COMMAND = "glasshead build"

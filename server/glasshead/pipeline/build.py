@@ -108,6 +108,11 @@ def velum_rig_step(ctx):
     return build_step(ctx)
 
 
+def landmarks_step(ctx):
+    from glasshead.pipeline.landmarks import build_step
+    return build_step(ctx.assets_dir)
+
+
 #: (name, step) in the order they run.
 STEPS = [
     ("anatomy", anatomy_step),
@@ -116,6 +121,7 @@ STEPS = [
     ("epg-layout", epg_layout_step),
     ("face-rig", face_rig_step),
     ("velum-rig", velum_rig_step),
+    ("landmarks", landmarks_step),
 ]
 
 

@@ -237,5 +237,9 @@ export const COLLISION_TABLES_FILE = 'collision-tables.bin';
 export const EPG_LAYOUT_FILE = 'epg-layout.json';
 /** The velum rig definition (glasshead.geometry.velum). */
 export const VELUM_RIG_FILE = 'velum-rig.json';
+/** The teaching landmarks: parts and places of articulation (glasshead.pipeline.landmarks). */
+export const LANDMARKS_FILE = 'landmarks.json';
+/** Format version of the landmarks file; its readers refuse any other version. */
+export const LANDMARKS_FORMAT_VERSION = 1;
 /** The command that rebuilds every asset, named in the API's 503 answers. */
 export const REBUILD_COMMAND = 'glasshead build';
