@@ -14,6 +14,7 @@ from fastapi import APIRouter, HTTPException, Query
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from glasshead.api.deps import AssetsDep
+from glasshead.api.params import split_params
 from glasshead.asset_store import AssetStore
 from glasshead.constants import COLLISION_MAX_VERTICES, EPG_LAYOUT_FORMAT_VERSION
 from glasshead.epg.contacts import contact_grid, electrode_contacts, probes_from_layout
@@ -119,8 +120,9 @@ def epg_contacts(request: ContactsRequest, assets: AssetsDep) -> ContactsRespons
     collision = None
     if request.params is not None:
         rig = assets.get("tongue_rig")
+        tongue = split_params(assets, request.params).tongue  # lips and velum: no palate contact
         try:
-            values = rig.values_from(request.params)
+            values = rig.values_from(tongue)
         except ParameterError as exc:
             raise HTTPException(status_code=422, detail=f"params.{exc.parameter}: {exc}") \
                 from None

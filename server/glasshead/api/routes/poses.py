@@ -1,7 +1,9 @@
 """Saved poses: named parameter sets saved from the workbench, the targets EPG is compared with.
 
-A pose's ``params`` map articulation parameter names (as in the tongue rig) to numbers; names
-are unique, so a pose can be found by name (``GET /poses?name=...``).
+A pose's ``params`` map articulation parameter names (as in the tongue, face and velum rigs) to
+numbers; a value outside its rig's range is refused (422 naming the parameter and the range),
+names no rig has are kept. Pose names are unique, so a pose can be found by name
+(``GET /poses?name=...``).
 """
 
 import math
@@ -15,7 +17,9 @@ from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from glasshead.api.deps import AssetsDep
 from glasshead.api.lookups import get_pose_record
+from glasshead.api.params import check_known_params
 from glasshead.store.models import SavedPose
 from glasshead.store.session import SessionDep
 
@@ -88,7 +92,8 @@ def _commit(session: Session, name: str) -> None:
 
 @router.post("/poses", operation_id="createPose", status_code=status.HTTP_201_CREATED,
              response_model=PoseOut)
-def create_pose(pose: PoseIn, session: SessionDep) -> SavedPose:
+def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep) -> SavedPose:
+    check_known_params(assets, pose.params)
     record = SavedPose(name=pose.name, description=pose.description, params=pose.params)
     session.add(record)
     _commit(session, pose.name)
@@ -114,16 +119,21 @@ def get_pose(pose_id: int, session: SessionDep) -> SavedPose:
 
 
 @router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut)
-def replace_pose(pose_id: int, pose: PoseIn, session: SessionDep) -> SavedPose:
+def replace_pose(pose_id: int, pose: PoseIn, session: SessionDep,
+                 assets: AssetsDep) -> SavedPose:
     record = get_pose_record(session, pose_id)
+    check_known_params(assets, pose.params)
     record.name, record.description, record.params = pose.name, pose.description, pose.params
     _commit(session, pose.name)
     return record
 
 
 @router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut)
-def update_pose(pose_id: int, patch: PosePatch, session: SessionDep) -> SavedPose:
+def update_pose(pose_id: int, patch: PosePatch, session: SessionDep,
+                assets: AssetsDep) -> SavedPose:
     record = get_pose_record(session, pose_id)
+    if patch.params is not None:
+        check_known_params(assets, patch.params)
     for field, value in patch.model_dump(exclude_unset=True).items():
         if value is None:
             raise HTTPException(status_code=422, detail=f"field {field}: may not be null")

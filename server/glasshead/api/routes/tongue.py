@@ -10,6 +10,7 @@ from fastapi import APIRouter, Body, HTTPException
 from pydantic import BaseModel, ConfigDict, Field
 
 from glasshead.api.deps import AssetsDep
+from glasshead.api.params import split_params
 from glasshead.geometry.tongue_surface import ParameterError
 
 router = APIRouter(tags=["tongue"])
@@ -49,7 +50,9 @@ class RigDefinition(BaseModel):
 class SurfaceRequest(BaseModel):
     params: dict[str, float] = Field(
         default_factory=dict,
-        description="Parameter name -> value; names left out take their neutral value.",
+        description="Parameter name -> value; names left out take their neutral value. Lip "
+                    "and velum parameters are accepted and range-checked; the surface is the "
+                    "tongue's.",
         examples=[{"tip_height": 5.0, "jaw_opening": 10.0}])
 
 
@@ -74,8 +77,9 @@ def tongue_rig(assets: AssetsDep) -> dict:
 @router.post("/tongue/surface", operation_id="evaluateTongueSurface", response_model=Surface)
 def tongue_surface(request: Annotated[SurfaceRequest, Body()], assets: AssetsDep) -> Surface:
     rig = assets.get("tongue_rig")
+    tongue = split_params(assets, request.params).tongue  # lips and velum: checked, not used
     try:
-        values = rig.values_from(request.params)
+        values = rig.values_from(tongue)
     except ParameterError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
     surface = rig.evaluate(values)
