@@ -62,7 +62,7 @@ class VelumRig:
 
 
 def _array(block: Mapping[str, Any], key: str, dtype: type, width: int, what: str) -> Any:
-    values = np.asarray(block.get(key, []), dtype=dtype)
+    values: npt.NDArray[Any] = np.asarray(block.get(key, []), dtype=dtype)
     if values.ndim != 1 or len(values) % width:
         raise VelumRigError(f"{what}.{key} must be a flat list of {width}-tuples")
     return values.reshape(-1, width)
@@ -196,7 +196,9 @@ def port_cut_areas(rig: "VelumRig | Mapping[str, Any]", opening: float) -> Float
     each sample stands for)."""
     rig = _rig(rig)
     gaps = port_gaps(rig, opening)
-    return np.bincount(rig.port_rows, weights=gaps * rig.width_mm, minlength=rig.row_count)
+    areas: Floats = np.bincount(rig.port_rows, weights=gaps * rig.width_mm,
+                                minlength=rig.row_count).astype(np.float64)
+    return areas
 
 
 def nasal_port_area(rig: "VelumRig | Mapping[str, Any]", opening: float) -> float:
