@@ -25,6 +25,8 @@ ROUTES = {
     "epg_layout": [("get", "/api/v1/epg/layout", None),
                    ("post", "/api/v1/epg/contacts", {"params": {"tip_height": 2.0}})],
     "face_rig": [("get", "/api/v1/face/rig", None)],
+    "velum_rig": [("get", "/api/v1/velum/rig", None),
+                  ("post", "/api/v1/tongue/surface", {"params": {"velum_opening": 0.5}})],
     "landmarks": [("get", "/api/v1/anatomy/landmarks", None)],
 }
 
