@@ -25,8 +25,8 @@ export function h( tag, attributes = {}, ...children ) {
 export class Controls {
 
 	/**
-	 * handlers: { onTransparency( percent ), onCutaway( on ), onView( name ) }.
-	 * initial: { transparency, cutaway, view }.
+	 * handlers: { onTransparency( percent ), onCutaway( on ), onLabels( on ), onView( name ) }.
+	 * initial: { transparency, cutaway, labels, view }.
 	 */
 	constructor( handlers, initial ) {
 
@@ -44,6 +44,11 @@ export class Controls {
 			onClick: () => this.setCutaway( this.cutawayButton.getAttribute( 'aria-pressed' ) !== 'true', true ),
 		}, 'Cutaway' );
 
+		this.labelsButton = h( 'button', {
+			type: 'button', className: 'toggle', 'aria-pressed': String( Boolean( initial.labels ) ),
+			onClick: () => this.setLabels( this.labelsButton.getAttribute( 'aria-pressed' ) !== 'true', true ),
+		}, 'Labels' );
+
 		this.viewButtons = new Map( VIEW_NAMES.map( ( name ) => [ name, h( 'button', {
 			type: 'button', className: 'view-button', 'aria-pressed': String( name === initial.view ),
 			'data-view': name, onClick: () => this.setView( name, true ),
@@ -60,6 +65,7 @@ export class Controls {
 				h( 'div', { className: 'slider-row' }, this.slider, this.sliderValue ),
 			),
 			h( 'div', { className: 'field' }, this.cutawayButton ),
+			h( 'div', { className: 'field' }, this.labelsButton ),
 			h( 'div', { className: 'field' },
 				h( 'span', { className: 'field-label', id: 'view-label' }, 'View' ),
 				h( 'div', { className: 'view-buttons', role: 'group', 'aria-labelledby': 'view-label' }, ...this.viewButtons.values() ),
@@ -95,6 +101,13 @@ export class Controls {
 
 	}
 
+	setLabels( on, fromUser = false ) {
+
+		this.labelsButton.setAttribute( 'aria-pressed', String( on ) );
+		if ( fromUser ) this.handlers.onLabels?.( on );
+
+	}
+
 	setView( name, fromUser = false ) {
 
 		for ( const [ view, button ] of this.viewButtons ) button.setAttribute( 'aria-pressed', String( view === name ) );
@@ -105,7 +118,7 @@ export class Controls {
 	/** Enable or disable the controls (disabled while loading or after a failure). */
 	setEnabled( enabled ) {
 
-		for ( const control of [ this.slider, this.cutawayButton, ...this.viewButtons.values() ] ) control.disabled = ! enabled;
+		for ( const control of [ this.slider, this.cutawayButton, this.labelsButton, ...this.viewButtons.values() ] ) control.disabled = ! enabled;
 
 	}
 

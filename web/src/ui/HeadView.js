@@ -6,9 +6,10 @@ import { Vector3 } from 'three';
 import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { Controls, h } from './Controls.js';
 import { createHeadStage } from './headStage.js';
-import { loadAnatomy, loadArticulation } from './loaders.js';
+import { LabelLayer } from './LabelLayer.js';
+import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
 
-export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, view: 'three-quarter' } );
+export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, labels: false, view: 'three-quarter' } );
 
 /** Duration of a camera move between views. */
 const FLIGHT_MS = 650;
@@ -34,6 +35,7 @@ export class HeadView {
 		this.controls = new Controls( {
 			onTransparency: ( percent ) => this.setTransparency( percent ),
 			onCutaway: ( on ) => this.setCutaway( on ),
+			onLabels: ( on ) => this.setLabels( on ),
 			onView: ( name ) => this.setView( name ),
 		}, this.state );
 		this.root.append( this.controls.element );
@@ -99,6 +101,7 @@ export class HeadView {
 		this.articulation = await loadArticulation( this.head, this.viewer, { api: this.api } ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
 		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
 		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } ); // electrodes on the palate, live palatogram
+		await this.attachLabels();
 		this.head.setTransparency( this.state.transparency );
 		this.head.setCutaway( this.state.cutaway );
 		this.fitViews();
@@ -142,6 +145,33 @@ export class HeadView {
 
 	}
 
+	/** The label layer, from GET /anatomy/landmarks; without them the view works unlabelled. */
+	async attachLabels() {
+
+		try {
+
+			const document = await loadLandmarks( { api: this.api } );
+			if ( ! this.viewer ) return;
+			this.labels = new LabelLayer( { document, head: this.head, viewer: this.viewer, stage: this.stage } );
+			this.labels.setVisible( this.state.labels );
+
+		} catch ( error ) {
+
+			console.warn( `Glasshead: no labels; the landmarks did not load: ${ error.message }` );
+
+		}
+
+	}
+
+	setLabels( on ) {
+
+		this.state.labels = on;
+		this.controls.setLabels( on );
+		this.labels?.setVisible( on );
+		this.viewer.requestRender();
+
+	}
+
 	setView( name ) {
 
 		this.state.view = name;
@@ -164,6 +194,7 @@ export class HeadView {
 
 		for ( const unregister of this.unregister ) unregister();
 		this.articulation?.dispose();
+		this.labels?.dispose();
 		this.viewer?.dispose();
 		this.head?.dispose();
 		this.viewer = null;

@@ -9,6 +9,7 @@ import { EPG_GRIDS } from '../core/constants.js';
 import { checkCollisionTablesInfo, decodeCollisionTables } from '../core/tables.js';
 import { createArticulation } from '../scene/Articulation.js';
 import { geometryFromGltf } from '../scene/gltfGeometry.js';
+import { labelEntries } from './labelPlacement.js';
 
 /** A mesh of GET /anatomy that could not be loaded; names it and says why. */
 export class MeshLoadError extends Error {
@@ -95,6 +96,18 @@ export async function loadArticulationData( { api = pageApi } = {} ) {
 export async function loadArticulation( head, viewer, { api = pageApi } = {} ) {
 
 	return createArticulation( head, viewer, await loadArticulationData( { api } ) );
+
+}
+
+/**
+ * The teaching landmarks (GET /anatomy/landmarks): the parts and places of articulation the label
+ * layer names; a document of another format version is refused.
+ */
+export async function loadLandmarks( { api = pageApi } = {} ) {
+
+	const document = await api.get( 'anatomy/landmarks' );
+	labelEntries( document ); // throws on another format version
+	return document;
 
 }
 
