@@ -84,7 +84,7 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		assert.equal( await page.getByRole( 'slider' ).count(), Object.keys( state.params ).length );
 		for ( const p of rig.parameters ) assert.ok( p.name in state.params, `${ p.name } has no value in window.glasshead.params` );
 		const legends = await page.locator( '.wb-group legend' ).allTextContents();
-		assert.deepEqual( legends.filter( ( text ) => text !== 'Lips' ), [ 'Jaw', 'Tongue sagittal', 'Tongue coronal: front', 'Tongue coronal: middle', 'Tongue coronal: back' ] );
+		assert.deepEqual( legends.filter( ( text ) => text !== 'Lips' ), [ 'Jaw', 'Velum (soft palate)', 'Tongue sagittal', 'Tongue coronal: front', 'Tongue coronal: middle', 'Tongue coronal: back' ] );
 		assert.equal( state.tongue.vertexCount, 2978 );
 		assert.equal( state.collision.enabled, true, `no collision tables: ${ state.workbench.tablesError }` );
 		assert.equal( state.collision.screened, state.tongue.vertexCount );

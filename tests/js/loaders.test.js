@@ -39,7 +39,7 @@ test( 'the electrode layout is loaded for every grid, the contact settings from 
 
 } );
 
-test( 'the articulation\'s data: tables and face rig that cannot be had are null with the reason; no tongue rig rejects', async () => {
+test( 'the articulation\'s data: tables, face rig and velum rig that cannot be had are null with the reason; no tongue rig rejects', async () => {
 
 	const rig = { format_version: 1, parameters: [] };
 	const { api, asked } = fakeApi( {
@@ -48,8 +48,10 @@ test( 'the articulation\'s data: tables and face rig that cannot be had are null
 		'face/rig': [ 200, { format_version: 1 } ],
 	} );
 	const data = await loadArticulationData( { api } );
-	assert.deepEqual( asked.sort(), [ 'collision/tables', 'face/rig', 'tongue/rig' ] );
+	assert.deepEqual( asked.sort(), [ 'collision/tables', 'face/rig', 'tongue/rig', 'velum/rig' ] );
 	assert.deepEqual( data.definition, rig );
+	assert.equal( data.velum, null );
+	assert.equal( data.velumError, 'GET /api/v1/velum/rig failed with HTTP 404: no route velum/rig' );
 	assert.equal( data.tables, null );
 	assert.equal( data.tablesError, 'GET /api/v1/collision/tables failed with HTTP 503: collision tables not built: run `glasshead build`' );
 	assert.deepEqual( data.face, { format_version: 1 } );
@@ -66,8 +68,11 @@ test( 'collision tables of another format version are refused before their binar
 		'tongue/rig': [ 200, {} ],
 		'collision/tables': [ 200, { format_version: 99, url: '/assets/build/collision-tables.bin' } ],
 		'face/rig': [ 503, { detail: 'face rig not built' } ],
+		'velum/rig': [ 200, { format_version: 1 } ],
 	} );
 	const data = await loadArticulationData( { api } );
+	assert.deepEqual( data.velum, { format_version: 1 } );
+	assert.equal( data.velumError, null );
 	assert.match( data.tablesError, /format version 99/ );
 	assert.match( data.faceRigError, /HTTP 503: face rig not built/ );
 	assert.ok( ! asked.some( ( path ) => path.includes( '.bin' ) ) );

@@ -186,15 +186,17 @@ test( 'writing values directly and touching the state counts as a change for eve
 
 } );
 
-test( 'the groups come in the workbench order: jaw, lips, tongue sagittal, coronal front, middle, back', () => {
+test( 'the groups come in the workbench order: jaw, lips, velum, tongue sagittal, coronal front, middle, back', () => {
 
 	const groups = fresh().groups();
-	assert.deepEqual( groups.map( ( g ) => g.group ), GROUP_ORDER );
+	assert.deepEqual( groups.map( ( g ) => g.group ), GROUP_ORDER.filter( ( group ) => group !== 'velum' ) );
 	assert.deepEqual( groups[ 0 ].parameters.map( ( p ) => p.name ), [ 'jaw_opening' ] );
 	assert.equal( groups[ 2 ].parameters.length, 10 );
 	for ( const g of groups.slice( 3 ) ) assert.equal( g.parameters.length, 7 );
-	const extra = new ParamState( [ ...RIG.parameters, { name: 'velum', unit: 'mm', min: 0, max: 1, neutral: 0, group: 'velum' } ] );
-	assert.equal( extra.groups().at( - 1 ).group, 'velum', 'groups outside the list come last' );
+	const velum = { name: 'velum_opening', unit: 'ratio', min: 0, max: 1, neutral: 0.76, group: 'velum' };
+	const extra = new ParamState( [ ...RIG.parameters, { name: 'voicing', unit: 'ratio', min: 0, max: 1, neutral: 0, group: 'cues' }, velum ] );
+	assert.equal( extra.groups().at( - 1 ).group, 'cues', 'groups outside the list come last' );
+	assert.equal( extra.groups()[ 1 ].group, 'velum', 'the velum follows the jaw (and the lips)' );
 
 } );
 

@@ -5,10 +5,11 @@
 // all read and write the same state. `version` grows by one on every change, so the per-frame
 // pipeline recomputes only when something moved. Pure: no DOM, no three.js.
 
-/** Group order of the workbench (the paper's Figure 4): jaw, lips, then the tongue. */
+/** Group order of the workbench (the paper's Figure 4): jaw, lips, the velum, then the tongue. */
 export const GROUP_ORDER = Object.freeze( [
 	'jaw',
 	'lips',
+	'velum',
 	'tongue sagittal',
 	'tongue coronal front',
 	'tongue coronal middle',

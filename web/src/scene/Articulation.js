@@ -9,6 +9,7 @@
 //   4. the scene's tongue mesh (the parametric tongue replaces `tongue_rest`) shows them;
 //   5. face: the face rig poses the skin and lips when one is given; without it the lower lip
 //      rides on the jaw; the lips' mid-sagittal gap is measured either way;
+//   5b. velum: the velum rig poses the soft palate from velum_opening (VelumPose.js);
 //   6. hooks: onCorrected( fn ) gets the corrected Float32Array (EPG contacts read it).
 // Nothing is recomputed while the parameters stay the same, and nothing is allocated per frame.
 
@@ -20,6 +21,7 @@ import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../
 import { ParamState } from '../core/paramState.js';
 import { registerDebug } from '../debug.js';
 import { FacePose, lipGap, midlineLips } from './FacePose.js';
+import { VelumPose } from './VelumPose.js';
 
 /** The scene mesh the parametric tongue replaces. */
 export const TONGUE_PART = 'tongue_rest';
@@ -194,6 +196,7 @@ export class Articulation {
 
 		}
 
+		this.velum?.pose( this.state.values );
 		const geometry = this.geometry;
 		if ( ! geometry ) return;
 		geometry.attributes.position.needsUpdate = true;
@@ -315,15 +318,17 @@ function round3( value ) {
 }
 
 /**
- * Parameter definitions of the tongue rig followed by those of the face rig (its lips), the
- * tongue's first so that its evaluator reads the same array.
+ * Parameter definitions of the tongue rig followed by those of the face rig (its lips) and of the
+ * velum rig (velum_opening), the tongue's first so that its evaluator reads the same array.
  */
-export function parameterDefinitions( rigDefinition, faceRigDefinition = null ) {
+export function parameterDefinitions( rigDefinition, faceRigDefinition = null, velumRigDefinition = null ) {
 
 	const tongue = rigDefinition.parameters;
 	const names = new Set( tongue.map( ( p ) => p.name ) );
 	const lips = ( faceRigDefinition?.parameters ?? [] ).filter( ( p ) => ! names.has( p.name ) );
-	return [ ...tongue, ...lips ];
+	for ( const p of lips ) names.add( p.name );
+	const velum = ( velumRigDefinition?.parameters ?? [] ).filter( ( p ) => ! names.has( p.name ) );
+	return [ ...tongue, ...lips, ...velum ];
 
 }
 
@@ -333,15 +338,17 @@ export function parameterDefinitions( rigDefinition, faceRigDefinition = null ) 
  * what the views load (ui/loaders.js loadArticulationData): the tongue rig definition, the decoded
  * collision tables and the face rig definition. Tables or a face rig that could not be had (null)
  * leave the tongue uncorrected (collision.enabled false) or the lower lip riding rigidly on the
- * jaw, with `tablesError` or `faceRigError` saying why. Returns the Articulation, its debug
- * fields registered.
+ * jaw, with `tablesError` or `faceRigError` saying why; a velum rig (null: the velum stays at
+ * rest, `velumError` says why) poses the velum from velum_opening. Returns the Articulation, its
+ * debug fields registered.
  * @param {{ definition: object, tables?: object|null, tablesError?: string|null,
- *   face?: object|null, faceRigError?: string|null }} data
+ *   face?: object|null, faceRigError?: string|null, velum?: object|null,
+ *   velumError?: string|null }} data
  */
-export function createArticulation( head, viewer, { definition, tables = null, tablesError = null, face = null, faceRigError = null } ) {
+export function createArticulation( head, viewer, { definition, tables = null, tablesError = null, face = null, faceRigError = null, velum = null, velumError = null } ) {
 
 	const rig = new TongueRig( definition );
-	const state = new ParamState( parameterDefinitions( definition, face ) );
+	const state = new ParamState( parameterDefinitions( definition, face, velum ) );
 	const articulation = new Articulation( rig, state, { tables } );
 	articulation.tablesError = tablesError;
 	articulation.faceRigError = faceRigError;
@@ -356,6 +363,22 @@ export function createArticulation( head, viewer, { definition, tables = null, t
 		} catch ( error ) {
 
 			articulation.faceRigError = error.message;
+
+		}
+
+	}
+
+	articulation.velumError = velumError;
+	if ( velum ) {
+
+		try {
+
+			articulation.velum = new VelumPose( velum, head, state );
+			articulation.unregister.push( articulation.velum.registerDebugField() );
+
+		} catch ( error ) {
+
+			articulation.velumError = error.message;
 
 		}
 

@@ -13,6 +13,7 @@ import { SectionCap } from './SectionCap.js';
 import { colorJawVertices, lowestY } from './jawColors.js';
 import { weldNormals } from '../core/weldNormals.js';
 import { buildOpeningMeshes } from './FaceOpenings.js';
+import { AirLayer } from './AirLayer.js';
 import { applyPartAppearance, applySkinAppearance, CAPPED_TISSUES, capRenderOrder, createPartMaterial, createSkinMaterials, plainBone } from './headAppearance.js';
 
 /** Clipping plane offset that keeps everything (cutaway off) without recompiling shaders. */
@@ -54,7 +55,7 @@ export class Head {
 
 			this.addSkinPasses( part );
 
-		} else {
+		} else if ( tissue !== 'air' ) { // the airway is drawn only as the cutaway's air (finishLoading)
 
 			const mesh = new Mesh( geometry, createPartMaterial( tissue, this.clipPlane ) );
 			mesh.name = entry.name;
@@ -131,6 +132,29 @@ export class Head {
 		}
 
 		this.weldSkinSeams();
+		this.addAirLayer();
+
+	}
+
+	/**
+	 * The cutaway's air (AirLayer.js), when an airway is loaded: its cavity is the airway, the
+	 * rest tongue and the rest velum as loaded, with the mandible's section kept clear.
+	 */
+	addAirLayer() {
+
+		const airway = [ ...this.parts.values() ].find( ( part ) => part.tissue === 'air' );
+		if ( ! airway ) return;
+		const find = ( tissue ) => [ ...this.parts.values() ].find( ( part ) => part.tissue === tissue );
+		const mandible = find( 'mandible' );
+		this.air = new AirLayer( {
+			airway: airway.geometry,
+			plane: this.clipPlane,
+			tongue: find( 'tongue' )?.geometry ?? null,
+			velum: find( 'velum' )?.geometry ?? null,
+			jaw: mandible?.group ?? null,
+			eraser: mandible?.geometry ?? null,
+		} ).attach( this.group );
+		this.air.setVisible( this.cutaway );
 
 	}
 
@@ -220,6 +244,7 @@ export class Head {
 		const state = skinPassState( this.transparency );
 		this.clipPlane.constant = this.cutaway ? 0 : NO_CUT;
 		if ( this.skinMaterials ) applySkinAppearance( this.skinMaterials, state, this.cutaway );
+		this.air?.setVisible( this.cutaway );
 		for ( const part of this.parts.values() ) {
 
 			if ( this.cutaway && part.outlineStale ) {
@@ -294,6 +319,7 @@ export class Head {
 		}
 
 		if ( this.skinMaterials ) for ( const material of Object.values( this.skinMaterials ) ) material.dispose();
+		this.air?.dispose();
 		this.group.removeFromParent();
 		this.parts.clear();
 

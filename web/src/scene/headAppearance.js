@@ -17,11 +17,18 @@ import { LIP_RENDER_ORDER, lipOpacity, SKIN_RENDER_ORDER } from './skinPasses.js
 const SKIN_DEPTH_BIAS = Object.freeze( { factor: 1, units: 2 } );
 
 /** Tissues whose meshes are open surfaces (not watertight); drawn two-sided. */
-const OPEN_TISSUES = new Set( [ 'maxilla', 'bone' ] );
+const OPEN_TISSUES = new Set( [ 'maxilla', 'bone', 'mucosa', 'cartilage' ] );
 
 /** Closed tissues whose cut gets a cap on the plane (SectionCap), and their cut colours. The tongue
- * and the lips are pressed against the teeth, which would show through their sections otherwise. */
-export const CAPPED_TISSUES = Object.freeze( { tongue: TISSUE_COLORS.tongueCut, lip: TISSUE_COLORS.lipCut } );
+ * and the lips are pressed against the teeth, which would show through their sections otherwise;
+ * every cap also covers the cutaway's air (AirLayer.js), which is drawn before them. */
+export const CAPPED_TISSUES = Object.freeze( {
+	tongue: TISSUE_COLORS.tongueCut,
+	lip: TISSUE_COLORS.lipCut,
+	velum: TISSUE_COLORS.velumCut,
+	solidBone: TISSUE_COLORS.boneCut,
+	cartilage: TISSUE_COLORS.cartilageCut,
+} );
 
 /** Render order of the first cap: after the opaque anatomy, before the section outlines (5). */
 const CAP_RENDER_ORDER = 1;
@@ -110,7 +117,7 @@ export function applySkinAppearance( { back, front }, state, cutaway ) {
  */
 export function applyPartAppearance( part, state, transparency, cutaway ) {
 
-	part.outline.visible = cutaway;
+	part.outline.visible = cutaway && part.tissue !== 'air';
 	// Faded lips are seen through anyway; their cut stays as faded as they are.
 	part.cap?.setVisible( cutaway && ( part.tissue !== 'lip' || lipOpacity( transparency ) === 1 ) );
 	for ( const mesh of part.meshes ) {

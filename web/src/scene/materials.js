@@ -15,6 +15,13 @@ export const TISSUE_COLORS = Object.freeze( {
 	tongueCut: '#97262f',
 	lip: '#d46f7a',
 	lipCut: '#ad4c58',
+	air: '#b9def5', // the empty vocal tract in the cutaway: a light sky blue
+	velum: '#d9707c', // the soft palate
+	velumCut: '#b24f5c',
+	mucosa: '#d98a86', // the posterior pharyngeal wall
+	cartilage: '#c9dde3', // larynx cartilages: bluish white
+	cartilageCut: '#9fbcc6',
+	boneCut: '#c4ad80', // the cut of the hyoid and the spine
 } );
 
 /** What each mesh is drawn as, by name first and by role if the name is new. */
@@ -28,6 +35,11 @@ const TISSUE_BY_NAME = Object.freeze( {
 	upper_lip: 'lip',
 	lower_lip: 'lip',
 	cranium: 'bone',
+	airway: 'air',
+	velum_rest: 'velum',
+	pharynx: 'mucosa',
+	hyoid: 'solidBone',
+	vertebrae: 'solidBone',
 } );
 
 const TISSUE_BY_ROLE = Object.freeze( {
@@ -41,9 +53,17 @@ const TISSUE_BY_ROLE = Object.freeze( {
 	lips: 'lip',
 	bone: 'bone',
 	cranium: 'bone',
+	air: 'air',
+	soft: 'mucosa',
+	cartilage: 'cartilage',
 } );
 
-/** The tissue kind ('skin', 'maxilla', 'mandible', 'tongue', 'lip', 'bone') of an anatomy entry. */
+/**
+ * The tissue kind of an anatomy entry: 'skin', 'maxilla', 'mandible', 'tongue', 'lip', 'bone'
+ * (open bone surfaces: the cranium), 'solidBone' (closed bones: hyoid, spine), 'velum',
+ * 'mucosa' (open soft surfaces: the pharyngeal wall), 'cartilage' or 'air' (the airway, drawn
+ * only as the cutaway's air, scene/AirLayer.js).
+ */
 export function tissueOf( entry ) {
 
 	return TISSUE_BY_NAME[ entry.name ] ?? TISSUE_BY_ROLE[ entry.role ] ?? 'bone';
@@ -125,6 +145,14 @@ export function createTissueMaterial( tissue, { closed = true } = {} ) {
 			return addSectionShading( new MeshStandardMaterial( { ...common, color: TISSUE_COLORS.tongue, roughness: 0.45 } ), { sectionColor: TISSUE_COLORS.tongueCut } );
 		case 'lip':
 			return addSectionShading( new MeshStandardMaterial( { ...common, color: TISSUE_COLORS.lip, roughness: 0.5 } ), { sectionColor: TISSUE_COLORS.lipCut } );
+		case 'velum':
+			return addSectionShading( new MeshStandardMaterial( { ...common, color: TISSUE_COLORS.velum, roughness: 0.5 } ), { sectionColor: TISSUE_COLORS.velumCut } );
+		case 'mucosa':
+			return addSectionShading( new MeshStandardMaterial( { ...common, color: TISSUE_COLORS.mucosa, roughness: 0.55 } ), { fromDiffuse: true, sectionShade: 0.8, sectionable: false } );
+		case 'cartilage':
+			return addSectionShading( new MeshStandardMaterial( { ...common, color: TISSUE_COLORS.cartilage, roughness: 0.4 } ), { sectionColor: TISSUE_COLORS.cartilageCut } );
+		case 'solidBone':
+			return addSectionShading( new MeshStandardMaterial( { ...common, color: TISSUE_COLORS.bone } ), { sectionColor: TISSUE_COLORS.boneCut } );
 		case 'maxilla':
 		case 'mandible':
 			// White base colour: the per-vertex colours (teeth, gums, bone) give the hue.

@@ -66,6 +66,7 @@ export class HeadView {
 			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
 			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
 			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
+			airProbe: () => ( this.viewer && this.state.loaded && this.head.air ? this.head.air.probe( this.viewer ) : null ),
 		};
 		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
 

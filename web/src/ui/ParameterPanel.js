@@ -9,6 +9,7 @@ import { h } from './Controls.js';
 const GROUP_TITLES = Object.freeze( {
 	jaw: 'Jaw',
 	lips: 'Lips',
+	velum: 'Velum (soft palate)',
 	'tongue sagittal': 'Tongue sagittal',
 	'tongue coronal front': 'Tongue coronal: front',
 	'tongue coronal middle': 'Tongue coronal: middle',

@@ -70,17 +70,18 @@ export async function loadCollisionTables( { api = pageApi } = {} ) {
 
 /**
  * What scene/Articulation.js createArticulation() is handed: the tongue rig definition (rejects
- * without it), the collision tables and the face rig definition, each null with its error message
- * when it could not be had.
+ * without it), the collision tables, the face rig and the velum rig definitions, each null with
+ * its error message when it could not be had.
  * @returns {Promise<{ definition: object, tables: object|null, tablesError: string|null,
- *   face: object|null, faceRigError: string|null }>}
+ *   face: object|null, faceRigError: string|null, velum: object|null, velumError: string|null }>}
  */
 export async function loadArticulationData( { api = pageApi } = {} ) {
 
-	const [ definition, tables, face ] = await Promise.all( [
+	const [ definition, tables, face, velum ] = await Promise.all( [
 		api.get( 'tongue/rig' ),
 		loadCollisionTables( { api } ).catch( ( error ) => error ),
 		api.get( 'face/rig' ).catch( ( error ) => error ),
+		api.get( 'velum/rig' ).catch( ( error ) => error ),
 	] );
 	return {
 		definition,
@@ -88,6 +89,8 @@ export async function loadArticulationData( { api = pageApi } = {} ) {
 		tablesError: tables instanceof Error ? tables.message : null,
 		face: face instanceof Error ? null : face,
 		faceRigError: face instanceof Error ? face.message : null,
+		velum: velum instanceof Error ? null : velum,
+		velumError: velum instanceof Error ? velum.message : null,
 	};
 
 }
