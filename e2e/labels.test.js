@@ -55,6 +55,18 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 
 	} );
 
+	test( 'a still head with its labels shown draws no new frames', async () => {
+
+		await setLabels( true );
+		const before = ( await readDebug( page ) ).frames;
+		await new Promise( ( resolve ) => setTimeout( resolve, 2000 ) );
+		const state = await readDebug( page );
+		assert.equal( state.frames, before, 'the scene is redrawn while nothing moves' );
+		assert.equal( state.renderPending, false );
+		await setLabels( false );
+
+	} );
+
 	test( 'hovering the tongue in the cutaway profile names a part of the tongue', async () => {
 
 		await page.getByRole( 'button', { name: 'Cutaway' } ).click();

@@ -61,13 +61,16 @@ export class LabelLayer {
 		canvas.addEventListener( 'pointermove', this.onPointer );
 		canvas.addEventListener( 'pointerdown', this.onPointer );
 		canvas.addEventListener( 'pointerleave', this.onLeave );
+		/** The camera matrix and canvas size the labels were last laid out for. */
+		this.seenView = new Float64Array( 18 ).fill( Number.NaN );
 		this.cleanups = [
 			() => canvas.removeEventListener( 'pointermove', this.onPointer ),
 			() => canvas.removeEventListener( 'pointerdown', this.onPointer ),
 			() => canvas.removeEventListener( 'pointerleave', this.onLeave ),
 			viewer.onFrame( () => {
 
-				if ( this.visible ) this.layout();
+				if ( this.visible && this.viewChanged() ) this.layout();
+				return false; // the labels are HTML over the canvas: they never need a new 3D frame
 
 			} ),
 			registerDebug( 'labels', () => ( { visible: this.visible, count: this.visible ? this.labels.length : 0, hovered: this.hovered } ) ),
@@ -80,6 +83,27 @@ export class LabelLayer {
 		this.visible = on;
 		this.element.hidden = ! on;
 		if ( on ) this.layout();
+
+	}
+
+	/** True when the camera or the canvas size changed since the last call (then labels move). */
+	viewChanged() {
+
+		const matrix = this.viewer.camera.matrixWorld.elements;
+		const canvas = this.viewer.renderer.domElement;
+		const seen = this.seenView;
+		let changed = false;
+		for ( let k = 0; k < 16; k ++ ) {
+
+			if ( seen[ k ] !== matrix[ k ] ) changed = true;
+			seen[ k ] = matrix[ k ];
+
+		}
+
+		if ( seen[ 16 ] !== canvas.clientWidth || seen[ 17 ] !== canvas.clientHeight ) changed = true;
+		seen[ 16 ] = canvas.clientWidth;
+		seen[ 17 ] = canvas.clientHeight;
+		return changed;
 
 	}
 
