@@ -30,6 +30,17 @@ export const CAPPED_TISSUES = Object.freeze( {
 	cartilage: TISSUE_COLORS.cartilageCut,
 } );
 
+/** Parts that lie in the neck, below the head: there is no neck skin to cover them, so they are
+ * shown only when the inside is (skin see-through or cut away), never hanging under an opaque head. */
+export const NECK_PARTS = Object.freeze( new Set( [ 'vertebrae', 'thyroid', 'cricoid', 'arytenoid_left', 'arytenoid_right', 'hyoid' ] ) );
+
+/** Whether part `name` is drawn at this skin transparency (percent) and cut. */
+export function partShown( name, transparency, cutaway ) {
+
+	return ! NECK_PARTS.has( name ) || cutaway || transparency > 0;
+
+}
+
 /** Render order of the first cap: after the opaque anatomy, before the section outlines (5). */
 const CAP_RENDER_ORDER = 1;
 
@@ -117,9 +128,10 @@ export function applySkinAppearance( { back, front }, state, cutaway ) {
  */
 export function applyPartAppearance( part, state, transparency, cutaway ) {
 
-	part.outline.visible = cutaway && part.tissue !== 'air';
+	const shown = partShown( part.name, transparency, cutaway );
+	part.outline.visible = cutaway && shown && part.tissue !== 'air';
 	// Faded lips are seen through anyway; their cut stays as faded as they are.
-	part.cap?.setVisible( cutaway && ( part.tissue !== 'lip' || lipOpacity( transparency ) === 1 ) );
+	part.cap?.setVisible( cutaway && shown && ( part.tissue !== 'lip' || lipOpacity( transparency ) === 1 ) );
 	for ( const mesh of part.meshes ) {
 
 		const pass = mesh.userData.skinPass;
@@ -131,6 +143,7 @@ export function applyPartAppearance( part, state, transparency, cutaway ) {
 
 		} else {
 
+			mesh.visible = shown;
 			if ( part.tissue === 'lip' ) applyLip( mesh, lipOpacity( transparency ), cutaway );
 			const sectionable = mesh.material.userData.sectionable;
 			mesh.material.userData.section.sectionOn.value = cutaway && sectionable ? 1 : 0;
