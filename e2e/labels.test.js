@@ -16,7 +16,7 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 		landmarks = await ( await fetch( `${ server.baseUrl }/api/v1/anatomy/landmarks` ) ).json();
 		browser = await launchBrowser();
 		page = await openPage( browser, { width: 1920, height: 1080 } );
-		await page.goto( `${ server.baseUrl }/#/` );
+		await page.goto( `${ server.baseUrl }/?still#/` ); // no blinks: a still head must draw nothing
 		await waitForLoaded( page );
 		await settle( page );
 

@@ -1,6 +1,7 @@
 // Eyes and nostrils: the face skin has openings there, which would let the viewer look straight
-// into the hollow head. Each is closed by a patch: the eyes by a dome painted as an eye (white,
-// iris, pupil, shadowed under the lids), the nostrils by a dark dimple.
+// into the hollow head. Each is closed by a patch: the eyes by a shallow dome of sclera (shadowed
+// under the lids) with an eyeball and an upper lid in front of it (Eyes.js), the nostrils by a
+// dark dimple.
 //
 // Which opening is which: openings crossing the mid-sagittal plane (the mouth slit, a neck rim) and
 // the largest one (the rim of the face mask) are left open; of the rest, the two highest that lie
@@ -9,15 +10,13 @@
 import { BufferAttribute, BufferGeometry, Color, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
 import { boundaryLoops, domePatch, loopFrame } from '../core/openings.js';
 import { addSectionShading, TISSUE_COLORS } from './materials.js';
+import { EYE_COLORS } from './eyeMaterials.js';
+import { buildEyeMeshes } from './Eyes.js';
 
 /** Eye proportions, in mm and as fractions of the opening's mean radius. */
 export const EYE = Object.freeze( {
-	irisRadius: 5.6, // mm; a human iris is about 11 to 12 mm across
-	pupilRadius: 2.2, // mm
-	bulge: 0.3, // of the opening's radius: the cornea's dome
-	sclera: '#f1ece4',
-	iris: '#5b6f7c',
-	pupil: '#141414',
+	bulge: 0.12, // of the opening's radius: the dome behind the eyeball, seen in the corners
+	sclera: EYE_COLORS.sclera,
 	lidShadow: '#7b5a50',
 } );
 
@@ -73,8 +72,6 @@ function createEyeMaterial() {
 	const sectionShading = material.onBeforeCompile;
 	const colors = {
 		uSclera: { value: new Color( EYE.sclera ) },
-		uIris: { value: new Color( EYE.iris ) },
-		uPupil: { value: new Color( EYE.pupil ) },
 		uLid: { value: new Color( EYE.lidShadow ) },
 	};
 	material.onBeforeCompile = ( shader, renderer ) => {
@@ -87,16 +84,11 @@ function createEyeMaterial() {
 		shader.fragmentShader = shader.fragmentShader
 			.replace( '#include <common>', `#include <common>
 varying vec3 vEyeCoord;
-uniform vec3 uSclera, uIris, uPupil, uLid;` )
+uniform vec3 uSclera, uLid;` )
 			.replace( '#include <color_fragment>', `#include <color_fragment>
 {
-	float r = length( vEyeCoord.xy );
-	float edge = fwidth( r ) + 0.15;
-	vec3 eye = mix( uIris, uSclera, smoothstep( ${ EYE.irisRadius.toFixed( 2 ) } - edge, ${ EYE.irisRadius.toFixed( 2 ) } + edge, r ) );
-	eye = mix( eye, uIris * 0.55, smoothstep( ${ ( EYE.irisRadius - 1.2 ).toFixed( 2 ) }, ${ EYE.irisRadius.toFixed( 2 ) }, r ) * ( 1.0 - step( ${ EYE.irisRadius.toFixed( 2 ) }, r ) ) );
-	eye = mix( uPupil, eye, smoothstep( ${ EYE.pupilRadius.toFixed( 2 ) } - edge, ${ EYE.pupilRadius.toFixed( 2 ) } + edge, r ) );
 	// The lids shade the eye's rim.
-	eye = mix( eye, uLid, smoothstep( 0.65, 1.0, vEyeCoord.z ) * 0.85 );
+	vec3 eye = mix( uSclera * 0.85, uLid, smoothstep( 0.65, 1.0, vEyeCoord.z ) * 0.85 );
 	diffuseColor.rgb *= eye;
 }` );
 
@@ -122,8 +114,8 @@ export function buildOpeningMeshes( geometry ) {
 	if ( ! geometry.index ) return [];
 	const positions = geometry.getAttribute( 'position' ).array;
 	const openings = classifyOpenings( positions, geometry.index.array );
-	const materials = { eye: null, nostril: null };
-	return openings.map( ( { loop, frame, kind } ) => {
+	const materials = { eye: null, nostril: null, eyeball: null, lid: null };
+	return openings.flatMap( ( { loop, frame, kind } ) => {
 
 		const bulge = kind === 'eye' ? EYE.bulge * frame.meanRadius : - 0.6 * frame.meanRadius;
 		const patch = domePatch( positions, loop, frame, { rings: kind === 'eye' ? 10 : 4, bulge } );
@@ -137,7 +129,7 @@ export function buildOpeningMeshes( geometry ) {
 		const mesh = new Mesh( patchGeometry, materials[ kind ] );
 		mesh.name = kind;
 		mesh.userData.opening = kind;
-		return mesh;
+		return kind === 'eye' ? [ mesh, ...buildEyeMeshes( positions, loop, frame, bulge, materials ) ] : [ mesh ];
 
 	} );
 

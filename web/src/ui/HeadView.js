@@ -7,6 +7,7 @@ import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { Controls, h } from './Controls.js';
 import { createHeadStage } from './headStage.js';
 import { LabelLayer } from './LabelLayer.js';
+import { EyeMotion } from '../scene/Eyes.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
 
 export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, labels: false, view: 'three-quarter' } );
@@ -66,6 +67,7 @@ export class HeadView {
 			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
 			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
 			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
+			eyes: () => this.eyes?.state() ?? null,
 			airProbe: () => ( this.viewer && this.state.loaded && this.head.air ? this.head.air.probe( this.viewer ) : null ),
 		};
 		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
@@ -103,6 +105,8 @@ export class HeadView {
 		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
 		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } ); // electrodes on the palate, live palatogram
 		await this.attachLabels();
+		// `?still` in the page's address: no blinks (tests that a still head draws nothing use it).
+		this.eyes = new EyeMotion( this.head, this.viewer, { blink: ! new URLSearchParams( location.search ).has( 'still' ) } );
 		this.head.setTransparency( this.state.transparency );
 		this.head.setCutaway( this.state.cutaway );
 		this.fitViews();
@@ -196,6 +200,7 @@ export class HeadView {
 		for ( const unregister of this.unregister ) unregister();
 		this.articulation?.dispose();
 		this.labels?.dispose();
+		this.eyes?.dispose();
 		this.viewer?.dispose();
 		this.head?.dispose();
 		this.viewer = null;
