@@ -18,7 +18,9 @@ import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from '
 import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, sectionStations } from './SectionsPanel.js';
 import './workbench.css';
 import { createHeadStage } from './headStage.js';
-import { loadAnatomy, loadArticulation } from './loaders.js';
+import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
+import { DiagramSection } from '../scene/DiagramSection.js';
+import { drawDiagram } from './DiagramPanel.js';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
 const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
@@ -31,7 +33,7 @@ const ABOVE_DIRECTION = Object.freeze( [ 0.55, 0.78, - 0.3 ] );
 const HIDDEN_PARTS = Object.freeze( [ 'cranium' ] );
 /** Meshes of the toggles that uncover the tongue: the jaw and lips around it, the palate over it. */
 const TOGGLED_PARTS = Object.freeze( { jaw: [ 'mandible', 'upper_lip', 'lower_lip' ], palate: [ 'maxilla' ], tongue: [ 'tongue_rest' ] } );
-const PANEL_SIZE = Object.freeze( { sagittal: [ 380, 290 ], sections: [ 380, 330 ] } );
+const PANEL_SIZE = Object.freeze( { sagittal: [ 380, 290 ], sections: [ 380, 330 ], diagram: [ 380, 356 ] } );
 const CONTACT_COLOR = '#3d0710';
 
 export const WORKBENCH_DEFAULTS = Object.freeze( { skin: false, jaw: true, palate: true, tongue: true, cutaway: true, liner: false, voxels: false, contacts: true, view: 'three-quarter' } );
@@ -77,6 +79,7 @@ export class WorkbenchView {
 				contacts: this.state.contacts, pasteError: this.poseBox?.pasteError ?? null, poseStatus: this.poseBox?.poseStatus ?? null,
 				linerSegments: this.liner?.segmentCount ?? 0, voxelCounts: this.voxels?.counts ?? null,
 				tablesError: this.articulation?.tablesError ?? null, panelDraws: this.panelDraws ?? 0,
+				diagramDraws: this.diagramDraws ?? 0, landmarksError: this.landmarksError ?? null,
 			} ),
 			frames: () => ( this.viewer ? this.viewer.frameCount : 0 ),
 			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
@@ -99,6 +102,13 @@ export class WorkbenchView {
 			if ( ! this.viewer ) return;
 			this.showStatus( 'Loading the tongue rig and the collision tables…' );
 			this.articulation = await loadArticulation( this.head, this.viewer, { api: this.api } );
+			// The diagram names the constriction's place from the landmarks; it is drawn without them.
+			this.landmarks = await loadLandmarks( { api: this.api } ).catch( ( error ) => {
+
+				this.landmarksError = error.message;
+				return null;
+
+			} );
 
 		} catch ( error ) {
 
@@ -195,6 +205,11 @@ export class WorkbenchView {
 
 		this.sagittalCanvas = canvas( PANEL_SIZE.sagittal, 'Mid-sagittal section: the tongue curve with its lettered control points' );
 		this.sectionsCanvas = canvas( PANEL_SIZE.sections, 'The front, middle and back coronal sections and the blending functions' );
+		this.diagramCanvas = canvas( PANEL_SIZE.diagram, 'Diagram: the vocal tract cut at the mid-sagittal plane, with the narrowest constriction marked' );
+		this.diagramCanvas.element.classList.add( 'wb-diagram' );
+		this.diagram = new DiagramSection( this.head, { landmarks: this.landmarks } );
+		this.unregister.push( this.diagram.registerDebugField() );
+		this.diagramParts = Object.fromEntries( [ 'pharynx', 'larynx', 'palate', 'mandible', 'velum', 'upperLip', 'lowerLip', 'tongue' ].map( ( key ) => [ key, this.diagram.parts( key ) ] ) );
 
 		this.toggles = new Map( [ [ 'skin', 'Skin' ], [ 'jaw', 'Jaw & lips' ], [ 'palate', 'Palate' ], [ 'tongue', 'Tongue' ], [ 'cutaway', 'Cutaway' ], [ 'contacts', 'Contacts' ], [ 'liner', 'Liner' ], [ 'voxels', 'Voxels' ] ].map( ( [ key, label ] ) => [ key, h( 'button', {
 			type: 'button', className: 'toggle wb-toggle', 'aria-pressed': String( this.state[ key ] ),
@@ -208,6 +223,7 @@ export class WorkbenchView {
 			h( 'div', { className: 'wb-buttons', role: 'group', 'aria-label': 'View' }, ...this.viewButtons.values() ),
 			this.sagittalCanvas.element,
 			this.sectionsCanvas.element,
+			this.diagramCanvas.element,
 			this.poseBox.element,
 		);
 
@@ -272,6 +288,9 @@ export class WorkbenchView {
 		} );
 		drawSectionsPanel( this.sectionsCanvas.ctx, { sections: this.sections, stations: this.stations, blends: this.blends }, this.sectionsCanvas );
 		this.panelDraws ++;
+		this.diagram.update();
+		drawDiagram( this.diagramCanvas.ctx, { parts: this.diagramParts, air: this.diagram.polygon, constriction: this.diagram.constriction() }, this.diagramCanvas );
+		this.diagramDraws = ( this.diagramDraws ?? 0 ) + 1;
 
 	}
 
