@@ -3,6 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
+import { random as seededRandom } from '../../bench/support/stats.mjs';
 import { basisFuns, basisTable, findSpan, periodicKnots } from '../../web/src/core/bspline.js';
 
 import { near, nearArray, readVectors, tolerance } from './support/vectors.js';
@@ -31,19 +32,6 @@ function coxDeBoor( knots, i, degree, u ) {
 
 }
 
-function mulberry32( seed ) {
-
-	return () => {
-
-		seed = ( seed + 0x6D2B79F5 ) | 0;
-		let t = Math.imul( seed ^ ( seed >>> 15 ), 1 | seed );
-		t = ( t + Math.imul( t ^ ( t >>> 7 ), 61 | t ) ) ^ t;
-		return ( ( t ^ ( t >>> 14 ) ) >>> 0 ) / 4294967296;
-
-	};
-
-}
-
 test( 'the vector file has cases with unique descriptions', () => {
 
 	const descriptions = VECTORS.cases.map( ( c ) => c.description );
@@ -69,7 +57,7 @@ for ( const vector of VECTORS.cases ) {
 test( 'basis functions agree with the Cox-de Boor recursion on seeded random clamped knots', () => {
 
 	const seed = 7;
-	const random = mulberry32( seed );
+	const random = seededRandom( seed );
 	const left = new Float64Array( 6 );
 	const right = new Float64Array( 6 );
 	const target = new Float64Array( 6 );

@@ -5,6 +5,7 @@ import assert from 'node:assert/strict';
 
 import { createSectionPart, cutSection, isPlanarPose, posePoints } from '../../web/src/core/midSection.js';
 import { planeSectionSegments } from '../../web/src/core/section.js';
+import { random } from '../../bench/support/stats.mjs';
 import { fewestGarbageCollections } from './support/garbage.js';
 
 /** The points of chain c as [ [ x, y ], ... ]. */
@@ -121,22 +122,6 @@ test( 'a planar pose maps the cut points; a pose that tilts the plane is refused
 	assert.throws( () => posePoints( part, tilted ), /out of the mid-sagittal plane/ );
 
 } );
-
-/** mulberry32. */
-function random( seed ) {
-
-	let a = seed >>> 0;
-	return () => {
-
-		a = ( a + 0x6D2B79F5 ) >>> 0;
-		let t = a;
-		t = Math.imul( t ^ ( t >>> 15 ), t | 1 );
-		t ^= t + Math.imul( t ^ ( t >>> 7 ), t | 61 );
-		return ( ( t ^ ( t >>> 14 ) ) >>> 0 ) / 4294967296;
-
-	};
-
-}
 
 /** A jittered UV sphere (closed, indexed), centre near the plane. */
 function sphere( next, rings = 12, segments = 16 ) {

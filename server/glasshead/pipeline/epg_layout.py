@@ -17,6 +17,7 @@ import numpy as np
 from glasshead.constants import EPG_LAYOUT_FILE, EPG_LAYOUT_FORMAT_VERSION
 from glasshead.epg.layout import LayoutError, layout_document, validate_layout_document
 from glasshead.pipeline.collision_tables import load_scene_maxilla
+from glasshead.pipeline.outputs import current_output
 
 LAYOUT_FILE = EPG_LAYOUT_FILE
 #: Bumped whenever the placement changes for the same maxilla, so stale layouts rebuild.
@@ -51,15 +52,9 @@ def build_step(assets_dir):
     v, f = load_scene_maxilla(assets_dir)
     out = Path(assets_dir) / LAYOUT_FILE
     digest = _digest(v, f)
-    if out.is_file():
-        try:
-            existing = json.loads(out.read_text())
-        except (OSError, json.JSONDecodeError):
-            existing = {}
-        if existing.get("source", {}).get("sha256") == digest \
-                and existing.get("builder") == BUILDER_VERSION \
-                and existing.get("format_version") == EPG_LAYOUT_FORMAT_VERSION:
-            return _report(out, existing, skipped=True)
+    existing = current_output(out, digest, BUILDER_VERSION, EPG_LAYOUT_FORMAT_VERSION)
+    if existing is not None:
+        return _report(out, existing, skipped=True)
     document = build_epg_layout(v, f, assets_dir, source={"mesh": "maxilla (scene)"})
     return _report(out, document, skipped=False)
 

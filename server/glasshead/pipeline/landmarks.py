@@ -30,6 +30,7 @@ from glasshead.constants import (
 )
 from glasshead.geometry.landmarks import validate_landmarks
 from glasshead.pipeline import landmark_rules as rules
+from glasshead.pipeline.outputs import current_output
 
 #: Bumped whenever a rule changes, so that landmarks built from the same meshes rebuild.
 BUILDER_VERSION = 1
@@ -166,15 +167,9 @@ def build_step(assets_dir):
     meshes, hashes = load_meshes(assets)
     digest = _digest(hashes, rig_bytes)
     out = assets / LANDMARKS_FILE
-    if out.is_file():
-        try:
-            existing = json.loads(out.read_text())
-        except (OSError, json.JSONDecodeError):
-            existing = {}
-        if existing.get("source", {}).get("sha256") == digest \
-                and existing.get("builder") == BUILDER_VERSION \
-                and existing.get("format_version") == LANDMARKS_FORMAT_VERSION:
-            return report(out, existing, skipped=True)
+    existing = current_output(out, digest, BUILDER_VERSION, LANDMARKS_FORMAT_VERSION)
+    if existing is not None:
+        return report(out, existing, skipped=True)
     document = landmarks_document(meshes, json.loads(rig_bytes),
                                   source={"sha256": digest, "meshes": sorted(hashes),
                                           "rig": TONGUE_RIG_FILE})
