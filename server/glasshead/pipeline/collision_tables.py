@@ -22,7 +22,6 @@ missing) the cells' exact triangle tests take over, so the correction is exact e
 """
 
 import hashlib
-import json
 import sys
 import time
 from pathlib import Path
@@ -36,7 +35,6 @@ from glasshead.constants import (
     COLLISION_LINER_STEP_DEG,
     COLLISION_TABLES_FILE,
     COLLISION_VOXELS,
-    MANIFEST_FILE,
     VOXEL_BORDER,
     VOXEL_NOT_OK,
     VOXEL_OK,
@@ -50,6 +48,7 @@ from glasshead.geometry.collision_format import (
 from glasshead.geometry.liner import build_liner, plane_of_triangles
 from glasshead.geometry.spherical import angles_to_direction
 from glasshead.geometry.voxels import classify_voxels
+from glasshead.pipeline.outputs import load_built_meshes
 
 TABLES_FILE = COLLISION_TABLES_FILE
 #: Bumped whenever the builder's output changes for the same maxilla, so stale tables rebuild.
@@ -210,19 +209,8 @@ def build_collision_tables(maxilla_vertices, maxilla_faces, out_dir,
 def load_scene_maxilla(assets_dir):
     """(vertices (n, 3) float64, faces (m, 3) int64) of the maxilla the scene shows: the
     ``maxilla`` entry with ``scene: true`` in ``assets_dir/manifest.json``."""
-    import trimesh
-
-    assets = Path(assets_dir)
-    manifest_path = assets / MANIFEST_FILE
-    if not manifest_path.is_file():
-        raise FileNotFoundError(f"{manifest_path} is missing: build the anatomy first")
-    manifest = json.loads(manifest_path.read_text())
-    entries = [m for m in manifest.get("meshes", [])
-               if m.get("name") == "maxilla" and m.get("scene", True)]
-    if not entries:
-        raise ValueError(f"{manifest_path} lists no scene maxilla")
-    mesh = trimesh.load(assets / entries[0]["file"], force="mesh", process=False)
-    return np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int64)
+    vertices, faces, _ = load_built_meshes(assets_dir, ["maxilla"], scene_only=True)["maxilla"]
+    return vertices, faces
 
 
 def build_step(assets_dir):

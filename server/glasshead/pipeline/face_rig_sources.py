@@ -9,7 +9,6 @@ them. The face's hexahedral mesh, its jaw attachments and the cranium always com
 sources.
 """
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -22,6 +21,7 @@ from glasshead.geometry.meshio import MeshFormatError, read_face_elems, read_fac
 from glasshead.pipeline import sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
 from glasshead.pipeline.head_shell import build_head_shell
+from glasshead.pipeline.outputs import load_built_meshes
 
 ATTACHMENTS_FILE = "face_jaw_attachments.txt"
 MANIFEST = MANIFEST_FILE
@@ -79,25 +79,10 @@ def read_attachments(path, node_ids):
 def read_scene_meshes(assets_dir):
     """The built GLBs of SCENE_MESHES: dict name -> ((vertices, faces), sha256); {} without a
     manifest. Raises ValueError when the manifest lacks one of them or its file is missing."""
-    import trimesh
-
-    path = Path(assets_dir) / MANIFEST
-    if not path.is_file():
+    if not (Path(assets_dir) / MANIFEST).is_file():
         return {}
-    manifest = json.loads(path.read_text())
-    entries = {m["name"]: m for m in manifest.get("meshes", []) if m.get("scene", True)}
-    meshes = {}
-    for name in SCENE_MESHES:
-        if name not in entries:
-            raise ValueError(f"{path} lists no scene mesh {name!r}")
-        file = Path(assets_dir) / entries[name]["file"]
-        if not file.is_file():
-            raise ValueError(f"{file} (mesh {name!r} of {path}) is missing")
-        # process=False keeps the vertex order the web app sees.
-        mesh = trimesh.load(file, force="mesh", process=False)
-        meshes[name] = ((np.asarray(mesh.vertices, dtype=np.float64),
-                         np.asarray(mesh.faces, dtype=np.int64)), entries[name].get("sha256"))
-    return meshes
+    built = load_built_meshes(assets_dir, SCENE_MESHES, scene_only=True)
+    return {name: ((vertices, faces), sha256) for name, (vertices, faces, sha256) in built.items()}
 
 
 def skin_node_indices(skin_vertices, nodes):

@@ -25,12 +25,11 @@ import numpy as np
 from glasshead.constants import (
     LANDMARKS_FILE,
     LANDMARKS_FORMAT_VERSION,
-    MANIFEST_FILE,
     TONGUE_RIG_FILE,
 )
 from glasshead.geometry.landmarks import validate_landmarks
 from glasshead.pipeline import landmark_rules as rules
-from glasshead.pipeline.outputs import current_output
+from glasshead.pipeline.outputs import current_output, load_built_meshes
 
 #: Bumped whenever a rule changes, so that landmarks built from the same meshes rebuild.
 BUILDER_VERSION = 1
@@ -92,20 +91,9 @@ NOTES = {
 def load_meshes(assets_dir, names=MESHES):
     """{name: (vertices (n, 3) float64, faces (m, 3) int64)} of built meshes, and
     {name: sha256} from the manifest."""
-    import trimesh
-
-    assets = Path(assets_dir)
-    manifest = json.loads((assets / MANIFEST_FILE).read_text())
-    entries = {m["name"]: m for m in manifest.get("meshes", [])}
-    missing = [name for name in names if name not in entries]
-    if missing:
-        raise ValueError(f"{assets / MANIFEST_FILE} lists no {', '.join(missing)}: build the "
-                         "anatomy first")
-    meshes = {}
-    for name in names:
-        mesh = trimesh.load(assets / entries[name]["file"], force="mesh", process=False)
-        meshes[name] = (np.asarray(mesh.vertices, np.float64), np.asarray(mesh.faces, np.int64))
-    return meshes, {name: entries[name]["sha256"] for name in names}
+    built = load_built_meshes(assets_dir, names)
+    return ({name: (vertices, faces) for name, (vertices, faces, _) in built.items()},
+            {name: sha256 for name, (_, _, sha256) in built.items()})
 
 
 def find_points(meshes, rig):

@@ -20,3 +20,33 @@ def current_output(path, digest, builder, format_version):
             and existing.get("format_version") == format_version:
         return existing
     return None
+
+
+def load_built_meshes(assets_dir, names, scene_only=False):
+    """The built GLBs of the meshes ``names``, as the manifest in ``assets_dir`` lists them:
+    {name: (vertices (n, 3) float64, faces (m, 3) int64, sha256)}, in the GLBs' vertex order (the
+    order the web app sees). Only ``scene: true`` entries count when ``scene_only``.
+    FileNotFoundError without a manifest; ValueError naming a mesh it lacks or whose file is
+    missing."""
+    import numpy as np
+    import trimesh
+
+    from glasshead.constants import MANIFEST_FILE
+
+    path = Path(assets_dir) / MANIFEST_FILE
+    if not path.is_file():
+        raise FileNotFoundError(f"{path} is missing: build the anatomy first")
+    entries = {m["name"]: m for m in json.loads(path.read_text()).get("meshes", [])
+               if not scene_only or m.get("scene", True)}
+    meshes = {}
+    for name in names:
+        if name not in entries:
+            kind = "scene mesh" if scene_only else "mesh"
+            raise ValueError(f"{path} lists no {kind} {name!r}: build the anatomy first")
+        file = Path(assets_dir) / entries[name]["file"]
+        if not file.is_file():
+            raise ValueError(f"{file} (mesh {name!r} of {path}) is missing")
+        mesh = trimesh.load(file, force="mesh", process=False)  # process=False keeps the order
+        meshes[name] = (np.asarray(mesh.vertices, dtype=np.float64),
+                        np.asarray(mesh.faces, dtype=np.int64), entries[name].get("sha256"))
+    return meshes

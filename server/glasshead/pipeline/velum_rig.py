@@ -28,6 +28,7 @@ from glasshead.constants import (
     VELUM_RIG_FORMAT_VERSION,
 )
 from glasshead.geometry import velum as evaluator
+from glasshead.pipeline.outputs import load_built_meshes
 
 OUTPUT_NAME = VELUM_RIG_FILE
 #: Bump when the build changes in a way that must rebuild the output.
@@ -54,23 +55,7 @@ CHECK_OPENINGS = 201
 def load_meshes(assets_dir):
     """dict name -> (vertices (n, 3) float64, faces (m, 3) int64, sha256) of MESHES, from the
     manifest in assets_dir. ValueError naming a mesh that is not there."""
-    import trimesh
-
-    path = Path(assets_dir) / MANIFEST_FILE
-    if not path.is_file():
-        raise FileNotFoundError(f"{path} is missing: build the anatomy first")
-    entries = {m["name"]: m for m in json.loads(path.read_text()).get("meshes", [])}
-    meshes = {}
-    for name in MESHES:
-        if name not in entries:
-            raise ValueError(f"{path} lists no mesh {name!r}")
-        file = Path(assets_dir) / entries[name]["file"]
-        if not file.is_file():
-            raise ValueError(f"{file} (mesh {name!r} of {path}) is missing")
-        mesh = trimesh.load(file, force="mesh", process=False)  # keeps the vertex order
-        meshes[name] = (np.asarray(mesh.vertices, dtype=np.float64),
-                        np.asarray(mesh.faces, dtype=np.int64), entries[name].get("sha256"))
-    return meshes
+    return load_built_meshes(assets_dir, MESHES)
 
 
 def rest_share(raised, rest, lowered):
