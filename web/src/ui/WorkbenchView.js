@@ -21,6 +21,7 @@ import { createHeadStage } from './headStage.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
 import { DiagramSection } from '../scene/DiagramSection.js';
 import { drawDiagram } from './DiagramPanel.js';
+import { WorkbenchCues } from './WorkbenchCues.js';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
 const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
@@ -252,6 +253,10 @@ export class WorkbenchView {
 		this.panelDraws = 0;
 		this.unregister.push( articulation.onCorrected( () => this.drawPanels() ) );
 		this.drawPanels();
+		// After the panels' hook, so that the cues read this frame's constriction.
+		this.cues = new WorkbenchCues( { viewer: this.viewer, articulation, diagram: this.diagram, landmarks: this.landmarks } );
+		this.unregister.push( () => this.cues.dispose() );
+		this.side.querySelector( '[aria-label="View"]' ).after( this.cues.element );
 
 	}
 

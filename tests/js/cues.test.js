@@ -1,0 +1,162 @@
+// The cues' kernels (web/src/core/cues.js): nasal strength from the port's area, turbulence from
+// the constriction's width, the air's paths and the particle layouts.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+
+import {
+	EXIT_MM, NASAL_FULL_AREA_MM2, NASAL_PASSAGE, TURBULENCE_WIDTH_MM, createPath, hash01, layoutFlow, layoutRings,
+	layoutSwirl, nasalPath, nasalStrength, oralPath, pointAlong, turbulenceStrength,
+} from '../../web/src/core/cues.js';
+import { fewestGarbageCollections } from './support/garbage.js';
+
+const TOLERANCE = 1e-9;
+
+// A tract midline from the lips (40, 0) back along the palate and down the pharynx to the larynx.
+const MIDLINE = Float64Array.of( 40, 0, 20, 5, 0, 10, - 30, 8, - 50, 0, - 52, - 20, - 50, - 50 );
+const GLOTTIS = [ - 40, - 60 ];
+const PORT = [ - 58, - 5 ];
+
+test( 'a raised velum (no port) gives no nasal flow; it grows with the area up to full strength', () => {
+
+	assert.equal( nasalStrength( 0 ), 0 );
+	assert.equal( nasalStrength( - 1 ), 0 );
+	assert.equal( nasalStrength( NaN ), 0 );
+	assert.ok( Math.abs( nasalStrength( 28.232 ) - 0.28232 ) < TOLERANCE );
+	assert.ok( nasalStrength( 56.5 ) > nasalStrength( 28.2 ) );
+	assert.equal( nasalStrength( NASAL_FULL_AREA_MM2 ), 1 );
+	assert.equal( nasalStrength( 101.95 ), 1 );
+
+} );
+
+test( 'a constriction of 2 mm or wider is not turbulent; narrower ones are, more as they close', () => {
+
+	assert.equal( turbulenceStrength( TURBULENCE_WIDTH_MM ), 0 );
+	assert.equal( turbulenceStrength( 8 ), 0 );
+	assert.equal( turbulenceStrength( Infinity ), 0 );
+	assert.equal( turbulenceStrength( NaN ), 0 );
+	assert.ok( turbulenceStrength( 1.9 ) > 0.35 );
+	assert.ok( turbulenceStrength( 0.5 ) > turbulenceStrength( 1.5 ) );
+	assert.equal( turbulenceStrength( 0 ), 1 );
+
+} );
+
+test( 'a point along an L-shaped path is found by arc length, with its tangent, clamped at the ends', () => {
+
+	const path = createPath( [ 0, 0, 10, 0, 10, 5 ] );
+	assert.equal( path.total, 15 );
+	const target = new Float64Array( 4 );
+	assert.deepEqual( Array.from( pointAlong( path, 4, target ) ), [ 4, 0, 1, 0 ] );
+	assert.deepEqual( Array.from( pointAlong( path, 12, target ) ), [ 10, 2, 0, 1 ] );
+	assert.deepEqual( Array.from( pointAlong( path, - 3, target ) ), [ 0, 0, 1, 0 ] );
+	assert.deepEqual( Array.from( pointAlong( path, 99, target ) ), [ 10, 5, 0, 1 ] );
+	assert.throws( () => createPath( [ 1, 2 ] ), RangeError );
+
+} );
+
+test( 'the oral path runs from the glottis up the tract and out beyond the lips', () => {
+
+	const path = oralPath( MIDLINE, GLOTTIS );
+	const p = path.points;
+	assert.deepEqual( [ p[ 0 ], p[ 1 ] ], GLOTTIS );
+	assert.deepEqual( [ p[ 2 ], p[ 3 ] ], [ - 50, - 50 ], 'then the midline from the larynx' );
+	const n = p.length / 2;
+	assert.deepEqual( [ p[ 2 * n - 4 ], p[ 2 * n - 3 ] ], [ 40, 0 ], 'through the lips' );
+	const exit = Math.hypot( p[ 2 * n - 2 ] - 40, p[ 2 * n - 1 ] );
+	assert.ok( Math.abs( exit - EXIT_MM ) < TOLERANCE );
+	assert.ok( p[ 2 * n - 2 ] > 40, 'and out in front of them' );
+
+} );
+
+test( 'the nasal path goes up the pharynx, through the port and out of the nose, not into the mouth', () => {
+
+	const path = nasalPath( MIDLINE, GLOTTIS, PORT );
+	const p = Array.from( path.points );
+	assert.deepEqual( p.slice( 0, 2 ), GLOTTIS );
+	const port = p.findIndex( ( v, k ) => k % 2 === 0 && v === PORT[ 0 ] && p[ k + 1 ] === PORT[ 1 ] );
+	assert.ok( port > 0, 'passes through the port' );
+	for ( let k = 0; k < port; k += 2 ) assert.ok( p[ k + 1 ] <= PORT[ 1 ], `point ${ k / 2 } stays below the port` );
+	assert.deepEqual( p.slice( port + 2, port + 2 + NASAL_PASSAGE.length ), NASAL_PASSAGE );
+	assert.ok( p[ p.length - 2 ] > NASAL_PASSAGE.at( - 2 ), 'out in front of the nostrils' );
+
+} );
+
+test( 'flow particles lie on their path within the spread, head bright and trails fading', () => {
+
+	const path = createPath( [ 0, 0, 100, 0 ] );
+	const count = 10, trail = 4;
+	const positions = new Float32Array( 3 * count * trail );
+	const colors = new Float32Array( 4 * count * trail );
+	const dots = layoutFlow( path, { count, trail, time: 0.3, speed: 50, spacingMm: 2, spreadMm: 1.5 }, positions, colors, 0, 4, 3 );
+	assert.equal( dots, count * trail );
+	for ( let d = 0; d < dots; d ++ ) {
+
+		assert.ok( positions[ 3 * d ] >= 0 && positions[ 3 * d ] <= 100 );
+		assert.ok( Math.abs( positions[ 3 * d + 1 ] ) <= 1.5 + 1e-6, 'within the spread across the path' );
+		assert.equal( positions[ 3 * d + 2 ], 0, 'in the mid-sagittal plane' );
+		const alpha = colors[ 4 * d + 3 ];
+		assert.ok( alpha >= 0 && alpha <= 1 );
+		if ( d % trail ) assert.ok( alpha <= colors[ 4 * ( d - d % trail ) + 3 ] + 1e-6, 'a trail dot is no brighter than its head' );
+
+	}
+
+	// Particle 0 moved speed * time along the path (its head, 15 mm from the start, is inside).
+	assert.ok( Math.abs( positions[ 0 ] - 15 ) < 1e-4 );
+
+} );
+
+test( 'a turbulent swirl stays near the constriction, wider when narrower, and jitters over time', () => {
+
+	const count = 30;
+	const a = new Float32Array( 3 * count ), b = new Float32Array( 3 * count ), alphas = new Float32Array( count );
+	const extent = ( positions ) => Math.max( ...Array.from( { length: count }, ( _, i ) => Math.hypot( positions[ 3 * i ] - 5, positions[ 3 * i + 1 ] - 7 ) ) );
+	layoutSwirl( 5, 7, { count, time: 1, strength: 1, radiusMm: 4 }, a, alphas );
+	assert.ok( extent( a ) <= 4 * 1.25 + 1e-6, 'within the radius and its jitter' );
+	layoutSwirl( 5, 7, { count, time: 1, strength: 0, radiusMm: 4 }, b, alphas );
+	assert.ok( extent( b ) < extent( a ) );
+	layoutSwirl( 5, 7, { count, time: 1.05, strength: 1, radiusMm: 4 }, b, alphas );
+	assert.notDeepEqual( Array.from( a ), Array.from( b ), 'it moves' );
+
+} );
+
+test( 'voice rings widen from the inner to the outer radius and fade as they grow', () => {
+
+	const rings = layoutRings( 0, 2, 1, 3, 15, new Float64Array( 4 ) );
+	assert.deepEqual( Array.from( rings ), [ 3, 0, 9, 0.5 ] );
+	const later = layoutRings( 0.25, 2, 1, 3, 15, new Float64Array( 4 ) );
+	assert.ok( later[ 0 ] > 3 && later[ 2 ] > 9 && later[ 3 ] < 0.5 );
+
+} );
+
+test( 'the hash is deterministic and in [0, 1)', () => {
+
+	for ( let n = - 50; n < 50; n ++ ) {
+
+		const value = hash01( n );
+		assert.equal( value, hash01( n ) );
+		assert.ok( value >= 0 && value < 1 );
+
+	}
+
+} );
+
+test( 'the per-frame layouts allocate nothing', async () => {
+
+	const path = oralPath( MIDLINE, GLOTTIS );
+	const positions = new Float32Array( 3 * 200 ), colors = new Float32Array( 4 * 200 ), rings = new Float64Array( 6 );
+	// The options are made once and updated, as scene/CueLayer.js does.
+	const flow = { count: 30, trail: 6, time: 0, speed: 70, spacingMm: 1.8, spreadMm: 2 };
+	const swirl = { count: 40, time: 0, strength: 0.8, radiusMm: 5 };
+	assert.equal( await fewestGarbageCollections( () => {
+
+		for ( let k = 0; k < 20000; k ++ ) {
+
+			flow.time = swirl.time = k / 60;
+			layoutFlow( path, flow, positions, colors, 0, 4, 3 );
+			layoutSwirl( 0, 0, swirl, positions, colors, 0, 4, 3 );
+			layoutRings( k / 60, 3, 0.75, 3, 15, rings );
+
+		}
+
+	} ), 0 );
+
+} );

@@ -1,0 +1,229 @@
+// The cues a child can see, as pure numbers: the strength of the nasal flow from the nasal
+// port's area, the strength of the turbulence from the constriction's width, the paths the air
+// takes in the mid-sagittal plane (from the glottis along the tract's midline out of the lips;
+// up the pharynx, through the nasal port and out of the nose) and where each particle, trail dot
+// and swirl dot stands at a time. Paths are built once (allocating); the per-frame layouts write
+// into given arrays and allocate nothing. Drawing is scene/CueLayer.js.
+
+/** Below this constriction width (mm) the oral flow is turbulent (fricatives: about 1 mm). */
+export const TURBULENCE_WIDTH_MM = 2;
+/** Nasal port area (mm²) of a full-strength nasal flow: the fully lowered velum's port, 102 mm². */
+export const NASAL_FULL_AREA_MM2 = 100;
+/** How far the oral path goes on beyond the lips, and the nasal one beyond the nostrils (mm). */
+export const EXIT_MM = 22;
+
+/**
+ * The nose's passage above the palate, after the port (x y, mm, project frame): schematic, as
+ * there is no nasal cavity mesh. Up the nasopharynx, forward over the hard palate, out of the
+ * nostrils in front of the upper lip.
+ */
+export const NASAL_PASSAGE = Object.freeze( [ - 56, 20, - 40, 30, - 10, 32, 20, 30, 38, 20 ] );
+
+/** 0 for a closed port, rising with its area to 1 at NASAL_FULL_AREA_MM2. */
+export function nasalStrength( areaMm2 ) {
+
+	if ( ! ( areaMm2 > 0 ) ) return 0;
+	return Math.min( 1, areaMm2 / NASAL_FULL_AREA_MM2 );
+
+}
+
+/** 0 for a constriction of TURBULENCE_WIDTH_MM or wider; from 0.35 to 1 as it narrows to closure. */
+export function turbulenceStrength( widthMm ) {
+
+	if ( ! ( widthMm < TURBULENCE_WIDTH_MM ) ) return 0;
+	const narrow = 1 - Math.max( 0, widthMm ) / TURBULENCE_WIDTH_MM;
+	return 0.35 + 0.65 * narrow;
+
+}
+
+/** A deterministic number in [0, 1) for an integer (a hash: the same on every machine). */
+export function hash01( n ) {
+
+	let h = Math.imul( n | 0, 0x9e3779b1 ) ^ 0x85ebca6b;
+	h = Math.imul( h ^ ( h >>> 15 ), 0x2c1b3c6d );
+	h = Math.imul( h ^ ( h >>> 12 ), 0x297a2d39 );
+	return ( ( h ^ ( h >>> 15 ) ) >>> 0 ) / 4294967296;
+
+}
+
+/**
+ * A polyline with its arc lengths, for sampling by distance. Allocates.
+ * @param {ArrayLike<number>} points x y pairs, at least two points
+ * @returns {{ points: Float64Array, lengths: Float64Array, total: number }}
+ */
+export function createPath( points ) {
+
+	if ( points.length < 4 || points.length % 2 ) throw new RangeError( 'a path needs at least two x y points' );
+	const copy = Float64Array.from( points );
+	const n = copy.length / 2;
+	const lengths = new Float64Array( n );
+	for ( let k = 1; k < n; k ++ ) lengths[ k ] = lengths[ k - 1 ] + Math.hypot( copy[ 2 * k ] - copy[ 2 * k - 2 ], copy[ 2 * k + 1 ] - copy[ 2 * k - 1 ] );
+	return { points: copy, lengths, total: lengths[ n - 1 ] };
+
+}
+
+/**
+ * The point at arc length s (clamped to the path) and the unit tangent there, into
+ * target[ 0..3 ] as x, y, tx, ty.
+ */
+export function pointAlong( path, s, target ) {
+
+	const { points, lengths } = path;
+	const n = lengths.length;
+	const d = Math.min( path.total, Math.max( 0, s ) );
+	let lo = 0, hi = n - 1;
+	while ( hi - lo > 1 ) {
+
+		const mid = ( lo + hi ) >> 1;
+		if ( lengths[ mid ] <= d ) lo = mid;
+		else hi = mid;
+
+	}
+
+	const span = lengths[ hi ] - lengths[ lo ];
+	const f = span > 0 ? ( d - lengths[ lo ] ) / span : 0;
+	const dx = points[ 2 * hi ] - points[ 2 * lo ], dy = points[ 2 * hi + 1 ] - points[ 2 * lo + 1 ];
+	const length = Math.sqrt( dx * dx + dy * dy ) || 1; // not Math.hypot, which allocates its arguments
+	target[ 0 ] = points[ 2 * lo ] + dx * f;
+	target[ 1 ] = points[ 2 * lo + 1 ] + dy * f;
+	target[ 2 ] = dx / length;
+	target[ 3 ] = dy / length;
+	return target;
+
+}
+
+/**
+ * The oral path: from the glottis, along the tract's midline from the larynx to the lips, and
+ * EXIT_MM on beyond the lips. Allocates.
+ * @param {Float64Array} midline x y per sample from the lips to the larynx (tractMidline)
+ * @param {ArrayLike<number>} glottis x y (mm)
+ */
+export function oralPath( midline, glottis ) {
+
+	const n = midline.length / 2;
+	const points = [ glottis[ 0 ], glottis[ 1 ] ];
+	for ( let k = n - 1; k >= 0; k -- ) points.push( midline[ 2 * k ], midline[ 2 * k + 1 ] );
+	const dx = midline[ 0 ] - midline[ 2 ], dy = midline[ 1 ] - midline[ 3 ];
+	const length = Math.hypot( dx, dy ) || 1;
+	points.push( midline[ 0 ] + EXIT_MM * dx / length, midline[ 1 ] + EXIT_MM * dy / length );
+	return createPath( points );
+
+}
+
+/**
+ * The nasal path: from the glottis up the midline's pharyngeal part (the samples behind and below
+ * the port), through the nasal port, along NASAL_PASSAGE and EXIT_MM out of the nostrils. Allocates.
+ * @param {Float64Array} midline x y per sample from the lips to the larynx (tractMidline)
+ * @param {ArrayLike<number>} glottis x y (mm)
+ * @param {ArrayLike<number>} port x y of the nasal port (mm)
+ */
+export function nasalPath( midline, glottis, port ) {
+
+	const points = [ glottis[ 0 ], glottis[ 1 ] ];
+	for ( let k = midline.length / 2 - 1; k >= 0; k -- ) {
+
+		const x = midline[ 2 * k ], y = midline[ 2 * k + 1 ];
+		if ( y > port[ 1 ] - 4 ) break; // the midline turns forward into the mouth here
+		points.push( x, y );
+
+	}
+
+	points.push( port[ 0 ], port[ 1 ], ...NASAL_PASSAGE );
+	const m = NASAL_PASSAGE.length;
+	const dx = NASAL_PASSAGE[ m - 2 ] - NASAL_PASSAGE[ m - 4 ], dy = NASAL_PASSAGE[ m - 1 ] - NASAL_PASSAGE[ m - 3 ];
+	const length = Math.hypot( dx, dy );
+	points.push( NASAL_PASSAGE[ m - 2 ] + EXIT_MM * dx / length, NASAL_PASSAGE[ m - 1 ] + EXIT_MM * dy / length );
+	return createPath( points );
+
+}
+
+/** Fade over the first and last `edgeMm` of a path: 0 at its ends, 1 inside. */
+function edgeFade( s, total, edgeMm ) {
+
+	return Math.max( 0, Math.min( 1, s / edgeMm, ( total - s ) / edgeMm ) );
+
+}
+
+const scratch = new Float64Array( 4 );
+
+/**
+ * Particles flowing along a path, each with a fading trail: particle i's head is at arc length
+ * ( i / count + time * speed / total ) mod 1 of the path, its trail dots `spacingMm` apart behind
+ * it, each dot offset across the path by up to ±spreadMm (fixed per particle), so that the air is
+ * a stream. Writes count * trail dots: x y z into positions[ 3 * ( first + dot ) ] and an alpha
+ * (head 1, fading along the trail and at the path's ends, times `alpha`) into
+ * alphas[ alphaStride * ( first + dot ) + alphaOffset ]. Allocates nothing.
+ * @returns {number} the dots written
+ */
+export function layoutFlow( path, { count, trail, time, speed, spacingMm, spreadMm, alpha = 1, seed = 0 }, positions, alphas, first = 0, alphaStride = 1, alphaOffset = 0 ) {
+
+	const total = path.total;
+	let dot = first;
+	for ( let i = 0; i < count; i ++ ) {
+
+		const phase = i / count + time * speed / total;
+		const head = ( phase - Math.floor( phase ) ) * total;
+		const across = ( 2 * hash01( seed + i ) - 1 ) * spreadMm;
+		for ( let j = 0; j < trail; j ++ ) {
+
+			const s = head - j * spacingMm;
+			pointAlong( path, s, scratch );
+			positions[ 3 * dot ] = scratch[ 0 ] - scratch[ 3 ] * across;
+			positions[ 3 * dot + 1 ] = scratch[ 1 ] + scratch[ 2 ] * across;
+			positions[ 3 * dot + 2 ] = 0;
+			alphas[ alphaStride * dot + alphaOffset ] = alpha * ( 1 - j / trail ) * edgeFade( s, total, 6 );
+			dot ++;
+
+		}
+
+	}
+
+	return dot - first;
+
+}
+
+/**
+ * A turbulent patch: `count` dots swirling about (cx, cy) on circles of up to radiusMm (times
+ * strength, at least a third of it), each jittering anew 30 times a second. Positions and alphas
+ * as layoutFlow. Allocates nothing.
+ * @returns {number} the dots written
+ */
+export function layoutSwirl( cx, cy, { count, time, strength, radiusMm, seed = 0 }, positions, alphas, first = 0, alphaStride = 1, alphaOffset = 0 ) {
+
+	const tick = Math.floor( time * 30 );
+	for ( let i = 0; i < count; i ++ ) {
+
+		const dot = first + i;
+		const r = radiusMm * ( 0.33 + 0.67 * strength ) * ( 0.25 + 0.75 * hash01( seed + i ) );
+		const turn = ( hash01( seed + 7919 + i ) < 0.5 ? - 1 : 1 ) * ( 5 + 6 * hash01( seed + 104729 + i ) );
+		const angle = 2 * Math.PI * hash01( seed + 31 * i + 3 ) + turn * time;
+		const jitter = 0.35 * r;
+		positions[ 3 * dot ] = cx + r * Math.cos( angle ) + jitter * ( hash01( seed + tick * 131 + 2 * i ) - 0.5 );
+		positions[ 3 * dot + 1 ] = cy + r * Math.sin( angle ) + jitter * ( hash01( seed + tick * 131 + 2 * i + 1 ) - 0.5 );
+		positions[ 3 * dot + 2 ] = 0;
+		alphas[ alphaStride * dot + alphaOffset ] = 0.55 + 0.45 * hash01( seed + tick * 17 + i );
+
+	}
+
+	return count;
+
+}
+
+/**
+ * Expanding rings of the voice's buzz: ring k of `count` grows from innerMm to outerMm over
+ * periodS, staggered; writes its radius and alpha (fading as it grows) into target[ 2k ], [ 2k+1 ].
+ */
+export function layoutRings( time, count, periodS, innerMm, outerMm, target ) {
+
+	for ( let k = 0; k < count; k ++ ) {
+
+		const phase = time / periodS + k / count;
+		const f = phase - Math.floor( phase );
+		target[ 2 * k ] = innerMm + ( outerMm - innerMm ) * f;
+		target[ 2 * k + 1 ] = ( 1 - f ) * Math.min( 1, 6 * f );
+
+	}
+
+	return target;
+
+}
