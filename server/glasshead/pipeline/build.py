@@ -19,6 +19,7 @@ from pathlib import Path
 
 from glasshead.constants import MANIFEST_FILE, MANIFEST_FORMAT_VERSION
 from glasshead.pipeline import sources
+from glasshead.pipeline.outputs import read_json, write_json
 
 MANIFEST = MANIFEST_FILE
 REPORT = "build-report.json"
@@ -123,22 +124,6 @@ STEPS = [
     ("velum-rig", velum_rig_step),
     ("landmarks", landmarks_step),
 ]
-
-
-def write_json(path, document):
-    """Write JSON atomically (temporary file, then rename)."""
-    path = Path(path)
-    temporary = path.with_name(path.name + ".tmp")
-    temporary.write_text(json.dumps(document, indent=1))
-    temporary.replace(path)
-
-
-def read_json(path):
-    """The JSON document at ``path``, or {} when it is missing or unreadable."""
-    try:
-        return json.loads(Path(path).read_text())
-    except (OSError, json.JSONDecodeError):
-        return {}
 
 
 def read_manifest(assets_dir):

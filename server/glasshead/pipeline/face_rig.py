@@ -29,6 +29,7 @@ from glasshead.geometry import face_teeth, skin_weights
 from glasshead.geometry.face_rig import LIP_MESHES, LIP_PARAMETER_NAMES, MESH_NAMES
 from glasshead.pipeline import face_rig_sources, face_rig_teeth, face_rig_weights
 from glasshead.pipeline.face_rig_sources import FaceSources, load_face_sources
+from glasshead.pipeline.outputs import read_json
 
 OUTPUT_NAME = FACE_RIG_FILE
 #: Bump when the build changes in a way that must rebuild the output.
@@ -203,13 +204,8 @@ def build_step(ctx):
     data_dir, assets_dir = Path(ctx.data_dir), Path(ctx.assets_dir)
     out = assets_dir / OUTPUT_NAME
     key = input_key(data_dir, assets_dir)
-    existing = None
-    if out.is_file():
-        try:
-            existing = json.loads(out.read_text())
-        except json.JSONDecodeError:
-            existing = None
-    skipped = bool(existing) and existing.get("inputs_sha256") == key
+    existing = read_json(out)
+    skipped = existing.get("inputs_sha256") == key
     rig = existing if skipped else {**build_face_rig(data_dir, assets_dir), "inputs_sha256": key}
     if not skipped:
         write_face_rig(rig, assets_dir)

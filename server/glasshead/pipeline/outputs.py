@@ -4,16 +4,28 @@ import json
 from pathlib import Path
 
 
+def write_json(path, document):
+    """Write JSON atomically (temporary file, then rename)."""
+    path = Path(path)
+    temporary = path.with_name(path.name + ".tmp")
+    temporary.write_text(json.dumps(document, indent=1))
+    temporary.replace(path)
+
+
+def read_json(path):
+    """The JSON object at ``path``, or {} when it is missing, unreadable or not an object."""
+    try:
+        document = json.loads(Path(path).read_text())
+    except (OSError, json.JSONDecodeError):
+        return {}
+    return document if isinstance(document, dict) else {}
+
+
 def current_output(path, digest, builder, format_version):
     """The JSON document at ``path`` when it was built from inputs with sha256 ``digest`` by this
     ``builder`` version in this ``format_version``, so the step can skip itself; else None (also
     when the file is missing or unreadable)."""
-    try:
-        existing = json.loads(Path(path).read_text())
-    except (OSError, json.JSONDecodeError):
-        return None
-    if not isinstance(existing, dict):
-        return None
+    existing = read_json(path)
     source = existing.get("source")
     if isinstance(source, dict) and source.get("sha256") == digest \
             and existing.get("builder") == builder \

@@ -28,7 +28,7 @@ from glasshead.constants import (
     VELUM_RIG_FORMAT_VERSION,
 )
 from glasshead.geometry import velum as evaluator
-from glasshead.pipeline.outputs import load_built_meshes
+from glasshead.pipeline.outputs import load_built_meshes, read_json
 
 OUTPUT_NAME = VELUM_RIG_FILE
 #: Bump when the build changes in a way that must rebuild the output.
@@ -235,13 +235,8 @@ def build_step(ctx):
     assets_dir = Path(ctx.assets_dir)
     out = assets_dir / OUTPUT_NAME
     key = input_key(assets_dir)
-    existing = None
-    if out.is_file():
-        try:
-            existing = json.loads(out.read_text())
-        except json.JSONDecodeError:
-            existing = None
-    if existing and existing.get("inputs_sha256") == key:
+    existing = read_json(out)
+    if existing.get("inputs_sha256") == key:
         return {"step": "velum-rig", "file": str(out), "skipped": True,
                 **existing.get("report", {})}
     definition, report = build_velum_rig(assets_dir)

@@ -74,6 +74,9 @@ export function createVelumRig( definition ) {
 		raised: arrays[ 0 ],
 		rest: arrays[ 1 ],
 		lowered: arrays[ 2 ],
+		poses: arrays,
+		/** Scratch: the share u of the way between the two poses of the last segment(). */
+		share: new Float64Array( 1 ),
 		portVertices: vertices,
 		portWeights: Float64Array.from( port.weights ),
 		portNormals: Float64Array.from( port.normals ),
@@ -99,6 +102,24 @@ function checkOpening( opening ) {
 
 	if ( typeof opening !== 'number' || ! Number.isFinite( opening ) ) throw new RangeError( `${ VELUM_PARAMETER } = ${ opening } is not a finite number` );
 	if ( opening < 0 || opening > 1 ) throw new RangeError( `${ VELUM_PARAMETER } = ${ opening } is outside its range [0, 1] ratio` );
+
+}
+
+// The first of the two poses `opening` lies between (0: raised and rest, 1: rest and lowered);
+// its share u of the way from that pose goes into rig.share[ 0 ]. The twin of velum.py's _segment.
+function segment( rig, opening ) {
+
+	checkOpening( opening );
+	const r = rig.restShare;
+	if ( opening <= r ) {
+
+		rig.share[ 0 ] = opening / r;
+		return 0;
+
+	}
+
+	rig.share[ 0 ] = ( opening - r ) / ( 1 - r );
+	return 1;
 
 }
 
@@ -129,12 +150,8 @@ function samplePoint( rig, k, c, a, b, u ) {
  */
 export function poseVelum( rig, opening, out ) {
 
-	checkOpening( opening );
-	const r = rig.restShare;
-	const lower = opening <= r;
-	const a = lower ? rig.raised : rig.rest;
-	const b = lower ? rig.rest : rig.lowered;
-	const u = lower ? opening / r : ( opening - r ) / ( 1 - r );
+	const first = segment( rig, opening );
+	const a = rig.poses[ first ], b = rig.poses[ first + 1 ], u = rig.share[ 0 ];
 	const n = 3 * rig.vertexCount;
 	for ( let i = 0; i < n; i ++ ) out[ i ] = a[ i ] * ( 1 - u ) + b[ i ] * u;
 	return out;
@@ -151,12 +168,8 @@ export function poseVelum( rig, opening, out ) {
  */
 export function nasalPortArea( rig, opening ) {
 
-	checkOpening( opening );
-	const r = rig.restShare;
-	const lower = opening <= r;
-	const a = lower ? rig.raised : rig.rest;
-	const b = lower ? rig.rest : rig.lowered;
-	const u = lower ? opening / r : ( opening - r ) / ( 1 - r );
+	const first = segment( rig, opening );
+	const a = rig.poses[ first ], b = rig.poses[ first + 1 ], u = rig.share[ 0 ];
 	const cuts = rig.cuts;
 	cuts.fill( 0 );
 	const wall = rig.portWall;
