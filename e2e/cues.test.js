@@ -5,7 +5,7 @@
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
 describe( 'the cues', { timeout: 240_000 }, () => {
 
@@ -15,10 +15,7 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openPage( browser, { width: 1920, height: 1080 } );
-		await page.goto( `${ server.baseUrl }/#/workbench` );
-		await waitForLoaded( page );
-		await settle( page );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1920, height: 1080 } );
 
 	} );
 

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { decodePng } from './png.js';
-import { launchBrowser, openPage, readDebug, saveScreenshot, SCREENSHOT_DIR, settle, startServer, waitForLoaded } from './harness.js';
+import { launchBrowser, openLoaded, readDebug, saveScreenshot, SCREENSHOT_DIR, settle, startServer } from './harness.js';
 
 describe( 'the diagram', { timeout: 240_000 }, () => {
 
@@ -16,10 +16,7 @@ describe( 'the diagram', { timeout: 240_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openPage( browser, { width: 1920, height: 1080 } );
-		await page.goto( `${ server.baseUrl }/#/workbench` );
-		await waitForLoaded( page );
-		await settle( page );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1920, height: 1080 } );
 
 	} );
 

@@ -4,7 +4,7 @@
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
 describe( 'the eyes', { timeout: 240_000 }, () => {
 
@@ -14,10 +14,7 @@ describe( 'the eyes', { timeout: 240_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openPage( browser );
-		await page.goto( `${ server.baseUrl }/#/` );
-		await waitForLoaded( page );
-		await settle( page );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/` );
 
 	} );
 

@@ -207,6 +207,20 @@ export async function settle( page ) {
 
 }
 
+/**
+ * A new page at `url` (a view of the served app, e.g. `${ server.baseUrl }/#/workbench`) once it has loaded and
+ * settled; `size` as openPage's.
+ */
+export async function openLoaded( browser, url, size ) {
+
+	const page = await openPage( browser, size );
+	await page.goto( url );
+	await waitForLoaded( page );
+	await settle( page );
+	return page;
+
+}
+
 /** Save a screenshot of the page to e2e/screenshots/<name>.png and return its path. */
 export async function saveScreenshot( page, name ) {
 

@@ -5,7 +5,7 @@
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { decodePng, compareImages } from './png.js';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { launchBrowser, openLoaded, openPage, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
 describe( 'the head view', { timeout: 240_000 }, () => {
 
@@ -19,10 +19,7 @@ describe( 'the head view', { timeout: 240_000 }, () => {
 		assert.equal( response.status, 200, `GET /api/v1/anatomy answered ${ response.status }: ${ body }` );
 		anatomy = JSON.parse( body );
 		browser = await launchBrowser();
-		page = await openPage( browser );
-		await page.goto( `${ server.baseUrl }/#/` );
-		await waitForLoaded( page );
-		await settle( page );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/` );
 
 	} );
 

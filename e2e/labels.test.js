@@ -4,7 +4,7 @@
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
 describe( 'the label layer', { timeout: 240_000 }, () => {
 
@@ -15,10 +15,7 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 		server = await startServer();
 		landmarks = await ( await fetch( `${ server.baseUrl }/api/v1/anatomy/landmarks` ) ).json();
 		browser = await launchBrowser();
-		page = await openPage( browser, { width: 1920, height: 1080 } );
-		await page.goto( `${ server.baseUrl }/?still#/` ); // no blinks: a still head must draw nothing
-		await waitForLoaded( page );
-		await settle( page );
+		page = await openLoaded( browser, `${ server.baseUrl }/?still#/`, { width: 1920, height: 1080 } ); // no blinks: a still head must draw nothing
 
 	} );
 

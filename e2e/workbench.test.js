@@ -5,7 +5,7 @@
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { compareImages, decodePng } from './png.js';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
 /** Poses of the screenshots (rig parameter names, mm and degrees). */
 const POSES = Object.freeze( {
@@ -27,10 +27,7 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		assert.equal( response.status, 200, `GET /api/v1/tongue/rig answered ${ response.status }` );
 		rig = await response.json();
 		browser = await launchBrowser();
-		page = await openPage( browser );
-		await page.goto( `${ server.baseUrl }/#/workbench` );
-		await waitForLoaded( page );
-		await settle( page );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench` );
 
 	} );
 

@@ -27,6 +27,39 @@ def built_assets(data_dir) -> Path:
     return assets
 
 
+@pytest.fixture
+def start_app(tmp_path, monkeypatch):
+    """``start_app(assets=None)``: a new app on ``assets`` (default: the configured assets
+    directory) and a fresh SQLite database, started as the server starts (migrations run, assets
+    loaded); returns (app, client). Every app started is stopped after the test."""
+    from fastapi.testclient import TestClient
+
+    from glasshead.api.app import create_app
+
+    started = []
+
+    def start(assets=None):
+        if assets is not None:
+            monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(assets))
+        database = tmp_path / f"app-{len(started)}.sqlite3"
+        monkeypatch.setenv("GLASSHEAD_DATABASE_URL", f"sqlite:///{database}")
+        monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
+        get_settings.cache_clear()
+        try:
+            app = create_app()
+        finally:
+            get_settings.cache_clear()
+        client = TestClient(app)
+        client.__enter__()
+        started.append(client)
+        return app, client
+
+    yield start
+    for client in reversed(started):
+        client.__exit__(None, None, None)
+    get_settings.cache_clear()
+
+
 @pytest.fixture(scope="session")
 def manifest(built_assets) -> dict:
     return json.loads((built_assets / "manifest.json").read_text())

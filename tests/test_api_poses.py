@@ -1,10 +1,6 @@
 """Saved poses over HTTP: create, read, list by name, replace, update, delete, and bad input."""
 
 import pytest
-from fastapi.testclient import TestClient
-
-from glasshead.api.app import create_app
-from glasshead.settings import get_settings
 
 API = "/api/v1"
 TIP_UP = {"name": "tip up", "description": "alveolar closure",
@@ -12,13 +8,8 @@ TIP_UP = {"name": "tip up", "description": "alveolar closure",
 
 
 @pytest.fixture
-def client(tmp_path, monkeypatch):
-    monkeypatch.setenv("GLASSHEAD_DATABASE_URL", f"sqlite:///{tmp_path / 'poses.sqlite3'}")
-    monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
-    get_settings.cache_clear()
-    with TestClient(create_app()) as client:
-        yield client
-    get_settings.cache_clear()
+def client(start_app):
+    return start_app()[1]
 
 
 def test_a_saved_pose_is_created_and_read_back(client):

@@ -6,12 +6,9 @@ import os
 import shutil
 
 import pytest
-from fastapi.testclient import TestClient
 
-from glasshead.api.app import create_app
 from glasshead.asset_store import ASSETS, AssetStore, AssetUnavailableError
 from glasshead.constants import REBUILD_COMMAND
-from glasshead.settings import get_settings
 
 #: Every route that reads a built asset, with a request that is valid when the asset is there.
 ROUTES = {
@@ -39,17 +36,6 @@ def assets(tmp_path, built_assets):
     return copy
 
 
-def _app_client(assets, monkeypatch):
-    monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(assets))
-    monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(assets / "no-web"))
-    get_settings.cache_clear()
-    try:
-        app = create_app()
-    finally:
-        get_settings.cache_clear()
-    return app, TestClient(app)
-
-
 def _call(client, method, path, body):
     return client.post(path, json=body) if method == "post" else client.get(path)
 
@@ -58,22 +44,20 @@ def _file(name):
     return next(spec.file for spec in ASSETS if spec.name == name)
 
 
-def test_every_route_serves_from_the_one_store_loaded_at_start_up(assets, monkeypatch):
-    app, client = _app_client(assets, monkeypatch)
-    with client:
-        loads_after_start = dict(app.state.assets.loads)
-        assert loads_after_start == dict.fromkeys(loads_after_start, 1)
-        for calls in ROUTES.values():
-            for method, path, body in calls:
-                response = _call(client, method, path, body)
-                assert response.status_code == 200, (path, response.text)
-        assert app.state.assets.loads == loads_after_start
+def test_every_route_serves_from_the_one_store_loaded_at_start_up(assets, start_app):
+    app, client = start_app(assets)
+    loads_after_start = dict(app.state.assets.loads)
+    assert loads_after_start == dict.fromkeys(loads_after_start, 1)
+    for calls in ROUTES.values():
+        for method, path, body in calls:
+            response = _call(client, method, path, body)
+            assert response.status_code == 200, (path, response.text)
+    assert app.state.assets.loads == loads_after_start
 
 
-def test_health_lists_every_asset_with_its_content_hash(assets, monkeypatch):
-    _, client = _app_client(assets, monkeypatch)
-    with client:
-        body = client.get("/api/v1/health").json()
+def test_health_lists_every_asset_with_its_content_hash(assets, start_app):
+    _, client = start_app(assets)
+    body = client.get("/api/v1/health").json()
     assert body["status"] == "ok" and body["assets_built"] is True
     assert set(body["assets"]) == {spec.name for spec in ASSETS}
     for state in body["assets"].values():
@@ -120,7 +104,7 @@ def test_derived_values_are_made_once_per_version_of_their_asset(assets):
 
 @pytest.mark.parametrize("name", [spec.name for spec in ASSETS])
 @pytest.mark.parametrize("damage", ["missing", "truncated", "garbage"])
-def test_a_missing_or_corrupt_asset_answers_503_naming_it_and_the_command(assets, monkeypatch,
+def test_a_missing_or_corrupt_asset_answers_503_naming_it_and_the_command(assets, start_app,
                                                                           name, damage):
     path = assets / _file(name)
     if damage == "missing":
@@ -130,37 +114,35 @@ def test_a_missing_or_corrupt_asset_answers_503_naming_it_and_the_command(assets
     else:
         path.write_bytes(b"\x00\xffnot an asset")
     problem = "missing" if damage == "missing" else "corrupt"
-    _, client = _app_client(assets, monkeypatch)
-    with client:  # the server starts
-        health = client.get("/api/v1/health").json()
-        assert health["status"] == "degraded" and health["assets_built"] is False
-        assert health["assets"][name]["status"] == problem
-        assert _file(name) in health["assets"][name]["detail"]
-        others = [n for n in health["assets"] if n != name]
-        assert all(health["assets"][n]["status"] == "ok" for n in others)
-        for method, path_, body in ROUTES[name]:
-            response = _call(client, method, path_, body)
-            assert response.status_code == 503, (path_, response.text)
-            assert response.headers["content-type"].startswith("application/json")
-            error = response.json()
-            assert error["asset"] == name and error["file"] == _file(name)
-            assert error["problem"] == problem and error["command"] == REBUILD_COMMAND
-            assert _file(name) in error["detail"] and REBUILD_COMMAND in error["detail"]
+    _, client = start_app(assets)  # the server starts
+    health = client.get("/api/v1/health").json()
+    assert health["status"] == "degraded" and health["assets_built"] is False
+    assert health["assets"][name]["status"] == problem
+    assert _file(name) in health["assets"][name]["detail"]
+    others = [n for n in health["assets"] if n != name]
+    assert all(health["assets"][n]["status"] == "ok" for n in others)
+    for method, path_, body in ROUTES[name]:
+        response = _call(client, method, path_, body)
+        assert response.status_code == 503, (path_, response.text)
+        assert response.headers["content-type"].startswith("application/json")
+        error = response.json()
+        assert error["asset"] == name and error["file"] == _file(name)
+        assert error["problem"] == problem and error["command"] == REBUILD_COMMAND
+        assert _file(name) in error["detail"] and REBUILD_COMMAND in error["detail"]
 
 
-def test_a_repaired_asset_is_served_again_without_a_restart(assets, monkeypatch):
+def test_a_repaired_asset_is_served_again_without_a_restart(assets, start_app):
     path = assets / _file("tongue_rig")
     good = path.read_bytes()
     path.write_text("{}")
-    app, client = _app_client(assets, monkeypatch)
+    app, client = start_app(assets)
     app.state.assets.recheck_s = 0.0
-    with client:
-        assert client.get("/api/v1/tongue/rig").status_code == 503
-        path.write_bytes(good)
-        assert client.get("/api/v1/tongue/rig").status_code == 200
+    assert client.get("/api/v1/tongue/rig").status_code == 503
+    path.write_bytes(good)
+    assert client.get("/api/v1/tongue/rig").status_code == 200
 
 
-def test_no_request_fits_or_builds_anything(assets, monkeypatch):
+def test_no_request_fits_or_builds_anything(assets, monkeypatch, start_app):
     """Without a tongue rig the routes answer 503 at once; they never fit the rest shape."""
     import glasshead.pipeline.build as build
     import glasshead.pipeline.tongue_rig as tongue_rig
@@ -172,10 +154,9 @@ def test_no_request_fits_or_builds_anything(assets, monkeypatch):
     monkeypatch.setattr(tongue_rig, "build_tongue_rig", refuse)
     monkeypatch.setattr(build, "run", refuse)
     (assets / _file("tongue_rig")).unlink()
-    _, client = _app_client(assets, monkeypatch)
-    with client:
-        for method, path, body in ROUTES["tongue_rig"]:
-            assert _call(client, method, path, body).status_code == 503
+    _, client = start_app(assets)
+    for method, path, body in ROUTES["tongue_rig"]:
+        assert _call(client, method, path, body).status_code == 503
 
 
 def test_the_store_refuses_an_unknown_asset_name_and_reports_unavailable_ones(tmp_path):

@@ -6,9 +6,7 @@ import shutil
 import numpy as np
 import pytest
 import trimesh
-from fastapi.testclient import TestClient
 
-from glasshead.api.app import create_app
 from glasshead.constants import LANDMARKS_FILE
 from glasshead.geometry.landmarks import (
     closest_pair,
@@ -17,7 +15,6 @@ from glasshead.geometry.landmarks import (
     validate_landmarks,
 )
 from glasshead.pipeline.landmarks import PARTS, PLACES
-from glasshead.settings import get_settings
 
 #: mm. A landmark found on a mesh's mid-sagittal section lies on that mesh to rounding (positions
 #: are written to 1 micrometre); one placed between meshes (lips, port, pharynx) lies within the
@@ -164,19 +161,8 @@ def test_the_reader_refuses_a_damaged_document(document, damage, message):
         validate_landmarks(copy)
 
 
-def _client(assets, monkeypatch):
-    monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(assets))
-    monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(assets / "no-web"))
-    get_settings.cache_clear()
-    try:
-        return TestClient(create_app())
-    finally:
-        get_settings.cache_clear()
-
-
-def test_the_route_serves_the_built_landmarks(built_assets, document, monkeypatch):
-    with _client(built_assets, monkeypatch) as client:
-        response = client.get("/api/v1/anatomy/landmarks")
+def test_the_route_serves_the_built_landmarks(built_assets, document, start_app):
+    response = start_app(built_assets)[1].get("/api/v1/anatomy/landmarks")
     assert response.status_code == 200
     body = response.json()
     assert body["format_version"] == document["format_version"]
@@ -185,12 +171,11 @@ def test_the_route_serves_the_built_landmarks(built_assets, document, monkeypatc
 
 
 def test_without_built_landmarks_the_route_answers_503_naming_the_command(
-        tmp_path, built_assets, monkeypatch):
+        tmp_path, built_assets, start_app):
     assets = tmp_path / "assets"
     shutil.copytree(built_assets, assets)
     (assets / LANDMARKS_FILE).unlink()
-    with _client(assets, monkeypatch) as client:
-        response = client.get("/api/v1/anatomy/landmarks")
+    response = start_app(assets)[1].get("/api/v1/anatomy/landmarks")
     assert response.status_code == 503
     body = response.json()
     assert body["asset"] == "landmarks" and body["file"] == LANDMARKS_FILE

@@ -5,25 +5,16 @@ import json
 import shutil
 
 import pytest
-from fastapi.testclient import TestClient
 
-from glasshead.api.app import create_app
 from glasshead.constants import VELUM_RIG_FILE
-from glasshead.settings import get_settings
 
 API = "/api/v1"
 OUT_OF_RANGE = "params.velum_opening: 1.5 is outside [0, 1]"
 
 
 @pytest.fixture
-def client(built_assets, tmp_path, monkeypatch):
-    monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(built_assets))
-    monkeypatch.setenv("GLASSHEAD_DATABASE_URL", f"sqlite:///{tmp_path / 'poses.sqlite3'}")
-    monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
-    get_settings.cache_clear()
-    with TestClient(create_app()) as client:
-        yield client
-    get_settings.cache_clear()
+def client(built_assets, start_app):
+    return start_app(built_assets)[1]
 
 
 def _pose(params, name="nasal"):
@@ -87,23 +78,15 @@ def test_out_of_range_lip_and_tongue_values_in_a_pose_are_refused_naming_the_ran
 
 
 def test_without_a_built_velum_rig_the_velum_routes_say_what_to_run(built_assets, tmp_path,
-                                                                    monkeypatch):
+                                                                    start_app):
     assets = tmp_path / "assets"
     shutil.copytree(built_assets, assets, ignore=shutil.ignore_patterns(VELUM_RIG_FILE, "*.glb"))
-    monkeypatch.setenv("GLASSHEAD_ASSETS_DIR", str(assets))
-    monkeypatch.setenv("GLASSHEAD_DATABASE_URL", f"sqlite:///{tmp_path / 'poses.sqlite3'}")
-    monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
-    get_settings.cache_clear()
-    try:
-        with TestClient(create_app()) as client:
-            for response in (client.get(f"{API}/velum/rig"),
-                             client.post(f"{API}/tongue/surface",
-                                         json={"params": {"velum_opening": 0.5}})):
-                assert response.status_code == 503
-                body = response.json()
-                assert body["asset"] == "velum_rig" and body["file"] == VELUM_RIG_FILE
-                assert body["problem"] == "missing" and body["command"] == "glasshead build"
-            # A request without a velum parameter does not need the velum rig.
-            assert client.post(f"{API}/tongue/surface", json={"params": {}}).status_code == 200
-    finally:
-        get_settings.cache_clear()
+    _, client = start_app(assets)
+    for response in (client.get(f"{API}/velum/rig"),
+                     client.post(f"{API}/tongue/surface", json={"params": {"velum_opening": 0.5}})):
+        assert response.status_code == 503
+        body = response.json()
+        assert body["asset"] == "velum_rig" and body["file"] == VELUM_RIG_FILE
+        assert body["problem"] == "missing" and body["command"] == "glasshead build"
+    # A request without a velum parameter does not need the velum rig.
+    assert client.post(f"{API}/tongue/surface", json={"params": {}}).status_code == 200
