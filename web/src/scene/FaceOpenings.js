@@ -9,7 +9,7 @@
 
 import { BufferAttribute, BufferGeometry, Color, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
 import { boundaryLoops, domePatch, loopFrame } from '../core/openings.js';
-import { addSectionShading, TISSUE_COLORS } from './materials.js';
+import { addSectionShading, createColorPatchedMaterial, TISSUE_COLORS } from './materials.js';
 import { EYE_COLORS } from './eyeMaterials.js';
 import { buildEyeMeshes } from './Eyes.js';
 
@@ -68,34 +68,17 @@ function eyeballNormals( positions, frame ) {
 /** Material that paints the eye dome from its per-vertex `eyeCoord` (u, v in mm; s out to the lid). */
 function createEyeMaterial() {
 
-	const material = addSectionShading( new MeshStandardMaterial( { color: '#ffffff', roughness: 0.25, side: DoubleSide } ), { sectionColor: TISSUE_COLORS.skinCut } );
-	const sectionShading = material.onBeforeCompile;
-	const colors = {
-		uSclera: { value: new Color( EYE.sclera ) },
-		uLid: { value: new Color( EYE.lidShadow ) },
-	};
-	material.onBeforeCompile = ( shader, renderer ) => {
-
-		sectionShading( shader, renderer );
-		Object.assign( shader.uniforms, colors );
-		shader.vertexShader = shader.vertexShader
-			.replace( '#include <common>', '#include <common>\nattribute vec3 eyeCoord;\nvarying vec3 vEyeCoord;' )
-			.replace( '#include <begin_vertex>', '#include <begin_vertex>\nvEyeCoord = eyeCoord;' );
-		shader.fragmentShader = shader.fragmentShader
-			.replace( '#include <common>', `#include <common>
-varying vec3 vEyeCoord;
-uniform vec3 uSclera, uLid;` )
-			.replace( '#include <color_fragment>', `#include <color_fragment>
-{
-	// The lids shade the eye's rim.
+	return createColorPatchedMaterial( { color: '#ffffff', roughness: 0.25, side: DoubleSide }, { sectionColor: TISSUE_COLORS.skinCut }, {
+		key: 'glasshead-eye',
+		attributes: 'attribute vec3 eyeCoord;',
+		varyings: 'varying vec3 vEyeCoord;',
+		vertex: 'vEyeCoord = eyeCoord;',
+		uniforms: { uSclera: { value: new Color( EYE.sclera ) }, uLid: { value: new Color( EYE.lidShadow ) } },
+		declarations: 'uniform vec3 uSclera, uLid;',
+		color: `	// The lids shade the eye's rim.
 	vec3 eye = mix( uSclera * 0.85, uLid, smoothstep( 0.65, 1.0, vEyeCoord.z ) * 0.85 );
-	diffuseColor.rgb *= eye;
-}` );
-
-	};
-
-	material.customProgramCacheKey = () => 'glasshead-eye';
-	return material;
+	diffuseColor.rgb *= eye;`,
+	} );
 
 }
 

@@ -2,8 +2,8 @@
 // whose edge slides down to blink. Both get the section shading (materials.js) so that the skin's
 // openings can switch them with the cut.
 
-import { Color, MeshStandardMaterial } from 'three';
-import { addSectionShading, TISSUE_COLORS } from './materials.js';
+import { Color } from 'three';
+import { createColorPatchedMaterial, TISSUE_COLORS } from './materials.js';
 import { EYE_MOTION } from '../core/eyes.js';
 
 /** Eye colours: a sclera that is not pure white, a grey-blue iris with a darker rim. */
@@ -19,25 +19,16 @@ export const EYE_COLORS = Object.freeze( {
 /** The eyeball's material (sphere of `radius` mm, its pole along +z in its own frame). */
 export function createEyeballMaterial( radius ) {
 
-	const material = addSectionShading( new MeshStandardMaterial( { color: '#ffffff', roughness: 0.16 } ), { sectionColor: TISSUE_COLORS.skinCut } );
-	const sectionShading = material.onBeforeCompile;
 	const uniforms = {};
 	for ( const [ name, value ] of Object.entries( EYE_COLORS ) ) uniforms[ `uEye_${ name }` ] = { value: new Color( value ) };
 	const mm = ( x ) => x.toFixed( 3 );
-	material.onBeforeCompile = ( shader, renderer ) => {
-
-		sectionShading( shader, renderer );
-		Object.assign( shader.uniforms, uniforms );
-		shader.vertexShader = shader.vertexShader
-			.replace( '#include <common>', '#include <common>\nvarying vec3 vEyeLocal;' )
-			.replace( '#include <begin_vertex>', '#include <begin_vertex>\nvEyeLocal = position;' );
-		shader.fragmentShader = shader.fragmentShader
-			.replace( '#include <common>', `#include <common>
-varying vec3 vEyeLocal;
-uniform vec3 ${ Object.keys( uniforms ).join( ', ' ) };` )
-			.replace( '#include <color_fragment>', `#include <color_fragment>
-{
-	vec3 d = normalize( vEyeLocal );
+	return createColorPatchedMaterial( { color: '#ffffff', roughness: 0.16 }, { sectionColor: TISSUE_COLORS.skinCut }, {
+		key: `glasshead-eyeball-${ radius }`,
+		varyings: 'varying vec3 vEyeLocal;',
+		vertex: 'vEyeLocal = position;',
+		uniforms,
+		declarations: `uniform vec3 ${ Object.keys( uniforms ).join( ', ' ) };`,
+		color: `	vec3 d = normalize( vEyeLocal );
 	float r = d.z > 0.0 ? length( d.xy ) * ${ mm( radius ) } : ${ mm( radius ) };
 	float theta = atan( d.y, d.x );
 	float edge = fwidth( r ) + 0.12;
@@ -51,13 +42,8 @@ uniform vec3 ${ Object.keys( uniforms ).join( ', ' ) };` )
 	vec3 sclera = uEye_sclera * mix( 1.0, 0.8, smoothstep( 0.5, 1.0, r / ${ mm( radius ) } ) );
 	vec3 eye = mix( iris, sclera, smoothstep( irisR - edge, irisR + edge, r ) );
 	eye = mix( uEye_pupil, eye, smoothstep( pupilR - edge, pupilR + edge, r ) );
-	diffuseColor.rgb *= eye;
-}` );
-
-	};
-
-	material.customProgramCacheKey = () => `glasshead-eyeball-${ radius }`;
-	return material;
+	diffuseColor.rgb *= eye;`,
+	} );
 
 }
 
@@ -68,36 +54,21 @@ uniform vec3 ${ Object.keys( uniforms ).join( ', ' ) };` )
  */
 export function createLidMaterial() {
 
-	const material = addSectionShading( new MeshStandardMaterial( { color: TISSUE_COLORS.skin, roughness: 0.7 } ), { sectionColor: TISSUE_COLORS.skinCut } );
-	const sectionShading = material.onBeforeCompile;
 	const lid = { closure: { value: 0 }, rest: { value: 0 }, lash: { value: new Color( EYE_COLORS.lash ) } };
-	material.userData.lid = lid;
-	material.onBeforeCompile = ( shader, renderer ) => {
-
-		sectionShading( shader, renderer );
-		shader.uniforms.uLidClosure = lid.closure;
-		shader.uniforms.uLidRest = lid.rest;
-		shader.uniforms.uLidLash = lid.lash;
-		shader.vertexShader = shader.vertexShader
-			.replace( '#include <common>', '#include <common>\nattribute vec2 lidCoord;\nvarying vec2 vLidCoord;' )
-			.replace( '#include <begin_vertex>', '#include <begin_vertex>\nvLidCoord = lidCoord;' );
-		shader.fragmentShader = shader.fragmentShader
-			.replace( '#include <common>', `#include <common>
-varying vec2 vLidCoord;
-uniform float uLidClosure, uLidRest;
-uniform vec3 uLidLash;` )
-			.replace( '#include <color_fragment>', `#include <color_fragment>
-{
-	// The edge arches: lowest in the middle of the opening.
+	const material = createColorPatchedMaterial( { color: TISSUE_COLORS.skin, roughness: 0.7 }, { sectionColor: TISSUE_COLORS.skinCut }, {
+		key: 'glasshead-eyelid',
+		attributes: 'attribute vec2 lidCoord;',
+		varyings: 'varying vec2 vLidCoord;',
+		vertex: 'vLidCoord = lidCoord;',
+		uniforms: { uLidClosure: lid.closure, uLidRest: lid.rest, uLidLash: lid.lash },
+		declarations: 'uniform float uLidClosure, uLidRest;\nuniform vec3 uLidLash;',
+		color: `	// The edge arches: lowest in the middle of the opening.
 	float edge = mix( 1.0 - uLidRest, -0.08, uLidClosure ) + 0.12 * vLidCoord.y * vLidCoord.y * ( 1.0 - uLidClosure );
 	float above = vLidCoord.x - edge;
 	if ( above < 0.0 ) discard;
-	diffuseColor.rgb = mix( uLidLash, diffuseColor.rgb * 0.92, smoothstep( 0.0, 0.06, above ) );
-}` );
-
-	};
-
-	material.customProgramCacheKey = () => 'glasshead-eyelid';
+	diffuseColor.rgb = mix( uLidLash, diffuseColor.rgb * 0.92, smoothstep( 0.0, 0.06, above ) );`,
+	} );
+	material.userData.lid = lid;
 	return material;
 
 }

@@ -164,3 +164,32 @@ export function createTissueMaterial( tissue, { closed = true } = {} ) {
 	}
 
 }
+
+/**
+ * A section-shaded MeshStandardMaterial (addSectionShading, with `section`) whose diffuse colour
+ * is then changed by GLSL of its own. `patch`: `attributes` and `varyings` (GLSL declarations;
+ * the varyings in both stages), `vertex` (statements after begin_vertex that set the varyings),
+ * `uniforms` ({ name: { value } }) with their GLSL `declarations`, `color` (statements after
+ * color_fragment that change diffuseColor), and `key` naming the compiled program.
+ */
+export function createColorPatchedMaterial( parameters, section, { key, attributes = '', varyings, vertex, uniforms = {}, declarations = '', color } ) {
+
+	const material = addSectionShading( new MeshStandardMaterial( parameters ), section );
+	const sectionShading = material.onBeforeCompile;
+	material.onBeforeCompile = ( shader, renderer ) => {
+
+		sectionShading( shader, renderer );
+		Object.assign( shader.uniforms, uniforms );
+		shader.vertexShader = shader.vertexShader
+			.replace( '#include <common>', `#include <common>\n${ attributes }\n${ varyings }` )
+			.replace( '#include <begin_vertex>', `#include <begin_vertex>\n${ vertex }` );
+		shader.fragmentShader = shader.fragmentShader
+			.replace( '#include <common>', `#include <common>\n${ varyings }\n${ declarations }` )
+			.replace( '#include <color_fragment>', `#include <color_fragment>\n{\n${ color }\n}` );
+
+	};
+
+	material.customProgramCacheKey = () => key;
+	return material;
+
+}
