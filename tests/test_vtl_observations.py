@@ -18,7 +18,7 @@ TONGUE_LENGTH_MM = (90.0, 165.0)
 #: Registration bounds: the two palates are different speakers' (VTL's JD3 and Badin's), so
 #: they cannot coincide; the residual (RMS 2.57, max 5.49 mm now) stays within about one
 #: between-speaker standard deviation of palatal vault height (2-3 mm) in RMS, and the worst
-#: point is where JD3's vault domes higher behind the alveolar ridge.
+#: point is where JD3's vault stands higher, on the slope down to the incisors.
 MIDLINE_RMS_MM, MIDLINE_MAX_MM = 3.5, 7.0
 #: Contact of the alveolar closures' tongue with VTL's own palate in the project frame: VTL's
 #: midline palate is a polyline through ribs 7-10 mm apart and its closures are closed in 3D
