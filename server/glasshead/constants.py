@@ -209,6 +209,17 @@ VELUM_VERTEX_TOLERANCE_MM = 1e-3
 #: of about 60 mm carry 4e-6 mm each; a cut sums some 20 gaps of 1 mm width).
 VELUM_PORT_TOLERANCE_MM2 = 1e-3
 
+# --- Tract collision: the tongue against the velum and the pharyngeal wall ---------------------
+# geometry.tract_collision and web/src/core/tractCollision.js (docs/collision.md).
+
+#: mm. The tract collision's origin lies this far in front of the velum's most anterior point
+#: (in any pose), at the height of its lowest point, in the mid-sagittal plane.
+TRACT_ORIGIN_AHEAD_MM = 12.0
+#: The tract meshes the tongue collides with besides the palate, in the order both twins test.
+TRACT_COLLISION_MESHES = ("velum", "pharynx")
+#: mm. Nearest the tract origin may be to a tract triangle (the build refuses a closer one).
+TRACT_ORIGIN_CLEARANCE_MM = 3.0
+
 # --- Built assets: what `glasshead build` writes to the assets directory -------------------------
 # Written by glasshead.pipeline, loaded once by glasshead.asset_store and served by the API.
 

@@ -133,7 +133,7 @@ def _rig(rig: "VelumRig | Mapping[str, Any]") -> VelumRig:
     return rig if isinstance(rig, VelumRig) else prepare_velum(rig)
 
 
-def check_opening(rig: VelumRig, opening: float) -> float:
+def check_opening(rig: VelumRig | None, opening: float) -> float:
     """The opening as a float; ValueError naming the parameter and its range when it is not a
     finite number in [0, 1]."""
     if isinstance(opening, bool) or not isinstance(opening, (int, float, np.floating)) \

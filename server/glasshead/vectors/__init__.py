@@ -29,6 +29,7 @@ GENERATORS = (
               ("tongue-surface.json", "tongue-jaw.json", "tongue-bspline.json")),
     Generator("glasshead.vectors.face:files", ("face-rig.json",)),
     Generator("glasshead.vectors.velum:files", ("velum.json",)),
+    Generator("glasshead.vectors.tract_collision:files", ("tract-collision.json",)),
     Generator("glasshead.vectors.collision:files",
               ("collision-tables.bin", "collision-correct.json")),
     Generator("glasshead.vectors.epg_indices:files", ("epg-indices.json",)),

@@ -223,6 +223,15 @@ export const VELUM_VERTEX_TOLERANCE_MM = 0.001;
  * about 60 mm carry 4e-6 mm each; a cut sums some 20 gaps of 1 mm width).
  */
 export const VELUM_PORT_TOLERANCE_MM2 = 0.001;
+/**
+ * mm. The tract collision's origin lies this far in front of the velum's most anterior point (in
+ * any pose), at the height of its lowest point, in the mid-sagittal plane.
+ */
+export const TRACT_ORIGIN_AHEAD_MM = 12.0;
+/** The tract meshes the tongue collides with besides the palate, in the order both twins test. */
+export const TRACT_COLLISION_MESHES = Object.freeze( [ 'velum', 'pharynx' ] );
+/** mm. Nearest the tract origin may be to a tract triangle (the build refuses a closer one). */
+export const TRACT_ORIGIN_CLEARANCE_MM = 3.0;
 /** The build manifest (meshes, content hashes); written last, so it names only finished files. */
 export const MANIFEST_FILE = 'manifest.json';
 /** Format version of the manifest; the asset store refuses any other version. */

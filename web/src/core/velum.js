@@ -105,9 +105,12 @@ function checkOpening( opening ) {
 
 }
 
-// The first of the two poses `opening` lies between (0: raised and rest, 1: rest and lowered);
-// its share u of the way from that pose goes into rig.share[ 0 ]. The twin of velum.py's _segment.
-function segment( rig, opening ) {
+/**
+ * The first of the two poses `opening` lies between (0: raised and rest, 1: rest and lowered);
+ * its share u of the way from that pose goes into rig.share[ 0 ]. The twin of velum.py's
+ * _segment. RangeError for an opening that is not a number in [0, 1].
+ */
+export function velumSegment( rig, opening ) {
 
 	checkOpening( opening );
 	const r = rig.restShare;
@@ -150,7 +153,7 @@ function samplePoint( rig, k, c, a, b, u ) {
  */
 export function poseVelum( rig, opening, out ) {
 
-	const first = segment( rig, opening );
+	const first = velumSegment( rig, opening );
 	const a = rig.poses[ first ], b = rig.poses[ first + 1 ], u = rig.share[ 0 ];
 	const n = 3 * rig.vertexCount;
 	for ( let i = 0; i < n; i ++ ) out[ i ] = a[ i ] * ( 1 - u ) + b[ i ] * u;
@@ -168,7 +171,7 @@ export function poseVelum( rig, opening, out ) {
  */
 export function nasalPortArea( rig, opening ) {
 
-	const first = segment( rig, opening );
+	const first = velumSegment( rig, opening );
 	const a = rig.poses[ first ], b = rig.poses[ first + 1 ], u = rig.share[ 0 ];
 	const cuts = rig.cuts;
 	cuts.fill( 0 );
