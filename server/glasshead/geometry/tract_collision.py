@@ -10,10 +10,12 @@ segment's box meets. Both take the same first crossing, computed with the same o
 (``collision.moller_trumbore``), on the same float32 positions: the velum blended as
 ``velum.js`` blends it and rounded to float32 as its Float32Array stores it.
 
-Steps, as in the JS twin:
+Steps:
 
 1. Screen: a vertex in front of every tract mesh (x at or beyond ``screen_x``, T being in front
-   of them too), or nearer to T than every mesh's bounding box: outside (FLAG_SCREENED).
+   of them too), or nearer to T than every mesh's bounding box: outside (FLAG_SCREENED). The JS
+   twin screens more, with depth tables over directions from T (``tractScreen.js``), so the two
+   agree on which vertices move and where, not on how the others were settled.
 2. Test: the first crossing t of T -> P with the tract meshes; t < 1 moves the vertex to
    T + t (P - T) (FLAG_CORRECTED), otherwise it stays, bit for bit (FLAG_TESTED).
 """

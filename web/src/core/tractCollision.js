@@ -19,6 +19,7 @@
 
 import { COLLISION_TOL, FLAG_CORRECTED, FLAG_SCREENED, FLAG_TESTED, TRACT_ORIGIN_AHEAD_MM } from './constants.js';
 import { STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from './collision.js';
+import { createDepthScreen, screenTable } from './tractScreen.js';
 
 /** Triangles per BVH leaf. */
 const LEAF_SIZE = 4;
@@ -79,10 +80,11 @@ export function createTractCollider( origin, meshes ) {
 		origin: Float64Array.from( origin ),
 		screenX,
 		meshes: built,
-		/** Scratch: the stack of a BVH walk, and the ray (t, dx, dy, dz) with the near bounds. */
+		/** The depth tables of the screen (tractScreen.js). */
+		screen: createDepthScreen( origin, meshes ),
+		/** Scratch: the stack of a BVH walk, and the ray (t, dx, dy, dz). */
 		stack: new Int32Array( 2 * depth + 2 ),
 		ray: new Float64Array( 4 ),
-		near2: new Float64Array( built.length ),
 	};
 
 }
@@ -202,14 +204,11 @@ function nodeBoxes( bvh, positions, triangles, origin ) {
 
 		} else {
 
-			for ( const child of [ n + 1, bvh.nodeRight[ n ] ] ) {
+			const l = 6 * ( n + 1 ), r = 6 * bvh.nodeRight[ n ];
+			for ( let c = 0; c < 3; c ++ ) {
 
-				for ( let c = 0; c < 3; c ++ ) {
-
-					boxes[ o + c ] = Math.min( boxes[ o + c ], boxes[ 6 * child + c ] );
-					boxes[ o + 3 + c ] = Math.max( boxes[ o + 3 + c ], boxes[ 6 * child + 3 + c ] );
-
-				}
+				boxes[ o + c ] = Math.min( boxes[ l + c ], boxes[ r + c ] );
+				boxes[ o + 3 + c ] = Math.max( boxes[ l + 3 + c ], boxes[ r + 3 + c ] );
 
 			}
 
@@ -218,25 +217,6 @@ function nodeBoxes( bvh, positions, triangles, origin ) {
 	}
 
 	return boxes;
-
-}
-
-// Squared distance from T to the mesh's root box at its current pose: a vertex nearer than that
-// cannot be beyond any of its triangles.
-function nearSquared( mesh ) {
-
-	const first = mesh.pose[ 0 ], u = mesh.pose[ 1 ], w = 1 - u;
-	const a = mesh.boxes[ first ], b = mesh.boxes[ Math.min( first + 1, mesh.boxes.length - 1 ) ];
-	let sum = 0;
-	for ( let c = 0; c < 3; c ++ ) {
-
-		const lo = a[ c ] * w + b[ c ] * u, hi = a[ 3 + c ] * w + b[ 3 + c ] * u;
-		const gap = lo > 0 ? lo : hi < 0 ? - hi : 0;
-		sum += gap * gap;
-
-	}
-
-	return sum;
 
 }
 
@@ -354,8 +334,8 @@ function meshFirstHit( collider, mesh ) {
  * positions: Float32Array (or Float64Array), 3 * count coordinates (mm), already corrected
  *   against the palate; a vertex whose segment from T crosses a tract triangle is moved onto the
  *   first crossing, every other vertex is left untouched, bit for bit.
- * flags: Uint8Array (count) or null: FLAG_SCREENED (in front of every tract mesh, or nearer to T
- *   than all of them), FLAG_TESTED or FLAG_CORRECTED.
+ * flags: Uint8Array (count) or null: FLAG_SCREENED (the depth screen of tractScreen.js settles
+ *   it), FLAG_TESTED or FLAG_CORRECTED.
  * stats: Int32Array (3) or null: screened (all), tested and corrected counts.
  * Returns the number of corrected vertices. Allocates nothing.
  */
@@ -363,17 +343,28 @@ export function correctTract( positions, count, collider, flags, stats ) {
 
 	const ox = collider.origin[ 0 ], oy = collider.origin[ 1 ], oz = collider.origin[ 2 ];
 	const screenX = collider.screenX, meshes = collider.meshes, ray = collider.ray;
-	let near2 = Infinity;
-	for ( let m = 0; m < meshes.length; m ++ ) near2 = Math.min( near2, nearSquared( meshes[ m ] ) );
+	const screen = collider.screen;
+	const moving = screen.moving >= 0 ? meshes[ screen.moving ].pose : null;
+	const table = moving === null ? screen.tables[ 0 ] : screenTable( screen, moving[ 0 ], moving[ 1 ] );
+	const a0 = screen.a0, b0 = screen.b0, inv = screen.inv, na = screen.na, nb = screen.nb;
 	let tested = 0, corrected = 0;
 	for ( let v = 0; v < count; v ++ ) {
 
 		const i3 = 3 * v;
 		const x = positions[ i3 ];
+		// Screen: in front of every tract mesh (T is too), outside the tables' grid, or shallower
+		// than every tract hull in the vertex's direction (tractScreen.js).
+		let screened = x >= screenX;
 		const px = x - ox, py = positions[ i3 + 1 ] - oy, pz = positions[ i3 + 2 ] - oz;
-		// T and the vertex both in front of every tract mesh, or the vertex nearer to T than
-		// any: the segment cannot reach a triangle.
-		if ( x >= screenX || px * px + py * py + pz * pz < near2 ) {
+		if ( ! screened ) {
+
+			const depth = - px;
+			const i = Math.floor( ( py / depth - a0 ) * inv ), j = Math.floor( ( pz / depth - b0 ) * inv );
+			screened = i < 0 || i >= na || j < 0 || j >= nb || depth < table[ j * na + i ];
+
+		}
+
+		if ( screened ) {
 
 			if ( flags !== null ) flags[ v ] = FLAG_SCREENED;
 			continue;

@@ -9,7 +9,9 @@
 //   4. the scene's tongue mesh (the parametric tongue replaces `tongue_rest`) shows them;
 //   5. face: the face rig poses the skin and lips when one is given; without it the lower lip
 //      rides on the jaw; the lips' mid-sagittal gap is measured either way;
-//   5b. velum: the velum rig poses the soft palate from velum_opening (VelumPose.js);
+//   3b. tract: with a velum rig, the velum is posed from velum_opening (VelumPose.js) and the
+//      vertices that went into it or into the pharyngeal wall are moved back onto them
+//      (core/tractCollision.js), before the normals;
 //   6. hooks: onCorrected( fn ) gets the corrected Float32Array (EPG contacts read it).
 // Nothing is recomputed while the parameters stay the same, and nothing is allocated per frame.
 
@@ -18,6 +20,8 @@ import { jawPose, POSE_LENGTH } from '../core/jaw.js';
 import { meshVolume, vertexNormals } from '../core/meshVolume.js';
 import { TongueRig } from '../core/tongue.js';
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../core/collision.js';
+import { correctTract, createTractCollider, setTractPose, tractOrigin } from '../core/tractCollision.js';
+import { velumSegment } from '../core/velum.js';
 import { ParamState } from '../core/paramState.js';
 import { registerDebug } from '../debug.js';
 import { FacePose, lipGap, midlineLips } from './FacePose.js';
@@ -61,6 +65,11 @@ export class Articulation {
 		this.flags = new Uint8Array( count );
 		/** Screened, tested, corrected counts of the last frame (STAT_* order). */
 		this.stats = new Int32Array( 3 );
+		/** The velum and pharyngeal wall collider (setTract), its flags and counts. */
+		this.tract = null;
+		this.tractFlags = new Uint8Array( count );
+		this.tractStats = new Int32Array( 3 );
+		this.velum = null;
 		/** Triangles of the tongue (Uint32Array, 3 per triangle); fixed. */
 		this.triangles = rig.index;
 		/** The posed sagittal control points (x y per point) and the hub of the last frame. */
@@ -133,6 +142,17 @@ export class Articulation {
 
 	}
 
+	/**
+	 * Collide the tongue with the velum (posed by this.velum) and the pharyngeal wall: a collider
+	 * from tractColliderFor(), or null for the palate alone.
+	 */
+	setTract( collider ) {
+
+		this.tract = collider;
+		this.version = - 1;
+
+	}
+
 	/** Recompute when the parameters changed since the last call (or when forced). Returns whether it did. */
 	update( force = false ) {
 
@@ -151,7 +171,17 @@ export class Articulation {
 		this.positions.set( this.surface.positions );
 		if ( this.tables ) correctVertices( this.positions, this.vertexCount, this.tables, this.flags, this.stats );
 		else this.stats.fill( 0 );
-		if ( this.stats[ STAT_CORRECTED ] > 0 ) vertexNormals( this.positions, this.triangles, this.normalSums, this.normals );
+		if ( this.tract && this.velum ) {
+
+			const velum = this.velum;
+			velum.pose( values );
+			const first = velumSegment( velum.rig, values[ velum.index ] );
+			setTractPose( this.tract, 0, velum.positions, first, velum.rig.share[ 0 ] );
+			correctTract( this.positions, this.vertexCount, this.tract, this.tractFlags, this.tractStats );
+
+		} else this.tractStats.fill( 0 );
+
+		if ( this.stats[ STAT_CORRECTED ] > 0 || this.tractStats[ STAT_CORRECTED ] > 0 ) vertexNormals( this.positions, this.triangles, this.normalSums, this.normals );
 		else this.normals.set( this.surface.normals );
 
 		jawPose( values[ this.jawIndex ], rig.jaw, this.jawPose );
@@ -281,6 +311,11 @@ export class Articulation {
 				screened: this.stats[ STAT_SCREENED ],
 				tested: this.stats[ STAT_TESTED ],
 				corrected: this.stats[ STAT_CORRECTED ],
+				tract: {
+					enabled: this.tract !== null,
+					tested: this.tractStats[ STAT_TESTED ],
+					corrected: this.tractStats[ STAT_CORRECTED ],
+				},
 				updates: this.updates,
 				ms: round3( this.lastMs ),
 			} ),
@@ -302,6 +337,24 @@ export class Articulation {
 }
 
 const IDENTITY = new Matrix4();
+
+/** The scene mesh of the posterior pharyngeal wall. */
+export const PHARYNX_PART = 'pharynx';
+
+/**
+ * The tract collider for a posed velum (a VelumPose) and the head's pharyngeal wall; null when
+ * the head has no wall (the tongue then meets the palate alone).
+ */
+export function tractColliderFor( velum, head ) {
+
+	const wall = head.part( PHARYNX_PART )?.geometry;
+	if ( ! wall?.index ) return null;
+	return createTractCollider( tractOrigin( velum.rig.poses ), [
+		{ name: 'velum', poses: velum.rig.poses, triangles: velum.triangles },
+		{ name: 'pharynx', poses: [ wall.getAttribute( 'position' ).array ], triangles: Uint32Array.from( wall.index.array ) },
+	] );
+
+}
 
 function setMatrix( group, matrix ) {
 
@@ -375,6 +428,8 @@ export function createArticulation( head, viewer, { definition, tables = null, t
 
 			articulation.velum = new VelumPose( velum, head, state );
 			articulation.unregister.push( articulation.velum.registerDebugField() );
+			articulation.setTract( tractColliderFor( articulation.velum, head ) );
+			articulation.update( true );
 
 		} catch ( error ) {
 
