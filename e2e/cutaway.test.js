@@ -62,6 +62,13 @@ describe( 'the cutaway shows air and the velum', { timeout: 300_000 }, () => {
 			assert.ok( Math.min( ...seen ) > 170, `pixel ${ seen } at the air point is not light` );
 			assert.notDeepEqual( seen, solid );
 			assert.equal( state.velum.nasalPortAreaMm2 > 0, true, 'the velum at rest leaves the port open' );
+			// The skull is not one tissue fill: the cranial cavity has its own colour.
+			const cranial = state.cranialProbe;
+			assert.equal( cranial.visible, true );
+			const inside = await pixel( page, cranial.x, cranial.y );
+			const brain = rgb( cranial.brainColor );
+			assert.ok( distance( inside, brain ) < 12, `pixel ${ inside } in the cranial cavity at ${ cranial.point } is not the brain colour ${ brain }` );
+			assert.ok( distance( inside, tissue ) > 40 && distance( inside, rgb( cranial.boneColor ) ) > 40, `pixel ${ inside } in the cranial cavity looks like tissue or bone` );
 			await saveScreenshot( page, `cutaway-air-${ device }` );
 			assert.deepEqual( page.problems, [] );
 			await page.context().close();

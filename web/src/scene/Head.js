@@ -14,6 +14,7 @@ import { colorJawVertices, lowestY } from './jawColors.js';
 import { weldNormals } from '../core/weldNormals.js';
 import { buildOpeningMeshes } from './FaceOpenings.js';
 import { AirLayer } from './AirLayer.js';
+import { CranialLayer } from './CranialLayer.js';
 import { applyPartAppearance, applySkinAppearance, CAPPED_TISSUES, capRenderOrder, createPartMaterial, createSkinMaterials, plainBone } from './headAppearance.js';
 
 /** Clipping plane offset that keeps everything (cutaway off) without recompiling shaders. */
@@ -133,6 +134,7 @@ export class Head {
 
 		this.weldSkinSeams();
 		this.addAirLayer();
+		this.addCranialLayer();
 
 	}
 
@@ -155,6 +157,16 @@ export class Head {
 			eraser: mandible?.geometry ?? null,
 		} ).attach( this.group );
 		this.air.setVisible( this.cutaway );
+
+	}
+
+	/** The cutaway's cranial cavity (CranialLayer.js), bounded by the cranium, in its group. */
+	addCranialLayer() {
+
+		const cranium = this.parts.get( 'cranium' );
+		if ( ! cranium ) return;
+		this.cranial = new CranialLayer( cranium.geometry ).attach( cranium.group );
+		this.cranial.setVisible( this.cutaway );
 
 	}
 
@@ -245,6 +257,7 @@ export class Head {
 		this.clipPlane.constant = this.cutaway ? 0 : NO_CUT;
 		if ( this.skinMaterials ) applySkinAppearance( this.skinMaterials, state, this.cutaway );
 		this.air?.setVisible( this.cutaway );
+		this.cranial?.setVisible( this.cutaway );
 		for ( const part of this.parts.values() ) {
 
 			if ( this.cutaway && part.outlineStale ) {
@@ -320,6 +333,7 @@ export class Head {
 
 		if ( this.skinMaterials ) for ( const material of Object.values( this.skinMaterials ) ) material.dispose();
 		this.air?.dispose();
+		this.cranial?.dispose();
 		this.group.removeFromParent();
 		this.parts.clear();
 

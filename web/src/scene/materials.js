@@ -21,7 +21,9 @@ export const TISSUE_COLORS = Object.freeze( {
 	mucosa: '#d98a86', // the posterior pharyngeal wall
 	cartilage: '#c9dde3', // larynx cartilages: bluish white
 	cartilageCut: '#9fbcc6',
-	boneCut: '#c4ad80', // the cut of the hyoid and the spine
+	boneCut: '#c4ad80', // the cut of the hyoid, the spine and the occiput
+	brain: '#a99bb4', // the cranial cavity in the cutaway: a muted lavender grey
+	brainRim: '#6f6280', // where the cranium's band ends around it
 } );
 
 /** What each mesh is drawn as, by name first and by role if the name is new. */

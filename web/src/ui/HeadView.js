@@ -69,6 +69,7 @@ export class HeadView {
 			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
 			eyes: () => this.eyes?.state() ?? null,
 			airProbe: () => ( this.viewer && this.state.loaded && this.head.air ? this.head.air.probe( this.viewer ) : null ),
+			cranialProbe: () => ( this.viewer && this.state.loaded && this.head.cranial ? this.head.cranial.probe( this.viewer ) : null ),
 		};
 		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
 
