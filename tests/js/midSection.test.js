@@ -181,6 +181,31 @@ test( 'on seeded random spheres the chains hold exactly the segments of the per-
 
 } );
 
+test( 'a part recut frame after frame gives what a fresh part gives, whether or not vertices change side', () => {
+
+	const next = random( 11 );
+	const { positions, index, vertexCount } = sphere( next );
+	const part = createSectionPart( index, vertexCount );
+	const fields = ( p ) => [ p.segmentCount, p.pointCount, p.chainCount, Array.from( p.points.subarray( 0, 2 * p.pointCount ) ), Array.from( p.starts.subarray( 0, p.chainCount + 1 ) ), Array.from( p.closed.subarray( 0, p.chainCount ) ) ];
+	for ( let frame = 0; frame < 30; frame ++ ) {
+
+		// Even frames move vertices in x y only (no side changes); odd ones shift z as well.
+		for ( let v = 0; v < vertexCount; v ++ ) {
+
+			positions[ 3 * v ] += next() - 0.5;
+			if ( frame % 2 === 1 ) positions[ 3 * v + 2 ] += 0.6 * ( next() - 0.5 );
+
+		}
+
+		cutSection( part, positions );
+		const fresh = createSectionPart( index, vertexCount );
+		cutSection( fresh, positions );
+		assert.deepEqual( fields( part ), fields( fresh ), `frame ${ frame }` );
+
+	}
+
+} );
+
 test( 'recutting a moving mesh allocates nothing', async () => {
 
 	const { positions, index, vertexCount } = sphere( random( 7 ), 24, 32 );

@@ -9,6 +9,10 @@
 // vertex index, so both triangles of an edge write the same numbers. A vertex lying exactly on
 // the plane may split a chain there (the edges through it differ); nothing is lost.
 //
+// Most frames move no vertex across the plane (the tongue's and the lips' midline vertices stay on
+// it), so each vertex's side is kept: when no side changed, last frame's crossing triangles are
+// this frame's, and only they are recut. Only the vertices the index uses are read.
+//
 // The pose of a part that moves rigidly in its plane (the jaw: a rotation about a z-parallel axis
 // and a slide in x y) maps the cut points, so a rigid part is cut once and only mapped per frame.
 
@@ -36,9 +40,17 @@ export function createSectionPart( index, vertexCount ) {
 	const ends = 2 * triangles; // two crossing points per segment, at most one segment per triangle
 	let size = 16;
 	while ( size < 2 * ends ) size *= 2;
+	const used = new Uint8Array( vertexCount );
+	for ( let k = 0; k < index.length; k ++ ) used[ index[ k ] ] = 1;
 	return {
 		index,
 		vertexCount,
+		/** The vertices the index uses, and each one's side of the plane (1: z >= 0) when last cut. */
+		vertices: Uint32Array.from( { length: vertexCount }, ( _, v ) => v ).filter( ( v ) => used[ v ] ),
+		sides: new Uint8Array( vertexCount ),
+		/** The first index of each triangle that crossed the plane when last cut (-1: never cut). */
+		crossing: new Int32Array( triangles ),
+		crossingCount: - 1,
 		/** Crossing point of each segment end (x y), end e = 2 * segment + 0 or 1. */
 		ends: new Float64Array( 2 * ends ),
 		/** The end sharing an edge with each end, or EMPTY. */
@@ -88,18 +100,42 @@ export function isPlanarPose( pose ) {
 export function cutSection( part, positions, pose = null ) {
 
 	if ( positions.length < 3 * part.vertexCount ) throw new RangeError( `positions hold ${ positions.length / 3 } vertices; the part has ${ part.vertexCount }` );
-	const index = part.index;
+	const { index, vertices, sides, crossing } = part;
 	part.generation ++;
-	let count = 0;
-	for ( let t = 0; t < index.length; t += 3 ) {
+	let changed = part.crossingCount < 0 ? 1 : 0;
+	for ( let k = 0; k < vertices.length; k ++ ) {
 
+		const v = vertices[ k ];
+		const side = positions[ 3 * v + 2 ] >= 0 ? 1 : 0;
+		changed |= side ^ sides[ v ];
+		sides[ v ] = side;
+
+	}
+
+	if ( changed ) {
+
+		let crossed = 0;
+		for ( let t = 0; t < index.length; t += 3 ) {
+
+			const up = sides[ index[ t ] ] + sides[ index[ t + 1 ] ] + sides[ index[ t + 2 ] ];
+			if ( up !== 0 && up !== 3 ) crossing[ crossed ++ ] = t;
+
+		}
+
+		part.crossingCount = crossed;
+
+	}
+
+	let count = 0;
+	for ( let k = 0; k < part.crossingCount; k ++ ) {
+
+		const t = crossing[ k ];
 		const a = index[ t ], b = index[ t + 1 ], c = index[ t + 2 ];
-		const sa = positions[ 3 * a + 2 ] >= 0, sb = positions[ 3 * b + 2 ] >= 0, sc = positions[ 3 * c + 2 ] >= 0;
-		if ( sa === sb && sb === sc ) continue;
+		const sa = sides[ a ], sb = sides[ b ], sc = sides[ c ];
 		let end = 2 * count;
-		if ( sa !== sb ) end = crossing( part, positions, a, b, end );
-		if ( sb !== sc ) end = crossing( part, positions, b, c, end );
-		if ( sc !== sa ) crossing( part, positions, c, a, end );
+		if ( sa !== sb ) end = cross( part, positions, a, b, end );
+		if ( sb !== sc ) end = cross( part, positions, b, c, end );
+		if ( sc !== sa ) cross( part, positions, c, a, end );
 		count ++;
 
 	}
@@ -121,7 +157,7 @@ export function cutSection( part, positions, pose = null ) {
 }
 
 /** Write the crossing of edge (i, j) as segment end `end`, link it by its edge, return the next end. */
-function crossing( part, p, i, j, end ) {
+function cross( part, p, i, j, end ) {
 
 	const { ends, link, keys, values, stamps, mask, generation } = part;
 	const lo = i < j ? i : j, hi = i < j ? j : i;

@@ -87,7 +87,8 @@ export class DiagramSection {
 
 		const geometry = scenePart.geometry;
 		const count = geometry.attributes.position.count;
-		const index = geometry.index ? geometry.index.array : Uint32Array.from( { length: count }, ( _, k ) => k );
+		// A posed mesh may name the only triangles that can reach the plane (VelumPose does).
+		const index = geometry.userData.midplaneTriangles ?? ( geometry.index ? geometry.index.array : Uint32Array.from( { length: count }, ( _, k ) => k ) );
 		return { key: spec.key, motion: spec.motion, name, scenePart, geometry, section: createSectionPart( index, count ), pose: new Float64Array( 12 ) };
 
 	}

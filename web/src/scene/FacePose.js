@@ -1,11 +1,13 @@
 // The face in the scene. With a face rig, every frame the articulation changes, the skin, the lips
 // and the head shell are posed by the real-time face rig (web/src/core/faceRig.js) straight into
-// their geometries' position arrays; their normals are recomputed and welded again across the
-// seam where the face skin meets the head shell. Nothing is allocated per pose. Without one, the
+// their geometries' position arrays; their normals and bounding spheres are redone where the rig
+// can move vertices (core/movingMesh.js) and the normals welded again across the seam where the
+// face skin meets the head shell. Nothing is allocated per pose. Without one, the
 // lower lip rides rigidly on the jaw and the lip gap is measured here (midlineLips, lipGap).
 
 import { createFaceRig, GAP_LIPS, poseFace, restFaceRig } from '../core/faceRig.js';
 import { vertexNormals } from '../core/meshVolume.js';
+import { enclose, movingMesh, updateNormals } from '../core/movingMesh.js';
 
 /** Skin vertices closer than this (mm) are one point of the seam (as the head welds it at load). */
 const SEAM_TOLERANCE_MM = 0.01;
@@ -36,15 +38,25 @@ export class FacePose {
 		const lipNames = definition.parameters.map( ( p ) => p.name );
 		this.lipIndex = Int32Array.from( lipNames, ( name ) => state.indexOf( name ) );
 		this.lipValues = new Float64Array( lipNames.length );
+		const skins = this.parts.filter( ( part ) => part.tissue === 'skin' );
+		const seam = seamGroups( skins );
 		this.meshes = this.parts.map( ( part ) => {
 
 			const geometry = part.geometry;
+			const positions = geometry.attributes.position.array;
+			const normals = geometry.attributes.normal.array;
 			const count = geometry.attributes.position.count;
 			const index = geometry.index ? geometry.index.array : Uint32Array.from( { length: count }, ( _, k ) => k );
-			return { part, index, sums: new Float64Array( 3 * count ) };
+			// The rest normals once; poses redo those around the moving vertices and the seam's.
+			vertexNormals( positions, index, new Float64Array( 3 * count ), normals );
+			const skin = skins.indexOf( part );
+			const onSeam = Array.from( seam.members ).filter( ( _, k ) => k % 2 === 1 && seam.members[ k - 1 ] === skin );
+			geometry.computeBoundingSphere(); // its Sphere, reset by every pose
+			return { part, moving: movingMesh( positions, index, this.rig.meshes[ part.name ].moving, skin < 0 ? [] : onSeam ) };
 
 		} );
-		this.seam = seamGroups( this.parts.filter( ( part ) => part.tissue === 'skin' ) );
+		this.seam = seam;
+		weldSeam( seam );
 
 	}
 
@@ -58,12 +70,12 @@ export class FacePose {
 		poseFace( this.rig, this.lipValues, jawPose, this.out );
 		for ( let m = 0; m < this.meshes.length; m ++ ) {
 
-			const { part, index, sums } = this.meshes[ m ];
+			const { part, moving } = this.meshes[ m ];
 			const geometry = part.geometry;
-			vertexNormals( geometry.attributes.position.array, index, sums, geometry.attributes.normal.array );
+			updateNormals( moving, geometry.attributes.position.array, geometry.attributes.normal.array );
+			enclose( moving, geometry.attributes.position.array, geometry.boundingSphere );
 			geometry.attributes.position.needsUpdate = true;
 			geometry.attributes.normal.needsUpdate = true;
-			geometry.computeBoundingSphere();
 			// As Head.updateVertices: the section outline follows now if it shows, else when it does.
 			if ( this.head.cutaway ) part.outline.update( geometry );
 			else part.outlineStale = true;
