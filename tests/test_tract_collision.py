@@ -120,3 +120,25 @@ def test_meshes_that_do_not_fit_are_refused(parts):
     # A wall moved in front of the origin: the screen would be wrong.
     with pytest.raises(TractCollisionError, match="lies behind a tract mesh"):
         prepare_tract(rig, velum_faces, pharynx + [60.0, 0.0, 0.0], pharynx_faces)
+
+
+def test_the_build_reports_the_origin_and_its_clearances(built_assets):
+    report = json.loads((built_assets / "build-report.json").read_text())["tract-collision"]
+    assert report["origin_mm"][2] == 0.0
+    assert report["screen_x_mm"] < report["origin_mm"][0]
+    assert min(report["clearance_mm"].values()) >= 3.0
+    assert report["triangles"] == {"velum": 7570, "pharynx": 2630}
+
+
+def test_a_build_whose_velum_rig_is_damaged_stops_naming_the_files(built_assets, tmp_path):
+    import shutil
+    from types import SimpleNamespace
+
+    from glasshead.pipeline.tract_collision_check import TractCollisionBuildError, build_step
+
+    for name in ("manifest.json", "velum_rest.glb", "pharynx.glb"):
+        shutil.copy(built_assets / name, tmp_path / name)
+    (tmp_path / "velum-rig.json").write_text('{"format_version": 1}')
+    with pytest.raises(TractCollisionBuildError, match="velum-rig.json, velum_rest.glb and "
+                                                       "pharynx.glb"):
+        build_step(SimpleNamespace(assets_dir=tmp_path))

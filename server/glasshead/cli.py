@@ -11,6 +11,7 @@ from glasshead.settings import get_settings
 def build(args):
     from glasshead.pipeline.build import run
     from glasshead.pipeline.sources import DataDirError
+    from glasshead.pipeline.tract_collision_check import TractCollisionBuildError
 
     settings = get_settings()
     data_dir = Path(args.data_dir) if args.data_dir else settings.data_dir
@@ -23,6 +24,9 @@ def build(args):
     except MeshFormatError as error:
         print(f"glasshead build: corrupt or wrong mesh file: {error}", file=sys.stderr)
         return 3
+    except TractCollisionBuildError as error:
+        print(f"glasshead build: {error}", file=sys.stderr)
+        return 4
     return 0
 
 

@@ -109,6 +109,11 @@ def velum_rig_step(ctx):
     return build_step(ctx)
 
 
+def tract_collision_step(ctx):
+    from glasshead.pipeline.tract_collision_check import build_step
+    return build_step(ctx)
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -122,6 +127,7 @@ STEPS = [
     ("epg-layout", epg_layout_step),
     ("face-rig", face_rig_step),
     ("velum-rig", velum_rig_step),
+    ("tract-collision", tract_collision_step),
     ("landmarks", landmarks_step),
 ]
 
