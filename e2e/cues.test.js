@@ -1,7 +1,8 @@
 // End-to-end: the workbench's cue layer in Debian's Chromium at 1920 x 1080. The cues switch on
-// and off, lowering the velum gives the nasal flow strength, raising the tongue tip makes the
-// oral flow turbulent, and a hidden layer draws nothing while the head is still. Assertions read
-// `window.glasshead`; the screenshots cues-profile and cues-nasal are for a person to look at.
+// and off, lowering the velum gives the nasal flow strength, the tongue tip closing against the
+// ridge stops the oral flow behind the closure, a narrow gap makes it turbulent, and a hidden layer
+// draws nothing while the head is still. Assertions read `window.glasshead`; the screenshots
+// cues-closure, cues-profile and cues-nasal are for a person to look at.
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
@@ -51,7 +52,8 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 	test( 'the cues are off by default, and a still workbench without them draws nothing', async () => {
 
 		const state = await readDebug( page );
-		assert.deepEqual( state.cues, { visible: false, voicing: true, nasal: true, oral: true, turbulence: false, nasalStrength: state.cues.nasalStrength } );
+		const { nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } = state.cues;
+		assert.deepEqual( state.cues, { visible: false, voicing: true, nasal: true, oral: true, turbulence: false, nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } );
 		assert.equal( await button( 'Voicing' ).isVisible(), false, 'the cue switches show with the layer' );
 		await page.waitForTimeout( 1000 );
 		assert.equal( ( await readDebug( page ) ).frames, state.frames, 'no frames while nothing moves' );
@@ -87,21 +89,47 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 	} );
 
-	test( 'raising the tongue tip to the ridge makes the oral flow turbulent', async () => {
+	test( 'the tongue tip closing against the ridge stops the oral flow behind the closure', async () => {
 
 		// The lips at rest are 1.75 mm apart (a closed mouth): raise the upper lip, as for a vowel.
 		await setParam( 'velum_opening', 'Velum opening', 0 );
 		await setParam( 'upper_lip_raise', 'Upper lip raise', 4 );
 		await page.waitForFunction( () => window.glasshead.constriction.widthMm > 2 );
-		assert.equal( ( await readDebug( page ) ).cues.turbulence, false, 'no turbulence with the mouth open' );
+		const open = ( await readDebug( page ) ).cues;
+		assert.equal( open.turbulence, false, 'no turbulence with the mouth open' );
+		assert.equal( open.oralStopped, false );
 		await setParam( 'tip_height', 'Tip height', 8 );
 		await setParam( 'tip_advancement', 'Tip advancement', 2 );
 		await setParam( 'blade_height', 'Blade height', 5 );
-		await page.waitForFunction( () => window.glasshead.constriction.widthMm < 2 );
+		await page.waitForFunction( () => window.glasshead.constriction.widthMm === 0 && window.glasshead.cues.oralStopped );
+		await zoomOut();
+		// The dots move: read the flow a few times over a second and a half.
+		for ( let k = 0; k < 6; k ++ ) {
+
+			const { cues: state, constriction } = await readDebug( page );
+			const closureX = Math.max( constriction.floor[ 0 ], constriction.roof[ 0 ] );
+			assert.equal( state.oralStopped, true );
+			assert.equal( state.turbulence, false, 'no air passes a closure, so no turbulence' );
+			assert.ok( state.oralReachMm <= state.oralStopMm, `a dot ${ state.oralReachMm } mm along the path, the closure at ${ state.oralStopMm } mm` );
+			assert.ok( state.oralFrontX !== null && state.oralFrontX < closureX + 1, `an oral dot at x = ${ state.oralFrontX } mm, past the closure at x = ${ closureX } mm` );
+			assert.ok( open.oralFrontX > closureX + 10, `the open flow reached x = ${ open.oralFrontX } mm, beyond the lips` );
+			await page.waitForTimeout( 250 );
+
+		}
+
+		await saveScreenshot( page, 'cues-closure' );
+
+	} );
+
+	test( 'a narrow gap is turbulent and the flow passes it: the lips at rest, 1.75 mm apart', async () => {
+
+		for ( const [ name, label ] of [ [ 'tip_height', 'Tip height' ], [ 'tip_advancement', 'Tip advancement' ], [ 'blade_height', 'Blade height' ], [ 'upper_lip_raise', 'Upper lip raise' ] ] ) await setParam( name, label, 0 );
+		await page.waitForFunction( () => window.glasshead.constriction.widthMm > 0.05 && window.glasshead.constriction.widthMm < 2 && ! window.glasshead.cues.oralStopped );
 		const { cues: state, constriction } = await readDebug( page );
 		assert.equal( state.turbulence, true, `turbulent at a constriction of ${ constriction.widthMm } mm` );
+		await page.waitForFunction( ( x ) => window.glasshead.cues.oralFrontX > x + 10, Math.max( constriction.floor[ 0 ], constriction.roof[ 0 ] ) );
 		await setParam( 'velum_opening', 'Velum opening', 1 );
-		await zoomOut();
+		await page.waitForTimeout( 300 );
 		await saveScreenshot( page, 'cues-profile' );
 		await button( 'Oral airflow' ).click();
 		assert.equal( ( await readDebug( page ) ).cues.turbulence, false, 'no turbulence without the oral flow' );

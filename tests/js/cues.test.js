@@ -1,11 +1,11 @@
 // The cues' kernels (web/src/core/cues.js): nasal strength from the port's area, turbulence from
-// the constriction's width, the air's paths and the particle layouts.
+// the constriction's width, the air's paths, the particle layouts and a closure stopping the flow.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import {
-	EXIT_MM, NASAL_FULL_AREA_MM2, NASAL_PASSAGE, TURBULENCE_WIDTH_MM, createPath, hash01, layoutFlow, layoutRings,
-	layoutSwirl, nasalPath, nasalStrength, oralPath, pointAlong, turbulenceStrength,
+	CLOSURE_WIDTH_MM, EXIT_MM, NASAL_FULL_AREA_MM2, NASAL_PASSAGE, STOP_MARGIN_MM, TURBULENCE_WIDTH_MM, arcLengthAt, createPath,
+	hash01, isClosure, layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength, oralPath, pointAlong, turbulenceStrength,
 } from '../../web/src/core/cues.js';
 import { fewestGarbageCollections } from './support/garbage.js';
 
@@ -104,6 +104,83 @@ test( 'flow particles lie on their path within the spread, head bright and trail
 
 } );
 
+test( 'a width of 0.0 mm is a closure; a narrow gap, no constriction or an unknown width is not', () => {
+
+	assert.equal( isClosure( 0 ), true );
+	assert.equal( isClosure( CLOSURE_WIDTH_MM ), true );
+	assert.equal( isClosure( 0.3 ), false );
+	assert.equal( isClosure( Infinity ), false );
+	assert.equal( isClosure( NaN ), false );
+
+} );
+
+test( 'the arc length of a point is that of its nearest point on the path', () => {
+
+	const path = createPath( [ 0, 0, 10, 0, 10, 5 ] );
+	assert.equal( arcLengthAt( path, 4, 1 ), 4 );
+	assert.equal( arcLengthAt( path, 12, 3 ), 13 );
+	assert.equal( arcLengthAt( path, - 5, 0 ), 0 );
+	assert.equal( arcLengthAt( path, 10, 9 ), 15 );
+
+} );
+
+/** The visible dots of the oral flow at `time` (x y alpha each), with the layout's options. */
+function oralDots( time, stopMm ) {
+
+	const path = oralPath( MIDLINE, GLOTTIS );
+	const count = 30, trail = 6;
+	const positions = new Float32Array( 3 * count * trail ), colors = new Float32Array( 4 * count * trail );
+	const options = { count, trail, time, speed: 70, spacingMm: 2.4, spreadMm: 2.4, stopMm };
+	layoutFlow( path, options, positions, colors, 0, 4, 3 );
+	const dots = [];
+	for ( let d = 0; d < count * trail; d ++ ) if ( colors[ 4 * d + 3 ] > 0 ) dots.push( [ positions[ 3 * d ], positions[ 3 * d + 1 ], colors[ 4 * d + 3 ] ] );
+	return { path, dots, options };
+
+}
+
+test( 'a closure stops the oral flow: the dots gather behind it and none passes, at any time', () => {
+
+	// The tongue tip against the palate at (20, 5), on the way from the palate to the lips (40, 0).
+	const path = oralPath( MIDLINE, GLOTTIS );
+	const stop = arcLengthAt( path, 20, 5 );
+	let free = - Infinity, near = 0, all = 0, openNear = 0, openAll = 0;
+	const behind = ( [ x, y ] ) => {
+
+		const s = arcLengthAt( path, x, y );
+		return s > stop - 20 && s <= stop;
+
+	};
+
+	for ( let k = 0; k < 120; k ++ ) {
+
+		const time = k / 17;
+		const open = oralDots( time, Infinity );
+		free = Math.max( free, ...open.dots.map( ( [ x ] ) => x ) );
+		openNear += open.dots.filter( behind ).length;
+		openAll += open.dots.length;
+		const { dots, options } = oralDots( time, stop );
+		assert.ok( dots.length > 0, 'the air still comes up to the closure' );
+		assert.ok( options.reachMm <= stop - STOP_MARGIN_MM + 1e-9, `a dot at ${ options.reachMm } mm along the path, the closure at ${ stop }` );
+		for ( const [ x ] of dots ) assert.ok( x < 20, `a dot at x = ${ x } is past the closure at x = 20 (time ${ time })` );
+		near += dots.filter( behind ).length;
+		all += dots.length;
+
+	}
+
+	assert.ok( free > 40, 'without the closure the air goes out past the lips' );
+	// They gather: the last 20 mm before the closure hold twice the share of the dots they hold in an open flow.
+	assert.ok( near / all > 2 * openNear / openAll, `${ near } of ${ all } dots within 20 mm behind the closure; open, ${ openNear } of ${ openAll }` );
+
+} );
+
+test( 'a stop at or past the end of the path leaves the flow as it was', () => {
+
+	const a = oralDots( 0.7, Infinity ), b = oralDots( 0.7, 1e6 );
+	assert.deepEqual( a.dots, b.dots );
+	assert.ok( a.options.reachMm > a.path.total - EXIT_MM );
+
+} );
+
 test( 'a turbulent swirl stays near the constriction, wider when narrower, and jitters over time', () => {
 
 	const count = 30;
@@ -144,13 +221,14 @@ test( 'the per-frame layouts allocate nothing', async () => {
 	const path = oralPath( MIDLINE, GLOTTIS );
 	const positions = new Float32Array( 3 * 200 ), colors = new Float32Array( 4 * 200 ), rings = new Float64Array( 6 );
 	// The options are made once and updated, as scene/CueLayer.js does.
-	const flow = { count: 30, trail: 6, time: 0, speed: 70, spacingMm: 1.8, spreadMm: 2 };
+	const flow = { count: 30, trail: 6, time: 0, speed: 70, spacingMm: 1.8, spreadMm: 2, stopMm: Infinity, reachMm: 0 };
 	const swirl = { count: 40, time: 0, strength: 0.8, radiusMm: 5 };
 	assert.equal( await fewestGarbageCollections( () => {
 
 		for ( let k = 0; k < 20000; k ++ ) {
 
 			flow.time = swirl.time = k / 60;
+			flow.stopMm = k % 2 ? Infinity : 120; // open, then closed at 120 mm along the path
 			layoutFlow( path, flow, positions, colors, 0, 4, 3 );
 			layoutSwirl( 0, 0, swirl, positions, colors, 0, 4, 3 );
 			layoutRings( k / 60, 3, 0.75, 3, 15, rings );

@@ -11,6 +11,10 @@ export const TURBULENCE_WIDTH_MM = 2;
 export const NASAL_FULL_AREA_MM2 = 100;
 /** How far the oral path goes on beyond the lips, and the nasal one beyond the nostrils (mm). */
 export const EXIT_MM = 22;
+/** A constriction this narrow (mm) or narrower is a closure: what the diagram shows as 0.0 mm. */
+export const CLOSURE_WIDTH_MM = 0.05;
+/** The oral flow's dots stay this far (mm, along the path) behind a closure. */
+export const STOP_MARGIN_MM = 3;
 
 /**
  * The nose's passage above the palate, after the port (x y, mm, project frame): schematic, as
@@ -33,6 +37,13 @@ export function turbulenceStrength( widthMm ) {
 	if ( ! ( widthMm < TURBULENCE_WIDTH_MM ) ) return 0;
 	const narrow = 1 - Math.max( 0, widthMm ) / TURBULENCE_WIDTH_MM;
 	return 0.35 + 0.65 * narrow;
+
+}
+
+/** Whether a constriction of this width (mm) closes the tract (no width, or none found: open). */
+export function isClosure( widthMm ) {
+
+	return widthMm <= CLOSURE_WIDTH_MM;
 
 }
 
@@ -89,6 +100,35 @@ export function pointAlong( path, s, target ) {
 	target[ 2 ] = dx / length;
 	target[ 3 ] = dy / length;
 	return target;
+
+}
+
+/**
+ * The arc length along `path` of its point nearest (x, y): where a closure at (x, y) stops the
+ * flow. Allocates nothing.
+ */
+export function arcLengthAt( path, x, y ) {
+
+	const { points, lengths } = path;
+	let best = Infinity, at = 0;
+	for ( let k = 0; k + 1 < lengths.length; k ++ ) {
+
+		const ax = points[ 2 * k ], ay = points[ 2 * k + 1 ];
+		const dx = points[ 2 * k + 2 ] - ax, dy = points[ 2 * k + 3 ] - ay;
+		const span2 = dx * dx + dy * dy;
+		const f = span2 > 0 ? Math.min( 1, Math.max( 0, ( ( x - ax ) * dx + ( y - ay ) * dy ) / span2 ) ) : 0;
+		const ex = ax + f * dx - x, ey = ay + f * dy - y;
+		const d2 = ex * ex + ey * ey;
+		if ( d2 < best ) {
+
+			best = d2;
+			at = lengths[ k ] + f * ( lengths[ k + 1 ] - lengths[ k ] );
+
+		}
+
+	}
+
+	return at;
 
 }
 
@@ -153,31 +193,51 @@ const scratch = new Float64Array( 4 );
  * a stream. Writes count * trail dots: x y z into positions[ 3 * ( first + dot ) ] and an alpha
  * (head 1, fading along the trail and at the path's ends, times `alpha`) into
  * alphas[ alphaStride * ( first + dot ) + alphaOffset ]. Allocates nothing.
+ *
+ * With `stopMm` short of the path's end (a closure there), the flow is blocked: the particles
+ * run on the path up to STOP_MARGIN_MM before stopMm, slowing as they come (eased to a stop), so
+ * that they gather behind the closure and fade there, and none passes it.
+ * Sets `options.reachMm`, the farthest arc length of a dot drawn (alpha above 0).
  * @returns {number} the dots written
  */
-export function layoutFlow( path, { count, trail, time, speed, spacingMm, spreadMm, alpha = 1, seed = 0 }, positions, alphas, first = 0, alphaStride = 1, alphaOffset = 0 ) {
+export function layoutFlow( path, options, positions, alphas, first = 0, alphaStride = 1, alphaOffset = 0 ) {
 
-	const total = path.total;
+	const { count, trail, time, speed, spacingMm, spreadMm, alpha = 1, seed = 0, stopMm = Infinity } = options;
+	const blocked = stopMm < path.total;
+	const total = blocked ? Math.max( 0, stopMm - STOP_MARGIN_MM ) : path.total;
 	let dot = first;
+	let reach = 0;
 	for ( let i = 0; i < count; i ++ ) {
 
-		const phase = i / count + time * speed / total;
+		const phase = total > 0 ? i / count + time * speed / total : 0;
 		const head = ( phase - Math.floor( phase ) ) * total;
 		const across = ( 2 * hash01( seed + i ) - 1 ) * spreadMm;
 		for ( let j = 0; j < trail; j ++ ) {
 
-			const s = head - j * spacingMm;
+			const u = head - j * spacingMm;
+			let s = u, fade;
+			if ( blocked ) {
+
+				const left = total > 0 ? Math.max( 0, 1 - u / total ) : 0;
+				s = total * ( 1 - left * left );
+				fade = Math.max( 0, Math.min( 1, u / 6, 10 * left ) );
+
+			} else fade = edgeFade( s, total, 6 );
+
 			pointAlong( path, s, scratch );
 			positions[ 3 * dot ] = scratch[ 0 ] - scratch[ 3 ] * across;
 			positions[ 3 * dot + 1 ] = scratch[ 1 ] + scratch[ 2 ] * across;
 			positions[ 3 * dot + 2 ] = 0;
-			alphas[ alphaStride * dot + alphaOffset ] = alpha * ( 1 - j / trail ) * edgeFade( s, total, 6 );
+			const a = alpha * ( 1 - j / trail ) * fade;
+			alphas[ alphaStride * dot + alphaOffset ] = a;
+			if ( a > 0 && s > reach ) reach = s;
 			dot ++;
 
 		}
 
 	}
 
+	options.reachMm = reach;
 	return dot - first;
 
 }

@@ -2,9 +2,10 @@
 // that it shows on the cutaway's cut and through the transparent skin.
 //   - voicing: golden rings widening from the glottis and a glow there that buzzes;
 //   - oral airflow: blue dots with fading trails streaming from the glottis along the tract's
-//     midline and out of the lips;
+//     midline and out of the lips; when the narrowest constriction is closed (the tongue against
+//     the palate, the lips together), they gather behind the closure and none passes it;
 //   - turbulence: an orange swirl of jittering dots at the narrowest constriction, when it is
-//     narrower than TURBULENCE_WIDTH_MM (with the oral flow);
+//     narrower than TURBULENCE_WIDTH_MM but open (with the oral flow);
 //   - nasal airflow: magenta dots streaming up the pharynx, through the nasal port and out of the
 //     nose, as many and as fast as the port's area allows (none when the velum is raised).
 // The layouts are core/cues.js; nothing is allocated per frame. Drawn over everything (no depth
@@ -15,7 +16,7 @@ import {
 	NormalBlending, PlaneGeometry, Points, PointsMaterial, RingGeometry,
 } from 'three';
 import {
-	layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength, oralPath, turbulenceStrength,
+	arcLengthAt, isClosure, layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength, oralPath, turbulenceStrength,
 } from '../core/cues.js';
 import { CONSTRICTION_FLOOR, CONSTRICTION_FOUND, CONSTRICTION_ROOF, CONSTRICTION_WIDTH } from '../core/constriction.js';
 
@@ -48,7 +49,7 @@ export class CueLayer {
 		this.oralPath = oralPath( midline, glottis );
 		this.nasalPath = port ? nasalPath( midline, glottis, port ) : null;
 		this.cues = { visible: false, voicing: true, nasal: true, oral: true };
-		this.shown = { turbulence: false, nasalStrength: 0, turbulenceStrength: 0 };
+		this.shown = { turbulence: false, nasalStrength: 0, turbulenceStrength: 0, oralStopped: false, oralStopMm: null, oralReachMm: 0, oralFrontX: null };
 
 		this.group = new Group();
 		this.group.name = 'cue-layer';
@@ -85,7 +86,7 @@ export class CueLayer {
 		this.radii = new Float64Array( 2 * RINGS.count );
 		// Layout options, made once and updated each frame.
 		this.options = {
-			oral: { ...ORAL, time: 0, alpha: 1 },
+			oral: { ...ORAL, time: 0, alpha: 1, stopMm: Infinity, reachMm: 0 },
 			nasal: { ...NASAL, time: 0, alpha: 1 },
 			swirl: { count: SWIRL.count, time: 0, strength: 0, radiusMm: SWIRL.radiusMm, seed: SWIRL.seed },
 		};
@@ -130,13 +131,20 @@ export class CueLayer {
 		const nasal = nasalStrength( area );
 		const r = this.constriction;
 		const width = r && r[ CONSTRICTION_FOUND ] ? r[ CONSTRICTION_WIDTH ] : Infinity;
-		const turbulence = turbulenceStrength( width );
+		// A closure stops the oral flow there: no air passes, so no turbulence either.
+		const closed = isClosure( width );
+		const turbulence = closed ? 0 : turbulenceStrength( width );
 		this.shown.nasalStrength = nasal;
 		this.shown.turbulenceStrength = turbulence;
 		this.shown.turbulence = c.visible && c.oral && turbulence > 0;
+		this.shown.oralStopped = closed;
+		this.options.oral.stopMm = closed ? arcLengthAt( this.oralPath, ( r[ CONSTRICTION_FLOOR ] + r[ CONSTRICTION_ROOF ] ) / 2, ( r[ CONSTRICTION_FLOOR + 1 ] + r[ CONSTRICTION_ROOF + 1 ] ) / 2 ) : Infinity;
+		this.shown.oralStopMm = closed ? this.options.oral.stopMm : null;
 		if ( ! c.visible ) return false;
 
 		this.flow( this.oral, c.oral ? this.oralPath : null, this.options.oral, t, 1, ORAL.count );
+		this.shown.oralReachMm = c.oral ? this.options.oral.reachMm : 0;
+		this.shown.oralFrontX = c.oral ? frontX( this.oral.geometry ) : null;
 		const nasalCount = Math.max( 4, Math.round( NASAL.count * nasal ) );
 		this.flow( this.nasal, c.nasal && nasal > 0 ? this.nasalPath : null, this.options.nasal, t * ( 0.5 + 0.5 * nasal ), 0.5 + 0.5 * nasal, nasalCount );
 
@@ -202,6 +210,10 @@ export class CueLayer {
 			visible: c.visible, voicing: c.voicing, nasal: c.nasal, oral: c.oral,
 			turbulence: this.shown.turbulence,
 			nasalStrength: Math.round( this.shown.nasalStrength * 1000 ) / 1000,
+			oralStopped: this.shown.oralStopped,
+			oralStopMm: round2( this.shown.oralStopMm ),
+			oralReachMm: round2( this.shown.oralReachMm ),
+			oralFrontX: round2( this.shown.oralFrontX ),
 		};
 
 	}
@@ -223,6 +235,18 @@ export class CueLayer {
 		this.texture.dispose();
 
 	}
+
+}
+
+const round2 = ( v ) => ( v === null ? null : Math.round( v * 100 ) / 100 );
+
+/** The largest x of a drawn dot (alpha above 0) of a flow's points, mm, or null. */
+function frontX( geometry ) {
+
+	const p = geometry.attributes.position.array, a = geometry.attributes.color.array;
+	let front = null;
+	for ( let k = 0; k < geometry.drawRange.count; k ++ ) if ( a[ 4 * k + 3 ] > 0 && ( front === null || p[ 3 * k ] > front ) ) front = p[ 3 * k ];
+	return front;
 
 }
 

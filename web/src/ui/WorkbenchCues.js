@@ -1,8 +1,9 @@
 // The workbench's cue controls (a "Cues" group, apart from the articulation parameters): Cues
 // shows or hides the whole layer; Voicing, Nasal airflow (shown only while the nasal port is
 // open) and Oral airflow switch each cue. Drives scene/CueLayer.js from the diagram's
-// constriction and the velum's port, animates it while it is shown (a hidden layer asks for no
-// frames) and reports window.glasshead.cues.
+// constriction (its width and place: a closure stops the oral flow there) and the velum's port,
+// animates it while it is shown (a hidden layer asks for no frames) and reports
+// window.glasshead.cues.
 
 import { registerDebug } from '../debug.js';
 import { CueLayer } from '../scene/CueLayer.js';
