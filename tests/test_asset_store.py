@@ -25,6 +25,10 @@ ROUTES = {
     "velum_rig": [("get", "/api/v1/velum/rig", None),
                   ("post", "/api/v1/tongue/surface", {"params": {"velum_opening": 0.5}})],
     "landmarks": [("get", "/api/v1/anatomy/landmarks", None)],
+    "velum_mesh": [("post", "/api/v1/collision/correct",
+                    {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
+    "pharynx_mesh": [("post", "/api/v1/collision/correct",
+                      {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
 }
 
 

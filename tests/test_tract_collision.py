@@ -8,7 +8,13 @@ import json
 import numpy as np
 import pytest
 
-from glasshead.constants import COLLISION_TOL, FLAG_CORRECTED, TRACT_ORIGIN_AHEAD_MM
+from glasshead.constants import (
+    COLLISION_TOL,
+    FLAG_CORRECTED,
+    PHARYNX_GLB,
+    TRACT_ORIGIN_AHEAD_MM,
+    VELUM_REST_GLB,
+)
 from glasshead.geometry.collision import correct_vertices
 from glasshead.geometry.collision_exact import first_hits_from_origin
 from glasshead.geometry.collision_format import decode_collision_tables
@@ -136,9 +142,35 @@ def test_a_build_whose_velum_rig_is_damaged_stops_naming_the_files(built_assets,
 
     from glasshead.pipeline.tract_collision_check import TractCollisionBuildError, build_step
 
-    for name in ("manifest.json", "velum_rest.glb", "pharynx.glb"):
+    for name in ("manifest.json", VELUM_REST_GLB, PHARYNX_GLB):
         shutil.copy(built_assets / name, tmp_path / name)
     (tmp_path / "velum-rig.json").write_text('{"format_version": 1}')
     with pytest.raises(TractCollisionBuildError, match="velum-rig.json, velum_rest.glb and "
                                                        "pharynx.glb"):
         build_step(SimpleNamespace(assets_dir=tmp_path))
+
+
+def test_the_api_corrects_against_the_velum_and_the_wall_when_given_an_opening(
+        start_app, built_assets, collider, tongue_poses):
+    _, client = start_app(built_assets)
+    vertices, _ = tongue_poses[0]
+    body = {"vertices": vertices.tolist(), "velum_opening": 1.0}
+    answer = client.post("/api/v1/collision/correct", json=body)
+    assert answer.status_code == 200, answer.text
+    result = answer.json()
+    expected, flags, counts = correct_tract(vertices, collider, 1.0)
+    assert result["tract_counts"] == counts and counts["corrected"] > 0
+    assert result["tract_flags"] == flags.tolist()
+    np.testing.assert_allclose(result["vertices"], expected, rtol=0, atol=1e-9)  # JSON floats
+    # Without an opening the palate alone, as before.
+    plain = client.post("/api/v1/collision/correct", json={"vertices": vertices.tolist()})
+    assert plain.json()["tract_counts"] is None
+
+
+@pytest.mark.parametrize("opening", [1.5, -0.2, "open"])
+def test_the_api_refuses_an_opening_out_of_range_naming_it(start_app, built_assets, opening):
+    _, client = start_app(built_assets)
+    answer = client.post("/api/v1/collision/correct",
+                         json={"vertices": [[0.0, 0.0, 0.0]], "velum_opening": opening})
+    assert answer.status_code == 422
+    assert "velum_opening" in answer.text

@@ -32,8 +32,10 @@ from glasshead.constants import (
     LANDMARKS_FILE,
     MANIFEST_FILE,
     MANIFEST_FORMAT_VERSION,
+    PHARYNX_GLB,
     REBUILD_COMMAND,
     TONGUE_RIG_FILE,
+    VELUM_REST_GLB,
     VELUM_RIG_FILE,
 )
 from glasshead.epg.layout import validate_layout_document
@@ -98,6 +100,21 @@ def read_landmarks(data: bytes) -> dict:
     return validate_landmarks(_json(data))
 
 
+def read_glb_mesh(data: bytes) -> tuple:
+    """(vertices (n, 3) float64, faces (m, 3) int64) of a one-mesh GLB, in its vertex order."""
+    import io
+
+    import numpy as np
+    import trimesh
+
+    mesh = trimesh.load(io.BytesIO(data), file_type="glb", force="mesh", process=False)
+    vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    faces = np.asarray(mesh.faces, dtype=np.int64)
+    if vertices.ndim != 2 or vertices.shape[1] != 3 or not len(faces):
+        raise ValueError("the GLB holds no triangle mesh")
+    return vertices, faces
+
+
 @dataclass(frozen=True)
 class AssetSpec:
     """One built file: the name routes ask for, its file under the assets directory, and the
@@ -117,6 +134,9 @@ ASSETS: tuple[AssetSpec, ...] = (
     AssetSpec("face_rig", FACE_RIG_FILE, read_face_rig),
     AssetSpec("velum_rig", VELUM_RIG_FILE, read_velum_rig),
     AssetSpec("landmarks", LANDMARKS_FILE, read_landmarks),
+    # The tongue's collision with the velum and the pharyngeal wall (geometry.tract_collision).
+    AssetSpec("velum_mesh", VELUM_REST_GLB, read_glb_mesh),
+    AssetSpec("pharynx_mesh", PHARYNX_GLB, read_glb_mesh),
 )
 
 

@@ -237,6 +237,10 @@ COLLISION_TABLES_FILE = "collision-tables.bin"
 EPG_LAYOUT_FILE = "epg-layout.json"
 #: The velum rig definition (glasshead.geometry.velum).
 VELUM_RIG_FILE = "velum-rig.json"
+#: The velum's rest pose and the posterior pharyngeal wall: the meshes the tongue's tract
+#: collision reads besides the velum rig (glasshead.geometry.tract_collision).
+VELUM_REST_GLB = "velum_rest.glb"
+PHARYNX_GLB = "pharynx.glb"
 #: The teaching landmarks: parts and places of articulation (glasshead.pipeline.landmarks).
 LANDMARKS_FILE = "landmarks.json"
 #: Format version of the landmarks file; its readers refuse any other version.

@@ -6,7 +6,7 @@ report gives T, the screen plane and the clearances, and a failure stops the bui
 
 import numpy as np
 
-from glasshead.constants import VELUM_RIG_FILE
+from glasshead.constants import PHARYNX_GLB, VELUM_REST_GLB, VELUM_RIG_FILE
 from glasshead.geometry.collision_exact import closest_points_on_triangles
 from glasshead.geometry.tract_collision import TractCollisionError, prepare_tract
 from glasshead.geometry.velum import VelumRigError, prepare_velum
@@ -26,8 +26,8 @@ def build_step(ctx):
                                  meshes["pharynx"][1])
     except (TractCollisionError, VelumRigError, KeyError, OSError, ValueError) as exc:
         raise TractCollisionBuildError(
-            f"tract collision cannot be set up from {VELUM_RIG_FILE}, velum_rest.glb and "
-            f"pharynx.glb in {assets_dir}: {exc}") from exc
+            f"tract collision cannot be set up from {VELUM_RIG_FILE}, {VELUM_REST_GLB} and "
+            f"{PHARYNX_GLB} in {assets_dir}: {exc}") from exc
     clearance = {}
     for mesh in collider.meshes:
         gaps = []

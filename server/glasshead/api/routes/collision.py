@@ -1,5 +1,9 @@
 """GET /collision/tables: the liner and voxel tables. POST /collision/correct: the Python reference.
 
+With ``velum_opening`` the correction also moves the tongue out of the velum at that opening and
+out of the pharyngeal wall, after the palate, as the web app's frame does
+(``geometry.tract_collision``; docs/collision.md).
+
 The tables are one binary file built by `glasshead build` (format in
 ``glasshead.geometry.collision_format``). GET /collision/tables answers with its JSON header and
 the URL of the binary; the browser fetches the binary, checks it and corrects the tongue itself
@@ -18,6 +22,7 @@ from glasshead.constants import (
     COLLISION_TABLES_FORMAT_VERSION,
 )
 from glasshead.geometry.collision import correct_vertices
+from glasshead.geometry.tract_collision import TractCollider, correct_tract, prepare_tract
 
 router = APIRouter(tags=["collision"])
 
@@ -29,6 +34,10 @@ class CorrectRequest(BaseModel):
     vertices: Annotated[list[Vertex], Field(max_length=COLLISION_MAX_VERTICES,
                                             description="Tongue vertices [x, y, z], mm, "
                                                         "project frame.")]
+    velum_opening: Annotated[float | None, Field(
+        default=None, ge=0.0, le=1.0, allow_inf_nan=False,
+        description="When given (0 raised to 1 lowered), the vertices are then also corrected "
+                    "against the velum at this opening and the pharyngeal wall.")] = None
 
 
 class CollisionCounts(BaseModel):
@@ -42,6 +51,10 @@ class CorrectResponse(BaseModel):
     flags: list[int] = Field(description="Per vertex: 0 screened by the voxel table, 1 tested "
                                          "against the liner and outside, 2 corrected.")
     counts: CollisionCounts
+    tract_flags: list[int] | None = Field(
+        default=None, description="With velum_opening: per vertex 0 screened, 1 tested and "
+                                  "outside, 2 corrected against the velum or the wall.")
+    tract_counts: CollisionCounts | None = None
     format_version: int
 
 
@@ -69,6 +82,21 @@ def collision_correct(request: CorrectRequest, assets: AssetsDep) -> CorrectResp
         return CorrectResponse(vertices=[], flags=[], counts=counts,
                                format_version=COLLISION_TABLES_FORMAT_VERSION)
     corrected, flags, counts = correct_vertices(request.vertices, tables)
+    tract_flags = tract_counts = None
+    if request.velum_opening is not None:
+        corrected, tract, tract_stats = correct_tract(corrected, tract_collider(assets),
+                                                      request.velum_opening)
+        tract_flags, tract_counts = tract.tolist(), CollisionCounts(**tract_stats)
     return CorrectResponse(vertices=corrected.tolist(), flags=flags.tolist(),
-                           counts=CollisionCounts(**counts),
+                           counts=CollisionCounts(**counts), tract_flags=tract_flags,
+                           tract_counts=tract_counts,
                            format_version=COLLISION_TABLES_FORMAT_VERSION)
+
+
+def tract_collider(assets) -> TractCollider:
+    """The velum and pharyngeal wall collider, prepared once per version of its three assets."""
+    velum_faces = assets.get("velum_mesh")[1]
+    wall = assets.get("pharynx_mesh")
+    key = ("tract", assets.entry("velum_mesh").sha256, assets.entry("pharynx_mesh").sha256)
+    return assets.derived("velum_rig", key,
+                          lambda rig: prepare_tract(rig, velum_faces, wall[0], wall[1]))
