@@ -1,6 +1,7 @@
 // End-to-end: the label layer of the head view in Debian's Chromium. Switches the labels on and
-// off, hovers the tongue and reads the named part from `window.glasshead.labels`; screenshots at
-// 1920 x 1080 and 1024 x 768 in e2e/screenshots/ are for a person to look at.
+// off, hovers the tongue and reads the named part from `window.glasshead.labels`, and checks that
+// no label lies under the EPG card or the side panel, or on another label, at 1920 x 1080 and
+// 1024 x 768; screenshots of both in e2e/screenshots/ are for a person to look at.
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
@@ -28,6 +29,28 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 
 	const labelsButton = () => page.getByRole( 'button', { name: 'Labels' } );
 
+	/** Every shown label's box that covers the EPG card, the side panel or another label. */
+	function clashes() {
+
+		return page.evaluate( () => {
+
+			const box = ( el ) => el.getBoundingClientRect();
+			const meet = ( a, b ) => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom;
+			const labels = [ ...document.querySelectorAll( '.label-layer .label' ) ].map( ( el ) => ( { name: el.dataset.landmark, rect: box( el ) } ) );
+			const panels = [ ...document.querySelectorAll( '.epg-overlay, .panel' ) ].map( ( el ) => ( { name: el.className, rect: box( el ) } ) );
+			const found = [];
+			labels.forEach( ( a, i ) => {
+
+				for ( const p of panels ) if ( meet( a.rect, p.rect ) ) found.push( `${ a.name } on ${ p.name }` );
+				for ( const b of labels.slice( 0, i ) ) if ( meet( a.rect, b.rect ) ) found.push( `${ a.name } on ${ b.name }` );
+
+			} );
+			return { found, labels: labels.length, panels: panels.length };
+
+		} );
+
+	}
+
 	async function setLabels( on ) {
 
 		if ( ( await labelsButton().getAttribute( 'aria-pressed' ) ) !== String( on ) ) await labelsButton().click();
@@ -37,7 +60,7 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 
 	test( 'the labels switch on and off', async () => {
 
-		assert.deepEqual( ( await readDebug( page ) ).labels, { visible: false, count: 0, hovered: null } );
+		assert.deepEqual( ( await readDebug( page ) ).labels, { visible: false, count: 0, hovered: null, overlapping: 0 } );
 		await setLabels( true );
 		const shown = landmarks.landmarks.filter( ( e ) => e.kind !== 'reference' ).length;
 		let state = await readDebug( page );
@@ -70,6 +93,11 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 		await page.getByRole( 'button', { name: 'Profile', exact: true } ).click();
 		await settle( page );
 		await setLabels( true );
+		const wide = await clashes();
+		assert.equal( wide.panels, 2, 'the EPG card and the side panel are on the page' );
+		assert.ok( wide.labels > 10 );
+		assert.deepEqual( wide.found, [], 'at 1920 x 1080' );
+		assert.equal( ( await readDebug( page ) ).labels.overlapping, 0 );
 		await saveScreenshot( page, 'labels-profile-1920' );
 		// The tongue's back on the screen: project its landmark through the page's own camera by
 		// reading where its dot is drawn.
@@ -93,7 +121,10 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 		await settle( page );
 		await page.getByRole( 'button', { name: 'Profile', exact: true } ).click();
 		await settle( page );
+		await page.mouse.move( 0, 0 );
 		await saveScreenshot( page, 'labels-profile-1024' );
+		assert.deepEqual( ( await clashes() ).found, [], 'at 1024 x 768' );
+		assert.equal( ( await readDebug( page ) ).labels.overlapping, 0 );
 		assert.deepEqual( page.problems, [] );
 
 	} );

@@ -75,6 +75,42 @@ test( 'labels crowded on one point are placed apart, inside the screen', () => {
 
 } );
 
+test( 'labels keep off the panels over the view and each other, even when their best spot is under one', () => {
+
+	// A card at the bottom left (the EPG card) and a panel down the right side.
+	const card = { x: 16, y: 420, w: 190, h: 230 }, side = { x: 700, y: 0, w: 300, h: 768 };
+	const bounds = { width: 1000, height: 768 };
+	// Anchors just above and beside the card, preferring to hang down into it, and crowded at the side panel.
+	const anchors = [
+		{ x: 120, y: 400, w: 110, h: 26, angle: Math.PI / 2 },
+		{ x: 150, y: 410, w: 110, h: 26, angle: Math.PI * 0.6 },
+		{ x: 90, y: 395, w: 110, h: 26, angle: Math.PI * 0.4 },
+		{ x: 660, y: 300, w: 140, h: 26, angle: 0 },
+		{ x: 665, y: 320, w: 140, h: 26, angle: 0 },
+	];
+	const apart = ( a, b ) => a.x + a.w <= b.x || b.x + b.w <= a.x || a.y + a.h <= b.y || b.y + b.h <= a.y;
+	const free = placeLabels( anchors, bounds );
+	assert.ok( free.some( ( box ) => ! apart( box, card ) || ! apart( box, side ) ), 'without the panels some labels would lie under them' );
+	const boxes = placeLabels( anchors, bounds, [ card, side ] );
+	boxes.forEach( ( box, i ) => {
+
+		assert.ok( apart( box, card ), `label ${ i } covers the card` );
+		assert.ok( apart( box, side ), `label ${ i } covers the side panel` );
+		assert.equal( box.overlapping, false );
+		for ( let k = 0; k < i; k ++ ) assert.ok( apart( box, boxes[ k ] ), `labels ${ k } and ${ i } overlap` );
+
+	} );
+
+} );
+
+test( 'a label with no spot free of a panel says that it overlaps', () => {
+
+	const panel = { x: 0, y: 0, w: 400, h: 300 };
+	const [ box ] = placeLabels( [ { x: 200, y: 150, w: 100, h: 20, angle: 0 } ], { width: 400, height: 300 }, [ panel ] );
+	assert.equal( box.overlapping, true );
+
+} );
+
 test( 'places point up, parts away from the middle of the parts', () => {
 
 	const entries = [ { kind: 'part' }, { kind: 'part' }, { kind: 'place' } ];

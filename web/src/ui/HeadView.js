@@ -158,7 +158,7 @@ export class HeadView {
 
 			const document = await loadLandmarks( { api: this.api } );
 			if ( ! this.viewer ) return;
-			this.labels = new LabelLayer( { document, head: this.head, viewer: this.viewer, stage: this.stage } );
+			this.labels = new LabelLayer( { document, head: this.head, viewer: this.viewer, stage: this.stage, obstacles: () => [ this.controls.element ] } );
 			this.labels.setVisible( this.state.labels );
 
 		} catch ( error ) {

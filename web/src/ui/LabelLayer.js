@@ -1,9 +1,11 @@
 // The label layer: names the parts of the mouth and throat and the places of articulation at
 // their landmarks (GET /anatomy/landmarks, handed in: the layer fetches nothing), as an HTML
 // overlay over the 3D view with a dot and a leader line per label; and names the part under the
-// pointer (hover, or a tap on a touch screen) by a raycast against the head's meshes.
+// pointer (hover, or a tap on a touch screen) by a raycast against the head's meshes. Labels keep
+// off the panels over or beside the view: the stage's other children (the EPG card) and the
+// elements `obstacles()` gives (the side panel).
 //
-// window.glasshead.labels = { visible, count, hovered }.
+// window.glasshead.labels = { visible, count, hovered, overlapping }.
 
 import { Raycaster, Vector2, Vector3 } from 'three';
 import { registerDebug } from '../debug.js';
@@ -20,13 +22,16 @@ const SKIPPED_ROLES = new Set( [ 'air' ] );
 export class LabelLayer {
 
 	/**
-	 * @param {{ document: object, head: object, viewer: object, stage: HTMLElement }} options
-	 *   the landmarks document, the head whose meshes are pointed at, the viewer, and the element
-	 *   the overlay covers
+	 * @param {{ document: object, head: object, viewer: object, stage: HTMLElement,
+	 *   obstacles?: () => Array<Element|null> }} options the landmarks document, the head whose
+	 *   meshes are pointed at, the viewer, the element the overlay covers, and more elements the
+	 *   labels must keep off (the stage's own other children always are)
 	 */
-	constructor( { document, head, viewer, stage } ) {
+	constructor( { document, head, viewer, stage, obstacles = () => [] } ) {
 
 		this.entries = labelEntries( document );
+		this.obstacles = obstacles;
+		this.overlapping = 0;
 		this.head = head;
 		this.viewer = viewer;
 		this.stage = stage;
@@ -73,7 +78,7 @@ export class LabelLayer {
 				return false; // the labels are HTML over the canvas: they never need a new 3D frame
 
 			} ),
-			registerDebug( 'labels', () => ( { visible: this.visible, count: this.visible ? this.labels.length : 0, hovered: this.hovered } ) ),
+			registerDebug( 'labels', () => ( { visible: this.visible, count: this.visible ? this.labels.length : 0, hovered: this.hovered, overlapping: this.visible ? this.overlapping : 0 } ) ),
 		];
 
 	}
@@ -128,7 +133,8 @@ export class LabelLayer {
 		} );
 		// Places first (they are read in order along the roof), then the parts.
 		const order = anchors.map( ( _, i ) => i ).sort( ( a, b ) => ( this.entries[ a ].kind === 'place' ? 0 : 1 ) - ( this.entries[ b ].kind === 'place' ? 0 : 1 ) );
-		const boxes = placeLabels( order.map( ( i ) => anchors[ i ] ), { width: rect.width, height: rect.height } );
+		const boxes = placeLabels( order.map( ( i ) => anchors[ i ] ), { width: rect.width, height: rect.height }, this.obstacleRects( rect ) );
+		this.overlapping = boxes.filter( ( box ) => box.overlapping ).length;
 		this.svg.setAttribute( 'viewBox', `0 0 ${ rect.width } ${ rect.height }` );
 		order.forEach( ( i, k ) => {
 
@@ -144,6 +150,27 @@ export class LabelLayer {
 			line.setAttribute( 'y2', Math.min( Math.max( p.y, box.y ), box.y + box.h ) );
 
 		} );
+
+	}
+
+	/** The screen rectangles of the panels the labels keep off, in the stage's frame (CSS px). */
+	obstacleRects( stageRect ) {
+
+		const canvas = this.viewer.renderer.domElement;
+		const elements = [ ...this.stage.children ].filter( ( el ) => el !== this.element && el !== this.tip && el !== canvas );
+		const rects = [];
+		for ( const el of [ ...elements, ...this.obstacles() ] ) {
+
+			if ( ! el || el.hidden ) continue;
+			const r = el.getBoundingClientRect();
+			const x = r.left - stageRect.left, y = r.top - stageRect.top;
+			// Only what reaches into the stage matters.
+			if ( r.width === 0 || r.height === 0 || x >= stageRect.width || y >= stageRect.height || x + r.width <= 0 || y + r.height <= 0 ) continue;
+			rects.push( { x, y, w: r.width, h: r.height } );
+
+		}
+
+		return rects;
 
 	}
 

@@ -1,5 +1,6 @@
 // The label layer's pure parts: which landmarks it shows, where each label goes on the screen so
-// that labels do not overlap, and which part a pointer over a mesh names. No DOM, no three.js:
+// that labels overlap neither each other nor the panels over the view (the EPG card, the side
+// panel), and which part a pointer over a mesh names. No DOM, no three.js:
 // tested in Node (tests/js/labelPlacement.test.js).
 
 /** Format version of GET /anatomy/landmarks this app reads (LANDMARKS_FORMAT_VERSION). */
@@ -9,11 +10,14 @@ import { LANDMARKS_FORMAT_VERSION } from '../core/constants.js';
 export const MESH_NAMES = Object.freeze( { mandible: 'jaw', cranium: 'skull', hyoid: 'hyoid bone', vertebrae: 'spine' } );
 
 /** Radii (CSS px) at which a label is tried around its landmark, nearest first. */
-const RADII = Object.freeze( [ 34, 56, 82, 112, 150, 196 ] );
+const RADII = Object.freeze( [ 34, 56, 82, 112, 150, 196, 250, 310 ] );
 /** Angles (degrees) tried on each side of the preferred direction. */
 const TURNS = Object.freeze( [ 0, 25, - 25, 50, - 50, 80, - 80, 115, - 115, 150, - 150, 180 ] );
 /** Space kept between two labels, CSS px. */
 const MARGIN = 4;
+/** Cost of covering a panel, per px² overlapped, against 1 for covering another label: a label
+ * goes over a panel only when no spot is free of it. */
+const OBSTACLE_WEIGHT = 1000;
 
 /** Check a landmarks document (GET /anatomy/landmarks); returns its shown entries. */
 export function labelEntries( document ) {
@@ -49,9 +53,11 @@ function overlapArea( a, b ) {
  * given order: earlier labels get the nearer spots).
  * anchors: [{ x, y, w, h, angle }] the landmark on the screen (CSS px), the label's size and its
  * preferred direction (radians, screen: +x right, +y down). bounds: { width, height }.
- * Returns [{ x, y, w, h, overlapping }] the top-left corner of each label's box.
+ * obstacles: [{ x, y, w, h }] screen rectangles no label may cover (panels over the view).
+ * Returns [{ x, y, w, h, overlapping }] the top-left corner of each label's box; overlapping:
+ * it covers another label or an obstacle (no free spot was found).
  */
-export function placeLabels( anchors, bounds ) {
+export function placeLabels( anchors, bounds, obstacles = [] ) {
 
 	const placed = [];
 	const dots = anchors.map( ( a ) => ( { x: a.x - 5, y: a.y - 5, w: 10, h: 10 } ) );
@@ -72,6 +78,7 @@ export function placeLabels( anchors, bounds ) {
 				box.x = Math.min( Math.max( box.x, 0 ), Math.max( 0, bounds.width - a.w ) );
 				box.y = Math.min( Math.max( box.y, 0 ), Math.max( 0, bounds.height - a.h ) );
 				let cost = 0;
+				for ( const obstacle of obstacles ) cost += OBSTACLE_WEIGHT * overlapArea( box, obstacle );
 				for ( const other of placed ) cost += overlapArea( box, other );
 				for ( let k = 0; k < dots.length; k ++ ) if ( k !== i ) cost += 0.25 * overlapArea( box, dots[ k ] );
 				if ( cost === 0 ) {
@@ -92,7 +99,7 @@ export function placeLabels( anchors, bounds ) {
 
 		}
 
-		placed.push( { ...best, overlapping: placed.some( ( other ) => overlaps( best, other ) ) } );
+		placed.push( { ...best, overlapping: placed.some( ( other ) => overlaps( best, other ) ) || obstacles.some( ( other ) => overlaps( best, other ) ) } );
 
 	}
 
