@@ -72,11 +72,9 @@ test( 'flags and corrected positions agree with the Python reference in every ca
 		const flags = new Uint8Array( count );
 		const stats = new Int32Array( 3 );
 		const moved = correctTract( positions, count, tract.collider, flags, stats );
-		// Which vertices move is the twins' common answer; how the rest were settled (screened
-		// or tested) is each twin's own: JS screens with its depth tables.
-		assert.deepEqual( Array.from( flags, ( f ) => f === FLAG_CORRECTED ), expected.flags.map( ( f ) => f === FLAG_CORRECTED ), description );
+		assert.deepEqual( Array.from( flags ), expected.flags, description );
 		assert.equal( moved, expected.corrected.length, description );
-		assert.ok( stats[ STAT_TESTED ] >= moved && stats[ STAT_TESTED ] <= expected.counts.tested, description );
+		assert.equal( stats[ STAT_TESTED ], expected.counts.tested, description );
 		const got = new Float64Array( 3 * moved );
 		expected.corrected.forEach( ( v, k ) => {
 

@@ -13,9 +13,8 @@ segment's box meets. Both take the same first crossing, computed with the same o
 Steps:
 
 1. Screen: a vertex in front of every tract mesh (x at or beyond ``screen_x``, T being in front
-   of them too), or nearer to T than every mesh's bounding box: outside (FLAG_SCREENED). The JS
-   twin screens more, with depth tables over directions from T (``tractScreen.js``), so the two
-   agree on which vertices move and where, not on how the others were settled.
+   of them too), or shallower than every tract hull in its direction from T (the depth tables of
+   ``tract_screen``): outside (FLAG_SCREENED).
 2. Test: the first crossing t of T -> P with the tract meshes; t < 1 moves the vertex to
    T + t (P - T) (FLAG_CORRECTED), otherwise it stays, bit for bit (FLAG_TESTED).
 """
@@ -26,7 +25,6 @@ import numpy as np
 import numpy.typing as npt
 
 from glasshead.constants import (
-    COLLISION_TOL,
     FLAG_CORRECTED,
     FLAG_SCREENED,
     FLAG_TESTED,
@@ -36,6 +34,12 @@ from glasshead.constants import (
 )
 from glasshead.geometry.collision import moller_trumbore
 from glasshead.geometry.collision_exact import closest_points_on_triangles
+from glasshead.geometry.tract_screen import (
+    DepthScreen,
+    create_depth_screen,
+    screen_table,
+    screened,
+)
 from glasshead.geometry.velum import VelumRig, check_opening
 
 Floats = npt.NDArray[np.float64]
@@ -52,25 +56,24 @@ class TractCollisionError(ValueError):
 @dataclass(frozen=True)
 class TractMesh:
     """One tract mesh: poses (p, n, 3) float64 holding float32 values (one pose for a still
-    mesh), faces (m, 3) int64, and root (p, 6): its bounding box in each pose relative to T
-    (min xyz, max xyz), widened by ``COLLISION_TOL.length``."""
+    mesh) and faces (m, 3) int64."""
 
     name: str
     poses: Floats
     faces: Ints
-    root: Floats
 
 
 @dataclass(frozen=True)
 class TractCollider:
     """origin T (3,), screen_x (no tract mesh reaches in front of it), meshes in
-    ``TRACT_COLLISION_MESHES`` order, and the velum's rest share r (its poses are raised, rest,
-    lowered at openings 0, r and 1)."""
+    ``TRACT_COLLISION_MESHES`` order, the velum's rest share r (its poses are raised, rest,
+    lowered at openings 0, r and 1) and the depth screen."""
 
     origin: Floats
     screen_x: float
     meshes: tuple[TractMesh, ...]
     rest_share: float
+    screen: DepthScreen
 
 
 def _float32(values: npt.ArrayLike) -> Floats:
@@ -86,12 +89,6 @@ def tract_origin(velum_poses: npt.ArrayLike) -> Floats:
     """
     poses = np.asarray(velum_poses, dtype=np.float64)
     return np.array([poses[..., 0].max() + TRACT_ORIGIN_AHEAD_MM, poses[..., 1].min(), 0.0])
-
-
-def _root_boxes(poses: Floats, faces: Ints, origin: Floats) -> Floats:
-    used = poses[:, np.unique(faces)] - origin
-    pad = COLLISION_TOL.length
-    return np.concatenate([used.min(axis=1) - pad, used.max(axis=1) + pad], axis=1)
 
 
 def _check_faces(name: str, faces: npt.ArrayLike, vertex_count: int) -> Ints:
@@ -116,9 +113,7 @@ def prepare_tract(velum: VelumRig, velum_faces: npt.ArrayLike, pharynx_vertices:
              "pharynx": _check_faces("pharynx", pharynx_faces, len(pharynx))}
     poses = {"velum": velum_poses, "pharynx": pharynx[None]}
     origin = tract_origin(velum_poses)
-    meshes = tuple(TractMesh(name, poses[name], faces[name],
-                             _root_boxes(poses[name], faces[name], origin))
-                   for name in TRACT_COLLISION_MESHES)
+    meshes = tuple(TractMesh(name, poses[name], faces[name]) for name in TRACT_COLLISION_MESHES)
     screen_x = float(max(m.poses[..., 0].max() for m in meshes))
     if not origin[0] >= screen_x:
         raise TractCollisionError(f"the tract origin x = {origin[0]:.2f} mm lies behind a tract "
@@ -132,7 +127,8 @@ def prepare_tract(velum: VelumRig, velum_faces: npt.ArrayLike, pharynx_vertices:
                 raise TractCollisionError(
                     f"the tract origin {origin.round(2).tolist()} is {gap:.2f} mm from the "
                     f"{mesh.name}; it must keep {TRACT_ORIGIN_CLEARANCE_MM} mm")
-    return TractCollider(origin, screen_x, meshes, float(velum.rest_share))
+    screen = create_depth_screen(origin, [(m.poses, m.faces) for m in meshes])
+    return TractCollider(origin, screen_x, meshes, float(velum.rest_share), screen)
 
 
 def tract_pose(collider: TractCollider, velum_opening: float,
@@ -156,20 +152,6 @@ def check_opening_value(opening: float) -> float:
     """The opening as a float; ValueError naming velum_opening and its range otherwise (the
     check of ``velum.check_opening``, which needs no rig)."""
     return check_opening(None, opening)
-
-
-def _near_squared(mesh: TractMesh, first: int, u: float) -> float:
-    """Squared distance from T to the mesh's box blended to share u (as velum.js's vertices)."""
-    a = mesh.root[first]
-    b = mesh.root[min(first + 1, len(mesh.root) - 1)]
-    w = 1.0 - u
-    total = 0.0
-    for c in range(3):
-        lo = float(a[c]) * w + float(b[c]) * u
-        hi = float(a[3 + c]) * w + float(b[3 + c]) * u
-        gap = lo if lo > 0 else -hi if hi < 0 else 0.0
-        total += gap * gap
-    return total
 
 
 def _first_crossings(rel: Floats, positions: Floats, faces: Ints, origin: Floats) -> Floats:
@@ -206,13 +188,14 @@ def correct_tract(vertices: npt.ArrayLike, collider: TractCollider, velum_openin
         raise ValueError("vertices must be finite numbers")
     posed = tract_pose(collider, velum_opening)
     origin = collider.origin
-    near2 = min(_near_squared(mesh, first, u)
-                for mesh, (_, first, u) in zip(collider.meshes, posed, strict=True))
+    moving = collider.screen.moving
+    first, share = (posed[moving][1], posed[moving][2]) if moving >= 0 else (0, 0.0)
+    table = screen_table(collider.screen, first, share)
     px = points[:, 0] - origin[0]
     py = points[:, 1] - origin[1]
     pz = points[:, 2] - origin[2]
-    screened = (points[:, 0] >= collider.screen_x) | (px * px + py * py + pz * pz < near2)
-    todo = np.flatnonzero(~screened)
+    behind = np.flatnonzero(points[:, 0] < collider.screen_x)
+    todo = behind[~screened(collider.screen, origin, points[behind], table)]
     rel = np.stack([px[todo], py[todo], pz[todo]], axis=1)
     t = np.full(len(todo), np.inf)
     for mesh, (positions, _, _) in zip(collider.meshes, posed, strict=True):

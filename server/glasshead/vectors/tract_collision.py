@@ -6,9 +6,8 @@ both files). Cases: ``POSES`` seeded random tongue poses (every parameter unifor
 range), each first corrected against the palate, at a random velum opening and at the three
 measured openings. Input: the vertices that matter (every vertex the tract corrects, a spread
 of those it only tests and of those it screens), as float32 bytes both sides read bit for bit.
-Expected: each vertex's flag and every corrected position. Both twins must move the same
-vertices to the same places; whether an unmoved vertex was screened or tested is each twin's own
-(the JS twin screens more, with its depth tables), so the JS test compares corrected or not.
+Expected: each vertex's flag (screened by the depth tables, tested, corrected) and every
+corrected position.
 
 A vertex is kept only when its flag holds with the vertex moved ``FLIP_MM`` toward and away from
 T, so that no case sits on a decision boundary a last-digit difference could flip.
