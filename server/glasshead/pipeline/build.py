@@ -114,6 +114,15 @@ def tract_collision_step(ctx):
     return build_step(ctx)
 
 
+def vtl_observations_step(ctx):
+    from glasshead.pipeline.vtl_observations import build_vtl_observations
+    document, skipped = build_vtl_observations(ctx.assets_dir)
+    registration = document["registration"]
+    return {"step": "vtl-observations", "skipped": skipped, "shapes": document["shape_count"],
+            "registration_midline_mm": registration["midline"],
+            "registration_rms_mm": registration["icp_trimmed_rms_mm"]}
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -129,6 +138,7 @@ STEPS = [
     ("velum-rig", velum_rig_step),
     ("tract-collision", tract_collision_step),
     ("landmarks", landmarks_step),
+    ("vtl-observations", vtl_observations_step),
 ]
 
 
