@@ -1,0 +1,119 @@
+"""Bounded, derivative-free minimisation over NLopt's local methods.
+
+Cohen, Beskow and Massaro (1998) fitted their tongue to measurements with STEPIT, a
+derivative-free direct search. The rig's objectives are the same kind of function: cheap, a few
+to a dozen parameters, no gradient, and piecewise smooth (a ray can change the segment it
+crosses). NLopt offers three such local methods with bounds:
+
+- ``praxis``: Brent's principal-axis method (LN_PRAXIS), the closest relative of STEPIT's
+  conjugate directions; NLopt keeps it inside the bounds by answering +inf outside them;
+- ``bobyqa``: Powell's bound-constrained quadratic models (LN_BOBYQA), few evaluations on smooth
+  functions;
+- ``sbplx``: Rowan's subplex, Nelder-Mead on subspaces (LN_SBPLX), robust on rough functions.
+
+``minimize`` keeps the best point it has seen, so a method that stops on round-off (NLopt raises
+``RoundoffLimited``) still returns a result.
+"""
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import nlopt
+import numpy as np
+
+METHODS = {"praxis": nlopt.LN_PRAXIS, "bobyqa": nlopt.LN_BOBYQA, "sbplx": nlopt.LN_SBPLX}
+
+#: NLopt's result codes, as words for reports.
+STOP_REASONS = {
+    nlopt.SUCCESS: "success",
+    nlopt.STOPVAL_REACHED: "stopval reached",
+    nlopt.FTOL_REACHED: "ftol reached",
+    nlopt.XTOL_REACHED: "xtol reached",
+    nlopt.MAXEVAL_REACHED: "max evaluations reached",
+    nlopt.MAXTIME_REACHED: "max time reached",
+}
+
+
+@dataclass
+class OptimizeResult:
+    """x: best parameters (n,); error: the objective there; evaluations: objective calls;
+    seconds: wall time; method: the method's name; stop: why it stopped."""
+
+    x: np.ndarray
+    error: float
+    evaluations: int
+    seconds: float
+    method: str
+    stop: str
+
+
+def minimize(objective: Callable[[np.ndarray], float], x0, lower, upper, *,
+             method: str = "bobyqa", max_evals: int = 2000, xtol_rel: float = 1e-6,
+             xtol_abs: float = 1e-6, ftol_abs: float = 1e-10, ftol_rel: float = 0.0,
+             max_seconds: float = 0.0, stopval: float | None = None,
+             initial_step=None) -> OptimizeResult:
+    """Minimise ``objective(x) -> float`` from x0 within [lower, upper] with a local NLopt method.
+
+    xtol_abs matters as well as xtol_rel: the rig's neutral values are 0, where a relative step
+    test alone never passes. ``initial_step`` (scalar or (n,)) defaults to a tenth of each range.
+    Raises ValueError for an unknown method, mismatched shapes, empty or inverted bounds or an x0
+    outside them.
+    """
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose one of: {', '.join(METHODS)}")
+    x0 = np.asarray(x0, dtype=np.float64).ravel()
+    lower = np.asarray(lower, dtype=np.float64).ravel()
+    upper = np.asarray(upper, dtype=np.float64).ravel()
+    if x0.size == 0 or lower.shape != x0.shape or upper.shape != x0.shape:
+        raise ValueError(f"x0, lower and upper must have the same non-empty shape; got "
+                         f"{x0.shape}, {lower.shape}, {upper.shape}")
+    if not (np.all(np.isfinite(x0)) and np.all(np.isfinite(lower))
+            and np.all(np.isfinite(upper))):
+        raise ValueError("x0 and the bounds must be finite")
+    if np.any(lower >= upper):
+        raise ValueError("every lower bound must be below its upper bound")
+    if np.any(x0 < lower) or np.any(x0 > upper):
+        raise ValueError("x0 lies outside the bounds")
+    if max_evals < 1:
+        raise ValueError("max_evals must be at least 1")
+
+    best = {"x": x0.copy(), "f": math.inf, "n": 0}
+
+    def wrapped(x, grad):
+        value = float(objective(np.clip(x, lower, upper)))
+        best["n"] += 1
+        if not math.isfinite(value):  # NaN would poison the methods' models
+            value = math.inf
+        if value < best["f"]:
+            best["f"], best["x"] = value, np.array(x, dtype=np.float64)
+        return value
+
+    opt = nlopt.opt(METHODS[method], x0.size)
+    opt.set_lower_bounds(lower)
+    opt.set_upper_bounds(upper)
+    opt.set_min_objective(wrapped)
+    opt.set_maxeval(int(max_evals))
+    opt.set_xtol_rel(xtol_rel)
+    opt.set_xtol_abs(np.full(x0.size, xtol_abs))
+    opt.set_ftol_abs(ftol_abs)
+    opt.set_ftol_rel(ftol_rel)
+    if max_seconds > 0:
+        opt.set_maxtime(max_seconds)
+    if stopval is not None:
+        opt.set_stopval(stopval)
+    step = (upper - lower) / 10.0 if initial_step is None \
+        else np.broadcast_to(np.asarray(initial_step, dtype=np.float64), x0.shape)
+    opt.set_initial_step(np.asarray(step, dtype=np.float64))
+
+    started = time.perf_counter()
+    try:
+        opt.optimize(x0)
+        stop = STOP_REASONS.get(opt.last_optimize_result(),
+                                f"nlopt code {opt.last_optimize_result()}")
+    except nlopt.RoundoffLimited:
+        stop = "round-off limited"
+    seconds = time.perf_counter() - started
+    return OptimizeResult(x=np.clip(best["x"], lower, upper), error=best["f"],
+                          evaluations=best["n"], seconds=seconds, method=method, stop=stop)

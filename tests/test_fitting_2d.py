@@ -1,0 +1,182 @@
+"""Mid-sagittal fits of the tongue rig: the objective, the optimiser and the fits of the real
+VocalTractLab outlines against the built rig."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from glasshead.constants import TONGUE_RIG_FILE
+from glasshead.fitting.fit2d import fit_all, fit_outline, fit_shape, jaw_opening_from_vtl
+from glasshead.fitting.objective2d import (
+    ROOT_CUT_DEG,
+    MidSagittalSection,
+    Objective2D,
+    Rays,
+    compared_outline,
+)
+from glasshead.fitting.optimizer import METHODS, minimize
+from glasshead.geometry.tongue_surface import TongueRig
+from glasshead.pipeline.vtl_observations import build_vtl_observations
+
+#: A pose within range that changes the volume by 0.5 %.
+KNOWN_POSE = {"tip_height": 3.0, "blade_advancement": 2.0, "dorsum_height": 3.0,
+              "back_dorsum_height": -2.0, "root_advancement": 2.0}
+RECOVERY_RMS_MM = 0.1
+
+
+@pytest.fixture(scope="module")
+def rig(built_assets):
+    return TongueRig(json.loads((built_assets / TONGUE_RIG_FILE).read_text()))
+
+
+@pytest.fixture(scope="module")
+def observations(built_assets, tmp_path_factory):
+    out = tmp_path_factory.mktemp("vtl") / "vtl-observations.json"
+    document, _ = build_vtl_observations(built_assets, out)
+    return document
+
+
+@pytest.fixture(scope="module")
+def shapes(observations):
+    return {shape["name"]: shape for shape in observations["shapes"]}
+
+
+@pytest.fixture(scope="module")
+def section(rig):
+    return MidSagittalSection(rig)
+
+
+def rig_outline(section, values):
+    """The rig's own z = 0 section as a VTL-like outline: from the floor under the root, up the
+    root, over the dorsum to the tip and round the underside."""
+    outline = section.outline(values)[::-1]
+    return np.roll(outline, -int(np.argmin(outline[:, 1])), axis=0)
+
+
+def test_section_lies_on_the_surface_midline(rig, section):
+    values = rig.values_from(KNOWN_POSE)
+    outline = section.outline(values)
+    vertices = rig.vertices(values)
+    midline = vertices[2:].reshape(rig.stations, rig.page_samples, 3)[:, rig.page_samples // 2]
+    assert np.allclose(midline[:, 2], 0.0)
+    # Every REFINE-th section point is a surface station's midline vertex.
+    assert np.allclose(outline[::4], midline[:, :2], atol=1e-9)
+
+
+def test_objective_is_zero_on_the_rigs_own_outline(rig, section):
+    values = rig.values_from(KNOWN_POSE)
+    objective = Objective2D(rig, rig_outline(section, values), list(KNOWN_POSE), base=values,
+                            section=section)
+    x = np.array(list(KNOWN_POSE.values()))
+    assert objective.rms(x) < 1e-9
+    assert objective(x) < 1e-15
+    assert len(objective.rays.points) > 80
+    # ...and not zero elsewhere.
+    assert objective.rms(x + 1.0) > 0.3
+
+
+@pytest.mark.parametrize("method", sorted(METHODS))
+def test_fit_recovers_a_known_outline_from_neutral(rig, section, method):
+    values = rig.values_from(KNOWN_POSE)
+    # The outline is exact, so neither pull is needed; the weights would bias the fit.
+    report = fit_outline(rig, rig_outline(section, values), method=method, volume_weight=0.0,
+                         neutral_weight=0.0, section=section)
+    assert report.rms_mm < RECOVERY_RMS_MM, report
+    assert report.method == method
+    assert 0 < report.evaluations <= 3000 and report.seconds > 0
+
+
+def test_compared_part_leaves_out_the_underside_and_the_hyoid(rig, shapes):
+    outline = np.array(shapes["u"]["tongue_outline"])
+    hub = rig.hub
+    compared = compared_outline(outline, hub)
+    # /u/'s outline ends on the floor of the mouth, forward of its tip: not compared.
+    assert outline[-1, 0] > compared[:, 0].max()
+    assert np.allclose(compared[-1], [11.0, -1.4], atol=0.05)
+    # Its root runs down to the hyoid at y = -53 mm: compared only above the root cut.
+    offset = compared - hub
+    behind = offset[:, 0] < 0
+    elevation = np.degrees(np.arctan2(offset[behind, 1], -offset[behind, 0]))
+    assert elevation.min() >= -ROOT_CUT_DEG - 1.0
+    assert outline[:, 1].min() < compared[:, 1].min() - 20
+    spacing = np.linalg.norm(np.diff(compared, axis=0), axis=1)
+    assert np.allclose(spacing, spacing[0], rtol=0.05) and 0.9 < spacing[0] <= 1.0
+
+
+def test_fast_crossings_agree_with_testing_every_segment(rig, section, shapes):
+    rng = np.random.default_rng(7)
+    sagittal = list(range(10))
+    for name in ("a", "i", "u", "tt-alveolar-closure(i)", "tb-uvular-fricative(u)"):
+        rays = Rays(rig.hub, compared_outline(shapes[name]["tongue_outline"], rig.hub))
+        for _ in range(5):
+            values = rig.neutral.copy()
+            values[sagittal] = rng.uniform(rig.minimum[sagittal], rig.maximum[sagittal])
+            polyline = section.outline(values)
+            assert np.allclose(rays.crossings(polyline), rays.crossings_all(polyline),
+                               atol=1e-9)
+
+
+def test_vtl_i_has_a_higher_fronter_dorsum_than_a(rig, section, shapes):
+    fits = {name: fit_shape(rig, shapes[name], section=section) for name in ("a", "i")}
+    tops = {}
+    for name, report in fits.items():
+        outline = section.outline(rig.values_from(report.params))
+        tops[name] = outline[np.argmax(outline[:, 1])]
+        assert report.shape == name and report.method == "bobyqa"
+        assert 0 < report.evaluations <= 3000
+        assert 0 < report.seconds < 30
+        assert math.isfinite(report.rms_mm) and 0 <= report.rms_mm <= report.max_error_mm
+        assert abs(report.volume_change_pct) < 15
+        assert report.rays > 50
+        assert set(report.at_limit) <= set(report.params)
+        assert report.params["jaw_opening"] == pytest.approx(
+            jaw_opening_from_vtl(shapes[name], rig))
+    assert tops["i"][1] > tops["a"][1] + 5
+    assert tops["i"][0] > tops["a"][0] + 10
+    assert fits["i"].params["dorsum_height"] > fits["a"].params["dorsum_height"]
+    # /a/ fits within the goal's neighbourhood; /i/ does not (the rig's ranges stop short).
+    assert fits["a"].rms_mm < 1.5
+
+
+def test_fit_all_reports_each_named_shape(rig, observations):
+    reports = fit_all(rig, observations, names=["@", "tt-alveolar-closure(a)"], method="bobyqa")
+    assert [r.shape for r in reports] == ["@", "tt-alveolar-closure(a)"]
+    assert all(r.rms_mm < 1.0 for r in reports)
+    assert reports[0].to_json()["shape"] == "@"
+    with pytest.raises(ValueError, match="no such shapes: nope"):
+        fit_all(rig, observations, names=["nope"])
+
+
+def test_bad_input_is_refused_clearly(rig, shapes):
+    outline = np.array(shapes["a"]["tongue_outline"])
+    with pytest.raises(ValueError, match="unknown method 'newton'.*praxis, bobyqa, sbplx"):
+        minimize(lambda x: 0.0, [0.0], [-1.0], [1.0], method="newton")
+    with pytest.raises(ValueError, match="unknown method 'lbfgs'"):
+        fit_shape(rig, shapes["a"], method="lbfgs")
+    broken = outline.copy()
+    broken[5, 1] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        fit_outline(rig, broken)
+    with pytest.raises(ValueError, match="at least 8 are needed"):
+        fit_outline(rig, outline[:5])
+    with pytest.raises(ValueError, match=r"\(n, 2\)"):
+        fit_outline(rig, outline[:, :1])
+    with pytest.raises(ValueError, match="known rig parameters"):
+        fit_outline(rig, outline, free=["tongue_length"])
+    with pytest.raises(ValueError, match="jaw must be"):
+        fit_shape(rig, shapes["a"], jaw="closed")
+    with pytest.raises(ValueError, match="outside the bounds"):
+        minimize(lambda x: 0.0, [2.0], [-1.0], [1.0])
+
+
+def test_minimize_finds_a_bounded_minimum_with_each_method():
+    target = np.array([1.0, -2.0, 3.0])
+    for method in METHODS:
+        result = minimize(lambda x: float(np.sum((x - target) ** 2)), np.zeros(3),
+                          np.full(3, -2.5), np.full(3, 2.5), method=method)
+        # The third coordinate's minimum lies beyond its bound: it ends there.
+        assert np.allclose(result.x, [1.0, -2.0, 2.5], atol=1e-3), (method, result)
+        assert result.error == pytest.approx(0.25, abs=1e-5)
+        assert result.evaluations > 0 and result.seconds >= 0 and result.stop
