@@ -1,0 +1,389 @@
+"""First crossings of rays from one origin with a deforming mesh of fixed topology: a walk over
+the triangle adjacency from the previous hits, certified against a refitted sphere hierarchy.
+
+Definition (the reference, ``exhaustive_first_hits``): for ray i, origin O and direction d_i,
+every triangle is tested with the project's two-sided Moller-Trumbore kernel
+(``geometry.ray_triangle``, op by op) in origin-relative coordinates (s = O - a computed as
+-(a - O), e1 = b - a, e2 = c - a from the shifted vertices, as ``first_hits_from_origin`` does),
+with the barycentric slack ``COLLISION_TOL.barycentric`` and t > 0; the first hit is the smallest
+(t, triangle index). ``RayWalker.first_hits`` returns exactly that triangle and that t.
+
+Method, per evaluation (vertices change, triangles never do):
+
+1. Walk. Each ray starts at its previous hit triangle and, in lockstep with the others, steps
+   across the edge opposite the most negative barycentric (sign-corrected by t, so that the step
+   goes toward the ray's direction in the cone from O) until the kernel reports a hit, for at
+   most ``WALK_STEPS`` steps. This gives a hit T at t_w, nearly always in 0 to 2 steps.
+2. Certificate. A hierarchy of bounding spheres over fixed groups of triangles (built once per
+   topology from the rest pose, a k-d split so groups are compact; leaves are two triangles
+   sharing their longest edge, mid nodes ``MID`` leaves, top nodes ``TOP`` mid nodes) is
+   refitted to the current vertices: a leaf's sphere holds its triangles' vertices, a parent's
+   holds its children's spheres, every radius widened by ``MARGIN_MM`` plus ``MARGIN_REL`` of
+   its distance from O. A triangle can only be crossed at distance r along a ray if that ray
+   meets each enclosing sphere, at a distance from O no smaller than |c| - R. The search keeps
+   the top spheres the ray meets no farther than r_w = t_w |d| (widened), then the mid and
+   leaf spheres it meets, and tests every triangle of every kept leaf with the same kernel.
+3. Answer: the smallest (t, index) among the walk's T and the tested triangles.
+
+Why it is exact: the triangles never tested are those in a sphere the ray misses, or meets only
+beyond r_w. Neither can hold a hit with t <= t_w (a hit point lies in the triangle, widened by the
+slack, so in every enclosing sphere, at distance t |d| from O), so every triangle that could tie
+with or beat T is tested, with bit-identical arithmetic to the exhaustive search (numpy's
+elementwise operations round alike whatever the array layout). The minimum over that set is the
+exhaustive minimum. The walk only sets the bound r_w; a wrong walk (a fold in front of T, a
+tie on a shared edge) costs extra tests, never a wrong answer. Rays whose walk found no hit
+(a step limit, a ray leaving the mesh) fall back to the same search with no distance bound,
+which is exhaustive over the hierarchy; the very first evaluation is brute force.
+
+The margins cover the kernel's rounding: with the slack 1e-9, a hit lies within 1e-9 of two
+edge lengths of its triangle, and the computed barycentrics err by about 1e-16 |O - a| /
+(sin(theta) sin(gamma)) edge lengths, theta the angle between the ray and the triangle's plane,
+gamma the triangle's smallest angle; the 1e-5 mm margin covers that for sin(theta) sin(gamma) >
+1e-8 at 100 mm, i.e. every ray but one grazing a triangle's plane within 1e-8 rad, where the
+kernel's own answer is rounding noise.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from glasshead.constants import COLLISION_TOL
+from glasshead.geometry.ray_triangle import inside_triangle, ray_triangle
+
+Floats = npt.NDArray[np.float64]
+Ints = npt.NDArray[np.int64]
+
+SLACK = COLLISION_TOL.barycentric
+#: Steps a walk may take before the ray falls back to the unbounded search.
+WALK_STEPS = 8
+#: Leaves (two triangles) per mid node, mid nodes per top node.
+MID, TOP = 4, 8
+#: Widening of every bounding sphere: absolute (mm) and relative to its distance from O.
+MARGIN_MM = 1e-5
+MARGIN_REL = 1e-9
+#: Relative widening of the walk's distance bound, so that ties with T are always tested.
+BOUND_REL = 1e-9
+
+
+def triangle_adjacency(triangles: Ints) -> Ints:
+    """(m, 3) int64: the triangle across the edge opposite corner k of each triangle, -1 where the
+    edge is a boundary or shared by more than two triangles."""
+    m = len(triangles)
+    lo = np.minimum(triangles[:, [1, 2, 0]], triangles[:, [2, 0, 1]]).ravel()
+    hi = np.maximum(triangles[:, [1, 2, 0]], triangles[:, [2, 0, 1]]).ravel()
+    key = lo * (int(triangles.max()) + 1) + hi
+    order = np.argsort(key, kind="stable")
+    k = key[order]
+    adjacency = np.full(3 * m, -1, dtype=np.int64)
+    same = k[1:] == k[:-1]
+    # a pair is two equal keys not part of a longer run
+    before = np.r_[False, same[:-1]]
+    after = np.r_[same[1:], False]
+    pair = np.flatnonzero(same & ~before & ~after)
+    first, second = order[pair], order[pair + 1]
+    adjacency[first] = second // 3
+    adjacency[second] = first // 3
+    return adjacency.reshape(m, 3)
+
+
+def _kd_order(centroids: Floats, units: tuple[int, ...]) -> Ints:
+    """Order in which consecutive blocks of each size in ``units`` are spatially compact: median
+    splits on the longest axis, each split rounded to the largest unit that fits."""
+    out: list[Ints] = []
+    stack = [np.arange(len(centroids))]
+    while stack:
+        idx = stack.pop()
+        n = len(idx)
+        if n <= units[-1]:
+            out.append(idx)
+            continue
+        unit = next(u for u in units if 2 * u <= n)
+        left = max(unit, int(round(n / 2 / unit)) * unit)
+        pts = centroids[idx]
+        axis = int(np.argmax(np.ptp(pts, axis=0)))
+        part = np.argpartition(pts[:, axis], left - 1)
+        stack.append(idx[part[left:]])
+        stack.append(idx[part[:left]])
+    return np.concatenate(out)
+
+
+def _leaves(triangles: Ints, adjacency: Ints, rest: Floats) -> tuple[Ints, Ints]:
+    """Leaves of the hierarchy: pairs of triangles that share their longest edge (the quads of a
+    quad-dominant mesh), else single triangles. Returns (triangles (n, 2), vertices (n, 4));
+    a single triangle repeats itself and a corner."""
+    corners = rest[triangles]
+    # edge k is opposite corner k
+    length = np.stack([np.linalg.norm(corners[:, (k + 2) % 3] - corners[:, (k + 1) % 3], axis=1)
+                       for k in range(3)], axis=1)
+    longest = np.argmax(length, axis=1)
+    rows = np.arange(len(triangles))
+    partner = adjacency[rows, longest]
+    mutual = (partner >= 0) & (adjacency[np.maximum(partner, 0), longest[np.maximum(partner, 0)]]
+                               == rows)
+    first = mutual & (rows < partner)
+    single = ~mutual
+    pair_a, pair_b = rows[first], partner[first]
+    tris = np.concatenate([np.stack([pair_a, pair_b], 1),
+                           np.stack([rows[single], rows[single]], 1)])
+    far = triangles[pair_b, longest[pair_b]]
+    verts = np.concatenate([np.column_stack([triangles[pair_a], far]),
+                            np.column_stack([triangles[single], triangles[single][:, 0]])])
+    return tris, verts
+
+
+def _rows(a: Floats) -> np.ndarray:
+    """A contiguous (n, c) float64 array viewed as n opaque records, so that ``np.take`` gathers
+    whole rows at the cost of one element each."""
+    a = np.ascontiguousarray(a)
+    return a.view(np.dtype((np.void, a.shape[1] * 8))).ravel()
+
+
+def _gather(records: np.ndarray, index: Ints, width: int) -> Floats:
+    return np.take(records, index).view(np.float64).reshape(-1, width)
+
+
+@dataclass
+class FirstHits:
+    """Per ray: ``triangle`` (k,) int64 (-1: no hit), ``t`` (k,) the ray parameter (inf: none),
+    ``point`` (k, 3) O + t d (nan: none), ``fallback`` (k,) bool rays whose walk found no hit and
+    were searched without a bound, ``overturned`` (k,) bool rays where a nearer triangle than the
+    walk's was found (a fold in front of it, or a tie on an edge)."""
+
+    triangle: Ints
+    t: Floats
+    point: Floats
+    fallback: npt.NDArray[np.bool_]
+    overturned: npt.NDArray[np.bool_]
+
+
+def check_rays(origin: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Floats, Floats]:
+    """(origin (3,), directions (k, 3)) as float64, or ValueError with what is wrong."""
+    o = np.asarray(origin, dtype=np.float64)
+    d = np.asarray(directions, dtype=np.float64)
+    if o.shape != (3,):
+        raise ValueError(f"origin must have shape (3,), got {o.shape}")
+    if d.ndim != 2 or d.shape[1] != 3:
+        raise ValueError(f"directions must have shape (k, 3), got {d.shape}")
+    if not np.all(np.isfinite(o)):
+        raise ValueError("origin must be finite")
+    bad = ~np.all(np.isfinite(d), axis=1)
+    if np.any(bad):
+        raise ValueError(f"directions must be finite: {int(bad.sum())} rays have NaN or inf "
+                         f"(first: ray {int(np.flatnonzero(bad)[0])})")
+    zero = ~np.any(d != 0.0, axis=1)
+    if np.any(zero):
+        raise ValueError(f"directions must be non-zero: {int(zero.sum())} rays have length 0 "
+                         f"(first: ray {int(np.flatnonzero(zero)[0])})")
+    return o, d
+
+
+class RayWalker:
+    """Exact first hits of rays from one origin with a mesh whose triangles never change.
+
+    ``RayWalker(triangles, rest_vertices)`` builds the adjacency and the sphere hierarchy once;
+    ``first_hits(origin, directions, vertices, start)`` answers for one pose, walking from
+    ``start`` (the previous hits, (k,) int64) or searching exhaustively when ``start`` is None.
+    """
+
+    def __init__(self, triangles: npt.ArrayLike, rest_vertices: npt.ArrayLike):
+        tri = np.asarray(triangles)
+        rest = np.asarray(rest_vertices, dtype=np.float64)
+        if tri.ndim != 2 or tri.shape[1] != 3 or len(tri) == 0:
+            raise ValueError(f"triangles must have shape (m, 3), got {tri.shape}")
+        if rest.ndim != 2 or rest.shape[1] != 3:
+            raise ValueError(f"rest vertices must have shape (n, 3), got {rest.shape}")
+        if not np.issubdtype(tri.dtype, np.integer) or tri.min() < 0 or tri.max() >= len(rest):
+            raise ValueError(f"triangles must index the {len(rest)} vertices")
+        self.triangles = tri.astype(np.int64)
+        self.vertex_count = len(rest)
+        self.adjacency = triangle_adjacency(self.triangles)
+        leaf_tris, leaf_verts = _leaves(self.triangles, self.adjacency, rest)
+        block = MID * TOP
+        order = _kd_order(rest[leaf_verts].mean(axis=1), (block, MID, 1))
+        order = np.r_[order, np.repeat(order[-1], -len(order) % block)]  # repeats are harmless
+        self.leaf_triangles = leaf_tris[order]
+        self.leaf_vertices = np.ascontiguousarray(leaf_verts[order].T)  # (4, leaves)
+        self.mid_children = np.ascontiguousarray(np.arange(len(order)).reshape(-1, MID).T)
+        self.top_children = np.ascontiguousarray(
+            np.arange(len(order) // MID).reshape(-1, TOP).T)
+
+    # --- per pose -------------------------------------------------------------------------------
+
+    def _prepare(self, origin: Floats, vertices: npt.ArrayLike) -> None:
+        v = np.asarray(vertices, dtype=np.float64)
+        if v.shape != (self.vertex_count, 3):
+            raise ValueError(f"vertices must have shape ({self.vertex_count}, 3), got {v.shape}")
+        if not np.all(np.isfinite(v)):
+            raise ValueError("vertices must be finite")
+        rel = v - origin
+        corners = np.take(_rows(rel), self.triangles).view(np.float64).reshape(-1, 9)
+        a = corners[:, 0:3]
+        # rows: s (= -a), e1, e2, each xyz, as first_hits_from_origin builds them
+        tri = np.empty_like(corners)
+        np.negative(a, out=tri[:, 0:3])
+        np.subtract(corners[:, 3:6], a, out=tri[:, 3:6])
+        np.subtract(corners[:, 6:9], a, out=tri[:, 6:9])
+        self._tri = _rows(tri)
+        self._rel = _rows(rel)
+
+    def _mt(self, d: Floats, tris: Ints) -> tuple[Floats, npt.NDArray[np.bool_], Floats, Floats]:
+        """t, hit, u, v (n,) of rays d (n, 3) against triangles ``tris`` (n,): the kernel."""
+        g = _gather(self._tri, tris, 9)
+        det, u, v, t = ray_triangle(g[:, 0], g[:, 1], g[:, 2], d[:, 0], d[:, 1], d[:, 2],
+                                    g[:, 3], g[:, 4], g[:, 5], g[:, 6], g[:, 7], g[:, 8])
+        return t, inside_triangle(det, u, v, SLACK) & (t > 0.0), u, v
+
+    @staticmethod
+    def _norm2(x: Floats) -> Floats:
+        """|x|^2 over the last axis (of length 3), without a slow small-axis reduction."""
+        return x[..., 0] * x[..., 0] + x[..., 1] * x[..., 1] + x[..., 2] * x[..., 2]
+
+    def _spheres(self) -> list[tuple[Floats, Floats]]:
+        """Refitted (centres (n, 3), widened radii (n,)) of the leaves, mid and top nodes."""
+        pts = np.take(self._rel, self.leaf_vertices).view(np.float64).reshape(
+            *self.leaf_vertices.shape, 3)  # (4, leaves, 3)
+        centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+        radius = np.sqrt(self._norm2(pts - centre).max(axis=0))
+        levels = []
+        for children in (None, self.mid_children, self.top_children):
+            if children is not None:
+                c, r = centre[children], radius[children]  # (width, n, 3), (width, n)
+                centre = c.mean(axis=0)
+                radius = (np.sqrt(self._norm2(c - centre)) + r).max(axis=0)
+            radius = radius * (1.0 + MARGIN_REL) + MARGIN_MM \
+                + MARGIN_REL * np.sqrt(self._norm2(centre))
+            levels.append((centre, radius))
+        return levels
+
+    @classmethod
+    def _cone(cls, centre: Floats, radius: Floats) -> Floats:
+        """(n, 4) rows (c, -h): a ray of unit direction u meets the sphere (c, r) only if
+        u . c >= h, h = sqrt(|c|^2 - r^2) (-inf when O is inside: always)."""
+        q = cls._norm2(centre) - radius * radius
+        h = np.where(q > 0.0, np.sqrt(np.maximum(q, 0.0)), -1e300)
+        return np.column_stack([centre, -h])
+
+    def _search(self, unit: Floats, bound: Floats) -> tuple[Ints, Ints]:
+        """(ray, triangle) pairs to test: every triangle in a leaf whose enclosing spheres the ray
+        meets, the top sphere within ``bound`` (distance from O) of the origin."""
+        (lc, lr), (mc, mr), (tc, tr) = self._spheres()
+        near = np.sqrt(self._norm2(tc)) - tr
+        top = self._cone(tc, tr)
+        meet = (unit @ top[:, :3].T >= -top[:, 3]) & (near <= bound[:, None])
+        ri, node = np.nonzero(meet)
+        for cones, children in ((self._cone(mc, mr), self.top_children),
+                                (self._cone(lc, lr), self.mid_children)):
+            width = len(children)
+            kids = children.T[node]  # (p, width)
+            g = np.take(_rows(cones), kids).view(np.float64).reshape(len(node), width, 4)
+            u = unit[ri]
+            dot = g[..., 0] * u[:, 0, None] + g[..., 1] * u[:, 1, None] \
+                + g[..., 2] * u[:, 2, None] + g[..., 3]
+            keep = dot >= 0.0
+            ri, node = np.broadcast_to(ri[:, None], keep.shape)[keep], kids[keep]
+        return np.repeat(ri, 2), self.leaf_triangles[node].ravel()
+
+    def _walk(self, d: Floats, start: npt.ArrayLike) -> tuple[Ints, Floats]:
+        """Lockstep walk from ``start``: (triangle, t) of the first hit met, -1 / inf if none."""
+        k = len(d)
+        cur = np.asarray(start, dtype=np.int64).copy()
+        if cur.shape != (k,):
+            raise ValueError(f"start must have shape ({k},), got {cur.shape}")
+        cur[(cur < 0) | (cur >= len(self.triangles))] = 0
+        walk_tri = np.full(k, -1, dtype=np.int64)
+        walk_t = np.full(k, np.inf)
+        active = np.arange(k)
+        for _ in range(WALK_STEPS + 1):
+            if len(active) == 0:
+                break
+            t, hit, u, v = self._mt(d[active], cur[active])
+            walk_tri[active[hit]] = cur[active[hit]]
+            walk_t[active[hit]] = t[hit]
+            # step across the edge opposite the most negative barycentric toward d's cone
+            sign = np.sign(t)
+            w0, w1, w2 = (1.0 - u - v) * sign, u * sign, v * sign
+            edge = np.where(w1 < w0, 1, 0)
+            edge = np.where(w2 < np.minimum(w0, w1), 2, edge)
+            ok = ~hit & np.isfinite(w0 + w1 + w2)
+            active = active[ok]
+            nxt = self.adjacency[cur[active], edge[ok]]
+            cur[active] = nxt
+            active = active[nxt >= 0]
+        return walk_tri, walk_t
+
+    def naive_walk(self, origin: npt.ArrayLike, directions: npt.ArrayLike,
+                   vertices: npt.ArrayLike, start: npt.ArrayLike) -> tuple[Ints, Floats]:
+        """The walk alone, with no certificate: (triangle, t), -1 / inf where it found no hit.
+        A hit, not necessarily the first: for comparison only."""
+        o, d = check_rays(origin, directions)
+        self._prepare(o, vertices)
+        return self._walk(d, start)
+
+    def first_hits(self, origin: npt.ArrayLike, directions: npt.ArrayLike,
+                   vertices: npt.ArrayLike, start: npt.ArrayLike | None = None) -> FirstHits:
+        """First hits of rays O + t d with the mesh at ``vertices``; see the module docstring.
+
+        origin (3,), directions (k, 3) finite and non-zero, vertices (n, 3); start (k,) int64
+        triangles to walk from (the previous hits; -1 entries start anywhere) or None for the
+        exhaustive search. Raises ValueError for bad shapes or values.
+        """
+        o, d = check_rays(origin, directions)
+        k = len(d)
+        self._prepare(o, vertices)
+        if start is None:
+            triangle, t = exhaustive_first_hits(o, d, vertices, self.triangles)
+            none = np.zeros(k, dtype=bool)
+            return FirstHits(triangle, t, _points(o, d, t), none, none.copy())
+        walk_tri, walk_t = self._walk(d, start)
+        found = walk_tri >= 0
+        length = np.sqrt((d * d).sum(axis=1))
+        unit = d / length[:, None]
+        bound = np.where(found, walk_t * length * (1.0 + BOUND_REL) + MARGIN_MM, np.inf)
+        rays, tris = self._search(unit, bound)
+        t, hit = self._mt(d[rays], tris)[:2]
+        rays = np.r_[rays[hit], np.flatnonzero(found)]
+        tris = np.r_[tris[hit], walk_tri[found]]
+        t = np.r_[t[hit], walk_t[found]]
+        order = np.lexsort((tris, t, rays))
+        rays, tris, t = rays[order], tris[order], t[order]
+        first = np.r_[True, rays[1:] != rays[:-1]]
+        triangle = np.full(k, -1, dtype=np.int64)
+        best_t = np.full(k, np.inf)
+        triangle[rays[first]] = tris[first]
+        best_t[rays[first]] = t[first]
+        return FirstHits(triangle, best_t, _points(o, d, best_t), ~found,
+                         found & (triangle != walk_tri))
+
+
+def _points(o: Floats, d: Floats, t: Floats) -> Floats:
+    with np.errstate(invalid="ignore"):
+        p = o + t[:, None] * d
+    p[~np.isfinite(t)] = np.nan
+    return p
+
+
+def exhaustive_first_hits(origin: npt.ArrayLike, directions: npt.ArrayLike,
+                          vertices: npt.ArrayLike, triangles: npt.ArrayLike,
+                          chunk: int = 64) -> tuple[Ints, Floats]:
+    """The reference: (triangle (k,) int64, -1 for none; t (k,) float64, inf for none) of the
+    first hit of each ray O + t d with every triangle, by the smallest (t, index)."""
+    o, d = check_rays(origin, directions)
+    tri = np.asarray(triangles, dtype=np.int64)
+    corners = (np.asarray(vertices, dtype=np.float64) - o)[tri]
+    a = corners[:, 0]
+    e1, e2 = corners[:, 1] - a, corners[:, 2] - a
+    s = -a
+    triangle = np.full(len(d), -1, dtype=np.int64)
+    best = np.full(len(d), np.inf)
+    for lo in range(0, len(d), chunk):
+        dd = d[lo:lo + chunk, None, :]
+        det, u, v, t = ray_triangle(s[:, 0], s[:, 1], s[:, 2], dd[..., 0], dd[..., 1], dd[..., 2],
+                                    e1[:, 0], e1[:, 1], e1[:, 2], e2[:, 0], e2[:, 1], e2[:, 2])
+        t = np.where(inside_triangle(det, u, v, SLACK) & (t > 0.0), t, np.inf)
+        idx = np.argmin(t, axis=1)  # the first of equal minima: the smallest index
+        tt = t[np.arange(len(idx)), idx]
+        hit = np.isfinite(tt)
+        triangle[lo:lo + chunk] = np.where(hit, idx, -1)
+        best[lo:lo + chunk] = tt
+    return triangle, best
