@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from glasshead.constants import TONGUE_RIG_FILE
-from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
+from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection, Objective2D
 from glasshead.fitting.optimizer import minimize
 from glasshead.geometry.tongue_surface import TongueRig
 
@@ -81,12 +81,14 @@ def jaw_opening_from_vtl(shape, rig: TongueRig) -> float:
 def fit_outline(rig: TongueRig, outline, *, method="bobyqa", free=None, base=None,
                 volume_weight=VOLUME_WEIGHT, neutral_weight=NEUTRAL_WEIGHT,
                 max_evals=MAX_EVALS, section=None, name="", ftol_abs=FTOL_ABS,
-                xtol_abs=XTOL_ABS, **options) -> FitReport:
+                xtol_abs=XTOL_ABS, root_cut_deg=ROOT_CUT_DEG, **options) -> FitReport:
     """Fit the free parameters (default: the sagittal ones) to one mid-sagittal outline (n, 2),
-    starting from ``base`` (P,) values (default neutral), which also hold the others."""
+    starting from ``base`` (P,) values (default neutral), which also hold the others; other
+    keyword options go to ``optimizer.minimize``."""
     free = list(free) if free is not None else sagittal_parameters(rig)
     objective = Objective2D(rig, outline, free, base=base, volume_weight=volume_weight,
-                            neutral_weight=neutral_weight, section=section)
+                            neutral_weight=neutral_weight, section=section,
+                            root_cut_deg=root_cut_deg)
     x0 = objective.values(objective.neutral)[objective.index] if base is None \
         else np.asarray(base, dtype=np.float64)[objective.index]
     result = minimize(objective, x0, objective.lower, objective.upper, method=method,
