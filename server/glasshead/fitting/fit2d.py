@@ -89,8 +89,7 @@ def fit_outline(rig: TongueRig, outline, *, method="bobyqa", free=None, base=Non
     objective = Objective2D(rig, outline, free, base=base, volume_weight=volume_weight,
                             neutral_weight=neutral_weight, section=section,
                             root_cut_deg=root_cut_deg)
-    x0 = objective.values(objective.neutral)[objective.index] if base is None \
-        else np.asarray(base, dtype=np.float64)[objective.index]
+    x0 = objective.base[objective.index]
     result = minimize(objective, x0, objective.lower, objective.upper, method=method,
                       max_evals=max_evals, ftol_abs=ftol_abs, xtol_abs=xtol_abs, **options)
     errors = objective.errors(result.x)

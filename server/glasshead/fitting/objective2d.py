@@ -9,9 +9,9 @@ midline radius is a B-spline over the page angle, so it blends the neighbouring 
 
 What is compared (``compared_outline``). A VocalTractLab tongue outline runs from the root at
 the hyoid up the pharyngeal side, over the dorsum to the tip and back along a stub of the
-underside. Kept: the dorsal contour from the root down to ROOT_CUT_DEG below the origin's
-horizontal, over the dorsum, to the tip (the first point after the highest one from which the
-outline stops running forward). Left out:
+underside. Kept: the contour from where the root's rays rise above ROOT_CUT_DEG below the
+origin's horizontal, over the dorsum, to the tip (the first point after the highest one from
+which the outline stops running forward). Left out:
 
 - the underside after the tip: VTL's is two or three points dropping to the floor of the mouth,
   a construction of its model rather than a measured contour, and imaging rarely sees it;
@@ -22,10 +22,11 @@ outline stops running forward). Left out:
 The kept part is resampled every SPACING_MM of arclength, so that every millimetre of contour
 weighs the same whatever VTL's point spacing (3-4 mm, with duplicates at the tip).
 
-The origin is the rig's hub posed at the observation's jaw opening (``fit2d`` fixes it per
-fit): inside the tongue, and the point round which the rig's pages turn in order, so each ray
-crosses the rig's section once. The error is also defined when it crosses more than once (the
-crossing nearest the observed point counts) or not at all (the crossing is taken at the origin).
+The origin is the rig's hub posed at the fit's base values (``fit2d``: neutral tongue, the
+shape's jaw opening), fixed for the fit: inside the tongue, and the point round which the
+rig's pages turn in order, so each ray crosses the rig's section once. The error is also
+defined when a ray crosses more than once (the crossing nearest the observed point counts) or
+not at all (the crossing is taken at the origin).
 
 The objective a fit minimises (mm^2) adds two optional, weighted terms to the squared RMS:
 
