@@ -240,39 +240,45 @@ function frameNumbers( rig, values, pose ) {
 }
 
 /**
- * Steps 1 and 2 for one mesh's moving vertices, into work. Everything arrives as typed arrays
- * read inside the loop: the compiled loop is entered with no property to look up, and has seen
- * every operation (without rotation the screw is a pure slide, a = w and b = 0, written as
- * arithmetic on F_TURNING rather than a branch first met after compilation).
+ * Steps 1 and 2 for one mesh's moving vertices, into work. Everything arrives as typed arrays:
+ * the compiled loop is entered with no property to look up, and has seen every operation
+ * (without rotation the screw is a pure slide, a = w and b = 0, written as arithmetic on
+ * F_TURNING rather than a branch first met after compilation).
  */
 function shapeAndSkin( rest, weights, coeffs, moving, work, frame ) {
 
+	// The pose's numbers once, into locals: the loop then reads only the per-vertex arrays.
+	const rounding = frame[ F_ROUNDING ], forward = frame[ F_FORWARD ], protrusion = frame[ F_PROTRUSION ];
+	const raiseBy = frame[ F_RAISE ], tuck = frame[ F_TUCK ];
+	const rx = frame[ F_RAISE_DIR ], ry = frame[ F_RAISE_DIR + 1 ], rz = frame[ F_RAISE_DIR + 2 ];
+	const tx = frame[ F_TUCK_DIR ], ty = frame[ F_TUCK_DIR + 1 ], tz = frame[ F_TUCK_DIR + 2 ];
+	const ux = frame[ F_SCREW ], uy = frame[ F_SCREW + 1 ], uz = frame[ F_SCREW + 2 ];
+	const angle = frame[ F_SCREW + 3 ], along = frame[ F_SCREW + 4 ];
+	const px = frame[ F_SCREW + 5 ], py = frame[ F_SCREW + 6 ], pz = frame[ F_SCREW + 7 ];
+	const qx = frame[ F_SCREW + 8 ], qy = frame[ F_SCREW + 9 ], qz = frame[ F_SCREW + 10 ];
+	const turning = frame[ F_TURNING ];
+	const halfCot = frame[ F_HALF_COT ];
 	for ( let k = 0; k < moving.length; k ++ ) {
 
 		const v = moving[ k ];
 		const o = 3 * v;
 		const c6 = COEFF_COUNT * v;
-		const raise = coeffs[ c6 + COEFF_RAISE ] * frame[ F_RAISE ];
-		const tuckBy = coeffs[ c6 + COEFF_TUCK ] * frame[ F_TUCK ];
-		const x = rest[ o ] + ( raise * frame[ F_RAISE_DIR ] + tuckBy * frame[ F_TUCK_DIR ] ) + ( frame[ F_PROTRUSION ] * coeffs[ c6 + COEFF_PROTRUSION ] + frame[ F_FORWARD ] * coeffs[ c6 + COEFF_ROUND_X ] );
-		const y = rest[ o + 1 ] + ( raise * frame[ F_RAISE_DIR + 1 ] + tuckBy * frame[ F_TUCK_DIR + 1 ] );
-		const z = rest[ o + 2 ] + ( raise * frame[ F_RAISE_DIR + 2 ] + tuckBy * frame[ F_TUCK_DIR + 2 ] ) + frame[ F_ROUNDING ] * coeffs[ c6 + COEFF_ROUND_Z ];
-		const ux = frame[ F_SCREW ];
-		const uy = frame[ F_SCREW + 1 ];
-		const uz = frame[ F_SCREW + 2 ];
-		const turning = frame[ F_TURNING ];
-		const halfCot = frame[ F_HALF_COT ];
+		const raise = coeffs[ c6 + COEFF_RAISE ] * raiseBy;
+		const tuckBy = coeffs[ c6 + COEFF_TUCK ] * tuck;
+		const x = rest[ o ] + ( raise * rx + tuckBy * tx ) + ( protrusion * coeffs[ c6 + COEFF_PROTRUSION ] + forward * coeffs[ c6 + COEFF_ROUND_X ] );
+		const y = rest[ o + 1 ] + ( raise * ry + tuckBy * ty );
+		const z = rest[ o + 2 ] + ( raise * rz + tuckBy * tz ) + rounding * coeffs[ c6 + COEFF_ROUND_Z ];
 		const w = weights[ v ];
-		const phi = w * frame[ F_SCREW + 3 ];
+		const phi = w * angle;
 		const c = Math.cos( phi );
 		const s = Math.sin( phi );
 		const a = turning * ( 0.5 * ( 1 - c ) + halfCot * s ) + ( 1 - turning ) * w;
 		const b = turning * ( halfCot * ( 1 - c ) - 0.5 * s );
-		const slide = w * frame[ F_SCREW + 4 ];
+		const slide = w * along;
 		const dot = ( ux * x + uy * y + uz * z ) * ( 1 - c );
-		work[ o ] = x * c + ( uy * z - uz * y ) * s + dot * ux + a * frame[ F_SCREW + 5 ] + b * frame[ F_SCREW + 8 ] + slide * ux;
-		work[ o + 1 ] = y * c + ( uz * x - ux * z ) * s + dot * uy + a * frame[ F_SCREW + 6 ] + b * frame[ F_SCREW + 9 ] + slide * uy;
-		work[ o + 2 ] = z * c + ( ux * y - uy * x ) * s + dot * uz + a * frame[ F_SCREW + 7 ] + b * frame[ F_SCREW + 10 ] + slide * uz;
+		work[ o ] = x * c + ( uy * z - uz * y ) * s + dot * ux + a * px + b * qx + slide * ux;
+		work[ o + 1 ] = y * c + ( uz * x - ux * z ) * s + dot * uy + a * py + b * qy + slide * uy;
+		work[ o + 2 ] = z * c + ( ux * y - uy * x ) * s + dot * uz + a * pz + b * qz + slide * uz;
 
 	}
 

@@ -94,12 +94,7 @@ export function pushOut( x, n, p ) {
 	let moved = 0;
 	for ( let step = 0; step < n[ T_STEPS ]; step ++ ) {
 
-		// F <= xMax - recession * ( distance outside the table )^2: most points are in front.
-		const fy = ( p[ 1 ] - n[ T_Y0 ] ) / n[ T_STEP_Y ];
-		const fz = ( p[ 2 ] - n[ T_Z0 ] ) / n[ T_STEP_Z ];
-		const outY = ( fy < 0 ? fy : ( fy > n[ T_ROWS ] - 1 ? fy - n[ T_ROWS ] + 1 : 0 ) ) * n[ T_STEP_Y ];
-		const outZ = ( fz < 0 ? fz : ( fz > n[ T_COLS ] - 1 ? fz - n[ T_COLS ] + 1 : 0 ) ) * n[ T_STEP_Z ];
-		if ( p[ 0 ] >= n[ T_X_MAX ] - n[ T_RECESSION ] * ( outY * outY + outZ * outZ ) ) break;
+		if ( inFront( n, p[ 0 ], p[ 1 ], p[ 2 ] ) ) break;
 		teethBoundAt( x, n, p, scratchBound );
 		const behind = scratchBound[ 0 ] - p[ 0 ];
 		const hit = behind > 0 && behind < n[ T_DEPTH ] ? 1 : 0;
@@ -114,6 +109,20 @@ export function pushOut( x, n, p ) {
 	}
 
 	return moved;
+
+}
+
+/**
+ * Whether ( x, y, z ) lies in front of everything the face can be: F <= xMax - recession *
+ * ( distance outside the table )^2, so most points need no lookup at all.
+ */
+function inFront( n, x, y, z ) {
+
+	const fy = ( y - n[ T_Y0 ] ) / n[ T_STEP_Y ];
+	const fz = ( z - n[ T_Z0 ] ) / n[ T_STEP_Z ];
+	const outY = ( fy < 0 ? fy : ( fy > n[ T_ROWS ] - 1 ? fy - n[ T_ROWS ] + 1 : 0 ) ) * n[ T_STEP_Y ];
+	const outZ = ( fz < 0 ? fz : ( fz > n[ T_COLS ] - 1 ? fz - n[ T_COLS ] + 1 : 0 ) ) * n[ T_STEP_Z ];
+	return x >= n[ T_X_MAX ] - n[ T_RECESSION ] * ( outY * outY + outZ * outZ );
 
 }
 
@@ -143,18 +152,32 @@ export function clampToTeeth( moving, work, teeth, pose ) {
 		const dx = work[ o ] - pose[ 3 ];
 		const dy = work[ o + 1 ] - pose[ 7 ];
 		const dz = work[ o + 2 ] - pose[ 11 ];
-		p[ 0 ] = pose[ 0 ] * dx + pose[ 4 ] * dy + pose[ 8 ] * dz;
-		p[ 1 ] = pose[ 1 ] * dx + pose[ 5 ] * dy + pose[ 9 ] * dz;
-		p[ 2 ] = pose[ 2 ] * dx + pose[ 6 ] * dy + pose[ 10 ] * dz;
-		const lower = pushOut( lowerX, lowerN, p );
-		// Back to the posed frame only when moved (lower = 1): a point left alone keeps its
-		// exact coordinates, not their round trip.
-		work[ o ] += lower * ( pose[ 0 ] * p[ 0 ] + pose[ 1 ] * p[ 1 ] + pose[ 2 ] * p[ 2 ] + pose[ 3 ] - work[ o ] );
-		work[ o + 1 ] += lower * ( pose[ 4 ] * p[ 0 ] + pose[ 5 ] * p[ 1 ] + pose[ 6 ] * p[ 2 ] + pose[ 7 ] - work[ o + 1 ] );
-		work[ o + 2 ] += lower * ( pose[ 8 ] * p[ 0 ] + pose[ 9 ] * p[ 1 ] + pose[ 10 ] * p[ 2 ] + pose[ 11 ] - work[ o + 2 ] );
-		p[ 0 ] = work[ o ]; p[ 1 ] = work[ o + 1 ]; p[ 2 ] = work[ o + 2 ];
-		const upper = pushOut( upperX, upperN, p );
-		work[ o ] = p[ 0 ]; work[ o + 1 ] = p[ 1 ]; work[ o + 2 ] = p[ 2 ];
+		const x = pose[ 0 ] * dx + pose[ 4 ] * dy + pose[ 8 ] * dz;
+		const y = pose[ 1 ] * dx + pose[ 5 ] * dy + pose[ 9 ] * dz;
+		const z = pose[ 2 ] * dx + pose[ 6 ] * dy + pose[ 10 ] * dz;
+		// A point in front of a row is left alone, as pushOut() would leave it (most points).
+		let lower = 0;
+		if ( lowerN[ T_STEPS ] > 0 && ! inFront( lowerN, x, y, z ) ) {
+
+			p[ 0 ] = x; p[ 1 ] = y; p[ 2 ] = z;
+			lower = pushOut( lowerX, lowerN, p );
+			// Back to the posed frame only when moved (lower = 1): a point left alone keeps its
+			// exact coordinates, not their round trip.
+			work[ o ] += lower * ( pose[ 0 ] * p[ 0 ] + pose[ 1 ] * p[ 1 ] + pose[ 2 ] * p[ 2 ] + pose[ 3 ] - work[ o ] );
+			work[ o + 1 ] += lower * ( pose[ 4 ] * p[ 0 ] + pose[ 5 ] * p[ 1 ] + pose[ 6 ] * p[ 2 ] + pose[ 7 ] - work[ o + 1 ] );
+			work[ o + 2 ] += lower * ( pose[ 8 ] * p[ 0 ] + pose[ 9 ] * p[ 1 ] + pose[ 10 ] * p[ 2 ] + pose[ 11 ] - work[ o + 2 ] );
+
+		}
+
+		let upper = 0;
+		if ( upperN[ T_STEPS ] > 0 && ! inFront( upperN, work[ o ], work[ o + 1 ], work[ o + 2 ] ) ) {
+
+			p[ 0 ] = work[ o ]; p[ 1 ] = work[ o + 1 ]; p[ 2 ] = work[ o + 2 ];
+			upper = pushOut( upperX, upperN, p );
+			work[ o ] = p[ 0 ]; work[ o + 1 ] = p[ 1 ]; work[ o + 2 ] = p[ 2 ];
+
+		}
+
 		count += lower + upper;
 
 	}

@@ -281,7 +281,10 @@ export class TongueRig {
 
 	}
 
-	/** Steps 3 to 5: stations, radial controls and the float64 vertices. */
+	/**
+	 * Steps 3 to 5: stations, radial controls and the float64 vertices. The rig's arrays are read
+	 * into locals first: the compiled loops then load no property per step.
+	 */
 	writeVertices() {
 
 		const n = this.pointCount;
@@ -290,14 +293,16 @@ export class TongueRig {
 		const hx = this.hub[ 0 ];
 		const hy = this.hub[ 1 ];
 		const pole = this.poleHalfWidth;
+		const sagittalWidth = this.sagittalWidth;
+		const { stationBasis, stationFirst, radius, direction, restRadius, stationBlend, stationStretch, stretch, stationOffsetBlend, controls, isPole, stationRatios, follow, offsets } = this;
 		for ( let i = 0; i < this.stationCount; i ++ ) {
 
 			let sx = 0;
 			let sy = 0;
-			for ( let k = 0; k < this.sagittalWidth; k ++ ) {
+			for ( let k = 0; k < sagittalWidth; k ++ ) {
 
-				const weight = this.stationBasis[ i * this.sagittalWidth + k ];
-				const point = ( this.stationFirst[ i ] + k ) % n;
+				const weight = stationBasis[ i * sagittalWidth + k ];
+				const point = ( stationFirst[ i ] + k ) % n;
 				sx += weight * points[ 2 * point ];
 				sy += weight * points[ 2 * point + 1 ];
 
@@ -305,23 +310,23 @@ export class TongueRig {
 
 			const dx = sx - hx;
 			const dy = sy - hy;
-			const radius = Math.sqrt( dx * dx + dy * dy );
-			this.radius[ i ] = radius;
-			this.direction[ 2 * i ] = dx / radius;
-			this.direction[ 2 * i + 1 ] = dy / radius;
-			const rest = this.restRadius[ i ];
-			const b0 = this.stationBlend[ i * SECTION_COUNT ];
-			const b1 = this.stationBlend[ i * SECTION_COUNT + 1 ];
-			const b2 = this.stationBlend[ i * SECTION_COUNT + 2 ];
-			this.stationStretch[ i ] = b0 * this.stretch[ 0 ] + b1 * this.stretch[ 1 ] + b2 * this.stretch[ 2 ];
-			const o0 = this.stationOffsetBlend[ i * SECTION_COUNT ];
-			const o1 = this.stationOffsetBlend[ i * SECTION_COUNT + 1 ];
-			const o2 = this.stationOffsetBlend[ i * SECTION_COUNT + 2 ];
+			const r = Math.sqrt( dx * dx + dy * dy );
+			radius[ i ] = r;
+			direction[ 2 * i ] = dx / r;
+			direction[ 2 * i + 1 ] = dy / r;
+			const rest = restRadius[ i ];
+			const b0 = stationBlend[ i * SECTION_COUNT ];
+			const b1 = stationBlend[ i * SECTION_COUNT + 1 ];
+			const b2 = stationBlend[ i * SECTION_COUNT + 2 ];
+			stationStretch[ i ] = b0 * stretch[ 0 ] + b1 * stretch[ 1 ] + b2 * stretch[ 2 ];
+			const o0 = stationOffsetBlend[ i * SECTION_COUNT ];
+			const o1 = stationOffsetBlend[ i * SECTION_COUNT + 1 ];
+			const o2 = stationOffsetBlend[ i * SECTION_COUNT + 2 ];
 			for ( let k = 0; k < c; k ++ ) {
 
-				this.controls[ i * c + k ] = this.isPole[ k ] ? pole
-					: pole + ( rest - pole ) * this.stationRatios[ i * c + k ] + ( radius - rest ) * this.follow[ k ]
-						+ o0 * this.offsets[ k ] + o1 * this.offsets[ c + k ] + o2 * this.offsets[ 2 * c + k ];
+				controls[ i * c + k ] = isPole[ k ] ? pole
+					: pole + ( rest - pole ) * stationRatios[ i * c + k ] + ( r - rest ) * follow[ k ]
+						+ o0 * offsets[ k ] + o1 * offsets[ c + k ] + o2 * offsets[ 2 * c + k ];
 
 			}
 
@@ -331,22 +336,24 @@ export class TongueRig {
 		vertices[ 0 ] = hx; vertices[ 1 ] = hy; vertices[ 2 ] = - pole;
 		vertices[ 3 ] = hx; vertices[ 4 ] = hy; vertices[ 5 ] = pole;
 		const width = this.coronalWidth;
+		const pageCount = this.pageCount;
+		const { pageFirst, pageBasis, pageCos, pageSin, pageFade } = this;
 		for ( let i = 0; i < this.stationCount; i ++ ) {
 
-			const ex = this.direction[ 2 * i ];
-			const ey = this.direction[ 2 * i + 1 ];
-			const stretch = this.stationStretch[ i ];
+			const ex = direction[ 2 * i ];
+			const ey = direction[ 2 * i + 1 ];
+			const along = stationStretch[ i ];
 			const row = i * c;
-			for ( let j = 0; j < this.pageCount; j ++ ) {
+			for ( let j = 0; j < pageCount; j ++ ) {
 
 				let lambda = 0;
-				const first = row + this.pageFirst[ j ];
-				for ( let k = 0; k < width; k ++ ) lambda += this.pageBasis[ j * width + k ] * this.controls[ first + k ];
-				const planar = lambda * this.pageCos[ j ];
-				const o = 3 * ( 2 + i * this.pageCount + j );
+				const first = row + pageFirst[ j ];
+				for ( let k = 0; k < width; k ++ ) lambda += pageBasis[ j * width + k ] * controls[ first + k ];
+				const planar = lambda * pageCos[ j ];
+				const o = 3 * ( 2 + i * pageCount + j );
 				vertices[ o ] = hx + planar * ex;
 				vertices[ o + 1 ] = hy + planar * ey;
-				vertices[ o + 2 ] = lambda * this.pageSin[ j ] * ( 1 + stretch * this.pageFade[ j ] );
+				vertices[ o + 2 ] = lambda * pageSin[ j ] * ( 1 + along * pageFade[ j ] );
 
 			}
 
