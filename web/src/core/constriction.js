@@ -9,7 +9,8 @@
 // polylines that do not cross is reached at a vertex of one of them). The search starts from the
 // floor point of the last frame's gap, so that the best gap so far is small from the start: roof
 // points farther than it outside the floor's bounding box are skipped, and so are chunks of
-// segments whose bounding box is no nearer. Its place along the tract is
+// segments whose bounding box is no nearer (first box against box for a chunk's points, then
+// for each point). Its place along the tract is
 // the arc length, from the lip opening, of the midline point nearest the middle of the gap.
 
 import { chainSegmentCount, CHUNK_SEGMENTS } from './midSection.js';
@@ -109,17 +110,20 @@ const GAP_BEST = 0, GAP_FLOOR = 1, GAP_ROOF = 3;
 const box = new Float64Array( 4 );
 
 /**
- * Point k of part `from` against every segment of part `to` (chunks whose box is no nearer than
- * the best gap are skipped); a nearer gap goes into `gap`, `from` being the floor or not. Only
- * integers and parts cross the call, so no number is boxed. Returns whether it found one.
+ * Point k of part `from` against the segments of the chunks of part `to` listed in to.near (all
+ * of them when `all`), skipping chunks whose box is no nearer than the best gap; a nearer gap
+ * goes into `gap`, `from` being the floor or not. Only integers and parts cross the call, so no
+ * number is boxed. Returns whether it found one.
  */
-function pointAgainstPart( from, k, to, fromFloor ) {
+function pointAgainstPart( from, k, to, fromFloor, all ) {
 
 	const x = from.points[ 2 * k ], y = from.points[ 2 * k + 1 ];
-	const { points, starts, boxes } = to;
+	const { points, starts, boxes, near } = to;
+	const chunks = all ? to.chunkCount : to.nearCount;
 	let found = false;
-	for ( let chunk = 0; chunk < to.chunkCount; chunk ++ ) {
+	for ( let m = 0; m < chunks; m ++ ) {
 
+		const chunk = all ? m : near[ m ];
 		const bx = Math.max( boxes[ 4 * chunk ] - x, 0, x - boxes[ 4 * chunk + 2 ] );
 		const by = Math.max( boxes[ 4 * chunk + 1 ] - y, 0, y - boxes[ 4 * chunk + 3 ] );
 		if ( bx * bx + by * by >= gap[ GAP_BEST ] ) continue;
@@ -151,6 +155,40 @@ function pointAgainstPart( from, k, to, fromFloor ) {
 	}
 
 	return found;
+
+}
+
+/**
+ * The chunks of `to` whose box is nearer chunk `chunk` of `from`'s box than the best gap, into
+ * to.near. The best gap only shrinks, so a chunk left out now is no nearer to any point of the
+ * chunk later: the search visits what it visited before, in the same order, and finds the same.
+ */
+function nearChunks( from, chunk, to ) {
+
+	const a = from.boxes, b = to.boxes;
+	const x0 = a[ 4 * chunk ], y0 = a[ 4 * chunk + 1 ], x1 = a[ 4 * chunk + 2 ], y1 = a[ 4 * chunk + 3 ];
+	let count = 0;
+	for ( let m = 0; m < to.chunkCount; m ++ ) {
+
+		const bx = Math.max( b[ 4 * m ] - x1, 0, x0 - b[ 4 * m + 2 ] );
+		const by = Math.max( b[ 4 * m + 1 ] - y1, 0, y0 - b[ 4 * m + 3 ] );
+		if ( bx * bx + by * by < gap[ GAP_BEST ] ) to.near[ count ++ ] = m;
+
+	}
+
+	to.nearCount = count;
+
+}
+
+/**
+ * One past the last point chunk m owns: its points run from its first segment's start up to the
+ * next chunk's (the last chunk of a chain owns the rest of it); the chunk's box holds them all.
+ */
+function ownEnd( part, m ) {
+
+	const c = part.chunkChain[ m ];
+	const next = m + 1 < part.chunkCount && part.chunkChain[ m + 1 ] === c ? part.chunkFirst[ m + 1 ] : part.starts[ c + 1 ] - part.starts[ c ];
+	return part.starts[ c ] + next;
 
 }
 
@@ -199,19 +237,26 @@ export function findConstriction( floor, roof, midline, places, target ) {
 	// The last frame's floor point first, then every floor point against the roof.
 	if ( hintPart >= 0 && hintPart < floor.length && hintPoint < floor[ hintPart ].pointCount ) {
 
-		for ( let r = 0; r < roof.length; r ++ ) pointAgainstPart( floor[ hintPart ], hintPoint, roof[ r ], true );
+		for ( let r = 0; r < roof.length; r ++ ) pointAgainstPart( floor[ hintPart ], hintPoint, roof[ r ], true, true );
 
 	}
 
 	for ( let f = 0; f < floor.length; f ++ ) {
 
-		for ( let k = 0; k < floor[ f ].pointCount; k ++ ) {
+		const part = floor[ f ];
+		for ( let m = 0; m < part.chunkCount; m ++ ) {
 
-			for ( let r = 0; r < roof.length; r ++ ) {
+			for ( let r = 0; r < roof.length; r ++ ) nearChunks( part, m, roof[ r ] );
+			const end = ownEnd( part, m );
+			for ( let k = part.starts[ part.chunkChain[ m ] ] + part.chunkFirst[ m ]; k < end; k ++ ) {
 
-				if ( ! pointAgainstPart( floor[ f ], k, roof[ r ], true ) ) continue;
-				target[ CONSTRICTION_HINT ] = f;
-				target[ CONSTRICTION_HINT + 1 ] = k;
+				for ( let r = 0; r < roof.length; r ++ ) {
+
+					if ( ! pointAgainstPart( part, k, roof[ r ], true, false ) ) continue;
+					target[ CONSTRICTION_HINT ] = f;
+					target[ CONSTRICTION_HINT + 1 ] = k;
+
+				}
 
 			}
 
@@ -222,10 +267,17 @@ export function findConstriction( floor, roof, midline, places, target ) {
 	// Roof points near the floor against the floor.
 	for ( let r = 0; r < roof.length; r ++ ) {
 
-		for ( let k = 0; k < roof[ r ].pointCount; k ++ ) {
+		const part = roof[ r ];
+		for ( let m = 0; m < part.chunkCount; m ++ ) {
 
-			if ( outsideBox( roof[ r ], k ) ) continue;
-			for ( let f = 0; f < floor.length; f ++ ) pointAgainstPart( roof[ r ], k, floor[ f ], false );
+			for ( let f = 0; f < floor.length; f ++ ) nearChunks( part, m, floor[ f ] );
+			const end = ownEnd( part, m );
+			for ( let k = part.starts[ part.chunkChain[ m ] ] + part.chunkFirst[ m ]; k < end; k ++ ) {
+
+				if ( outsideBox( part, k ) ) continue;
+				for ( let f = 0; f < floor.length; f ++ ) pointAgainstPart( part, k, floor[ f ], false, false );
+
+			}
 
 		}
 

@@ -77,6 +77,9 @@ export function createSectionPart( index, vertexCount ) {
 		chunkChain: new Int32Array( ends + 1 ),
 		chunkFirst: new Int32Array( ends + 1 ),
 		chunkCount: 0,
+		/** Scratch of the constriction's search: the chunks near a chunk of another part. */
+		near: new Int32Array( ends + 1 ),
+		nearCount: 0,
 	};
 
 }
