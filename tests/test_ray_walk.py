@@ -159,3 +159,85 @@ def test_bad_input_is_refused_with_a_clear_message(rig, setup):
         RayError3D(rig.triangles, rest, origin + directions, origin, mask=np.ones(3, bool))
     with pytest.raises(ValueError, match="triangles must have shape"):
         RayWalker(rig.triangles[:, :2], rest)
+
+
+def _assert_exhaustive(hits, origin, directions, vertices, triangles):
+    triangle, t = exhaustive_first_hits(origin, directions, vertices, triangles)
+    np.testing.assert_array_equal(hits.triangle, triangle)
+    hit = triangle >= 0
+    np.testing.assert_array_equal(hits.t[hit], t[hit])
+    assert np.all(np.isinf(hits.t[~hit]))
+
+
+def test_the_crossing_count_certifies_most_rays_from_the_hub_in_small_steps(rig, setup):
+    rest, origin, directions, walker = setup
+    rng = np.random.default_rng(11)
+    values = rng.uniform(rig.minimum, rig.maximum)
+    previous = walker.first_hits(origin, directions, rig.vertices(values)).triangle
+    span = rig.maximum - rig.minimum
+    for _ in range(10):
+        values = np.clip(values + rng.normal(0.0, 0.01, values.shape) * span,
+                         rig.minimum, rig.maximum)
+        vertices = rig.vertices(values)
+        hits = walker.first_hits(origin, directions, vertices, previous)
+        _assert_exhaustive(hits, origin, directions, vertices, rig.triangles)
+        assert walker._w_max == 1 and walker._winding() == 1  # the hub is inside
+        assert hits.shortcut.mean() > 0.95
+        previous = hits.triangle
+
+
+def test_rays_that_cross_back_facing_triangles_go_through_the_hierarchy_and_stay_exact(
+        rig, setup):
+    rest, _, _, walker = setup
+    # an origin inside the tongue but close under its dorsum: many triangles face it
+    top = rest[np.argmax(rest[:, 1])]
+    hub = np.r_[rig.hub, 0.0]
+    rng = np.random.default_rng(5)
+    targets = rest[rng.choice(len(rest), RAYS, replace=False)]
+    for share in (0.8, 0.9, 0.95):
+        origin = hub + share * (top - hub)
+        directions = targets - origin
+        previous = walker.first_hits(origin, directions, rest).triangle
+        vertices = rig.vertices(rig.values_from({"body_height": 1.0}))
+        hits = walker.first_hits(origin, directions, vertices, previous)
+        _assert_exhaustive(hits, origin, directions, vertices, rig.triangles)
+        assert hits.back_facing > 0
+        assert walker._winding() == 1
+        certified = ~hits.shortcut
+        assert 0 < certified.sum() < RAYS  # both paths are exercised
+        # a shortcut ray crosses no back-facing triangle: its hit is the only one
+        assert np.all(hits.triangle[hits.shortcut] >= 0)
+
+
+def test_from_outside_the_tongue_a_ray_with_no_entry_crosses_nothing(rig, setup):
+    rest, _, _, walker = setup
+    origin = np.r_[rig.hub, 0.0] + np.array([0.0, 0.0, 80.0])
+    rng = np.random.default_rng(9)
+    through = rest[rng.choice(len(rest), 300, replace=False)] - origin
+    away = rng.normal(0.0, 1.0, (300, 3))  # most of these miss the tongue
+    directions = np.concatenate([through, away])
+    previous = walker.first_hits(origin, directions, rest).triangle
+    vertices = rig.vertices(rig.values_from({"tip_height": 2.0}))
+    hits = walker.first_hits(origin, directions, vertices, previous)
+    _assert_exhaustive(hits, origin, directions, vertices, rig.triangles)
+    assert walker._winding() == 0
+    assert hits.shortcut.sum() > 100
+    assert np.all(hits.triangle[hits.shortcut] == -1)  # w(O) = 0: no crossing at all
+    assert (hits.triangle[:300] >= 0).sum() > 250  # those through the tongue: certified
+
+
+def test_rays_through_vertices_and_edges_take_the_smallest_tied_triangle(rig, setup):
+    rest, origin, _, walker = setup
+    vertices = rig.vertices(rig.values_from({"body_height": 2.0}))
+    tri = rig.triangles
+    rng = np.random.default_rng(17)
+    pick = rng.choice(len(tri), 300, replace=False)
+    corners = vertices[tri[pick, 0]]
+    middles = 0.5 * (vertices[tri[pick, 1]] + vertices[tri[pick, 2]])
+    directions = np.concatenate([corners, middles]) - origin
+    # start each ray's walk on its picked triangle, which may not be the smallest of the ties
+    start = np.r_[pick, pick]
+    hits = walker.first_hits(origin, directions, vertices, start)
+    _assert_exhaustive(hits, origin, directions, vertices, rig.triangles)
+    assert hits.overturned.sum() > 50  # the walk's triangle lost the tie on many rays
+    assert hits.shortcut.mean() > 0.9

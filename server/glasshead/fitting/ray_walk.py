@@ -43,6 +43,7 @@ gamma the triangle's smallest angle; the 1e-5 mm margin covers that for sin(thet
 kernel's own answer is rounding noise.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,13 +58,31 @@ Ints = npt.NDArray[np.int64]
 SLACK = COLLISION_TOL.barycentric
 #: Steps a walk may take before the ray falls back to the unbounded search.
 WALK_STEPS = 8
+#: Rays left in the walk below which it goes on one ray at a time.
+TAIL = 16
 #: Leaves (two triangles) per mid node, mid nodes per top node.
 MID, TOP = 4, 8
 #: Widening of every bounding sphere: absolute (mm) and relative to its distance from O.
 MARGIN_MM = 1e-5
 MARGIN_REL = 1e-9
+#: Up to this many rays to certify are searched exhaustively rather than through the hierarchy
+#: (whose refit alone costs about as much as four exhaustive rays).
+BRUTE_RAYS = 4
 #: Relative widening of the walk's distance bound, so that ties with T are always tested.
 BOUND_REL = 1e-9
+#: A triangle faces away from O when O lies behind its plane by more than this angle (rad):
+#: (a - O) . n > FACING |a - O| |n|; every other triangle is back-facing (the set B).
+FACING = 1e-6
+#: The solid-angle sum must lie this close to an integer for the winding number to be trusted.
+WINDING_TOL = 1e-6
+#: Barycentric slack, and the angle (rad) between a ray and a triangle's plane below which the
+#: ray counts as grazing, when rays are tested against B's neighbourhood: wider than the
+#: definition's, so that every ray that could cross it, or hit it within the slack, is caught.
+BACK_SLACK = 1e-6
+GRAZE = 1e-6
+#: A walk's hit with a barycentric below this lies near an edge or a vertex: the triangles round
+#: that hit's corners are tested too, for ties.
+TIE = 1e-6
 
 
 def triangle_adjacency(triangles: Ints) -> Ints:
@@ -85,6 +104,17 @@ def triangle_adjacency(triangles: Ints) -> Ints:
     adjacency[first] = second // 3
     adjacency[second] = first // 3
     return adjacency.reshape(m, 3)
+
+
+def _closed_and_oriented(triangles: Ints) -> bool:
+    """True when every edge is used by exactly two triangles, once in each direction: a closed,
+    consistently oriented surface, around which crossings can be counted."""
+    n = int(triangles.max()) + 1
+    start, end = triangles.ravel(), triangles[:, [1, 2, 0]].ravel()
+    key = np.sort(start * n + end)
+    if np.any(key[1:] == key[:-1]) or np.any(start == end):
+        return False
+    return bool(np.array_equal(key, np.sort(end * n + start)))
 
 
 def _kd_order(centroids: Floats, units: tuple[int, ...]) -> Ints:
@@ -155,6 +185,8 @@ class FirstHits:
     point: Floats
     fallback: npt.NDArray[np.bool_]
     overturned: npt.NDArray[np.bool_]
+    shortcut: npt.NDArray[np.bool_]
+    back_facing: int
 
 
 def check_rays(origin: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Floats, Floats]:
@@ -207,25 +239,88 @@ class RayWalker:
         self.mid_children = np.ascontiguousarray(np.arange(len(order)).reshape(-1, MID).T)
         self.top_children = np.ascontiguousarray(
             np.arange(len(order) // MID).reshape(-1, TOP).T)
+        self._triangles_t = np.ascontiguousarray(self.triangles.T)
+        # the crossing-count certificate needs every edge used once in each direction
+        self._oriented = _closed_and_oriented(self.triangles)
+        # triangles round each vertex (CSR)
+        by_vertex = np.argsort(self.triangles.ravel(), kind="stable")
+        self._star = by_vertex // 3
+        self._star_start = np.searchsorted(self.triangles.ravel()[by_vertex],
+                                           np.arange(self.vertex_count + 1))
 
     # --- per pose -------------------------------------------------------------------------------
 
-    def _prepare(self, origin: Floats, vertices: npt.ArrayLike) -> None:
+    def _prepare(self, origin: Floats, vertices: npt.ArrayLike, facing: bool = True) -> None:
         v = np.asarray(vertices, dtype=np.float64)
         if v.shape != (self.vertex_count, 3):
             raise ValueError(f"vertices must have shape ({self.vertex_count}, 3), got {v.shape}")
         if not np.all(np.isfinite(v)):
             raise ValueError("vertices must be finite")
         rel = v - origin
-        corners = np.take(_rows(rel), self.triangles).view(np.float64).reshape(-1, 9)
-        a = corners[:, 0:3]
+        # corners by coordinate, corner and triangle: every array below is a contiguous row
+        g = np.take(np.ascontiguousarray(rel.T), self._triangles_t, axis=1)  # (3, 3, m)
+        a, b, c = g[:, 0], g[:, 1], g[:, 2]
         # rows: s (= -a), e1, e2, each xyz, as first_hits_from_origin builds them
-        tri = np.empty_like(corners)
-        np.negative(a, out=tri[:, 0:3])
-        np.subtract(corners[:, 3:6], a, out=tri[:, 3:6])
-        np.subtract(corners[:, 6:9], a, out=tri[:, 6:9])
-        self._tri = _rows(tri)
+        soa = np.empty((9, len(self.triangles)))
+        np.negative(a, out=soa[0:3])
+        np.subtract(b, a, out=soa[3:6])
+        np.subtract(c, a, out=soa[6:9])
+        self._soa = soa
+        self._tri = _rows(soa.T)
         self._rel = _rows(rel)
+        if facing:
+            self._facing(g, soa)
+
+    def _facing(self, g: Floats, soa: Floats) -> None:
+        """Per pose: the triangles that do not face away from O (``_back``, the set B), and
+        an integer upper bound on the winding number of the surface around O (``_w_max``, None
+        when there is none).
+
+        w(O) is the sum of the triangles' signed solid angles over 4 pi, the solid angle of a
+        triangle (a, b, c) seen from O being 2 atan2(D, den) (van Oosterom and Strackee 1983),
+        D = det[a - O, b - O, c - O] and den = |a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|
+        (corners relative to O). Negative terms only lower the sum and atan2(D, den) <=
+        min(D / den, pi / 2) for D, den > 0, <= pi otherwise, so the sum of those bounds, below
+        8 pi, proves w(O) <= 1 with one division per triangle; only when it does not is the exact
+        sum taken (``_winding``). Needs a closed, consistently oriented mesh."""
+        e1, e2 = soa[3:6], soa[6:9]
+        n = np.empty((3, soa.shape[1]))
+        np.subtract(e1[1] * e2[2], e1[2] * e2[1], out=n[0])
+        np.subtract(e1[2] * e2[0], e1[0] * e2[2], out=n[1])
+        np.subtract(e1[0] * e2[1], e1[1] * e2[0], out=n[2])
+        facing = (g[:, 0] * n).sum(axis=0)  # D = (a - O) . n
+        n2 = (n * n).sum(axis=0)
+        self._n2 = n2
+        r2 = (g * g).sum(axis=0)  # (3, m): |corner - O|^2
+        # B: O in front of the plane, or behind it by no more than FACING rad
+        back = facing * facing <= (FACING * FACING) * r2[0] * n2
+        back |= facing <= 0.0
+        self._back = back
+        self._w_max = None
+        self._exact_winding = None
+        if not self._oriented:
+            return
+        r = np.sqrt(r2)
+        dots = (g * g[:, [1, 2, 0]]).sum(axis=0)  # a.b, b.c, c.a
+        den = r[0] * r[1] * r[2] + (dots * r[[2, 0, 1]]).sum(axis=0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = facing / den
+        bound = np.where(den > 0.0, np.minimum(x, 0.5 * np.pi), np.pi)
+        bound = float(np.where(facing > 0.0, bound, 0.0).sum()) / (2.0 * np.pi)  # >= w(O)
+        self._w_max = int(np.floor(bound + WINDING_TOL))
+        self._solid = (facing, den)
+        if self._w_max > 1:
+            self._w_max = self._winding()
+
+    def _winding(self) -> int | None:
+        """The winding number of the surface around O (exact sum of solid angles), None when
+        the sum is not within ``WINDING_TOL`` of an integer (O on the surface) or the mesh is not
+        closed and consistently oriented."""
+        if self._exact_winding is None and self._oriented:
+            facing, den = self._solid
+            w = float(np.arctan2(facing, den).sum()) / (2.0 * np.pi)
+            self._exact_winding = int(round(w)) if abs(w - round(w)) <= WINDING_TOL else False
+        return self._exact_winding if self._exact_winding is not False else None
 
     def _mt(self, d: Floats, tris: Ints) -> tuple[Floats, npt.NDArray[np.bool_], Floats, Floats]:
         """t, hit, u, v (n,) of rays d (n, 3) against triangles ``tris`` (n,): the kernel."""
@@ -284,8 +379,9 @@ class RayWalker:
             ri, node = np.broadcast_to(ri[:, None], keep.shape)[keep], kids[keep]
         return np.repeat(ri, 2), self.leaf_triangles[node].ravel()
 
-    def _walk(self, d: Floats, start: npt.ArrayLike) -> tuple[Ints, Floats]:
-        """Lockstep walk from ``start``: (triangle, t) of the first hit met, -1 / inf if none."""
+    def _walk(self, d: Floats, start: npt.ArrayLike) -> tuple[Ints, Floats, npt.NDArray[np.bool_]]:
+        """Lockstep walk from ``start``: (triangle, t) of the first hit met, -1 / inf if none,
+        and whether that hit lies within ``TIE`` (barycentric) of an edge of its triangle."""
         k = len(d)
         cur = np.asarray(start, dtype=np.int64).copy()
         if cur.shape != (k,):
@@ -293,13 +389,16 @@ class RayWalker:
         cur[(cur < 0) | (cur >= len(self.triangles))] = 0
         walk_tri = np.full(k, -1, dtype=np.int64)
         walk_t = np.full(k, np.inf)
+        near = np.zeros(k, dtype=bool)
         active = np.arange(k)
-        for _ in range(WALK_STEPS + 1):
-            if len(active) == 0:
+        for step in range(WALK_STEPS + 1):
+            if len(active) <= TAIL:
+                self._walk_tail(d, active, cur, WALK_STEPS + 1 - step, walk_tri, walk_t, near)
                 break
             t, hit, u, v = self._mt(d[active], cur[active])
             walk_tri[active[hit]] = cur[active[hit]]
             walk_t[active[hit]] = t[hit]
+            near[active[hit]] = np.minimum(np.minimum(u[hit], v[hit]), 1.0 - u[hit] - v[hit]) < TIE
             # step across the edge opposite the most negative barycentric toward d's cone
             sign = np.sign(t)
             w0, w1, w2 = (1.0 - u - v) * sign, u * sign, v * sign
@@ -310,15 +409,135 @@ class RayWalker:
             nxt = self.adjacency[cur[active], edge[ok]]
             cur[active] = nxt
             active = active[nxt >= 0]
-        return walk_tri, walk_t
+        return walk_tri, walk_t, near
+
+    def _walk_tail(self, d: Floats, rays: Ints, cur: Ints, steps: int, walk_tri: Ints,
+                   walk_t: Floats, near: npt.NDArray[np.bool_]) -> None:
+        """The walk's last few rays, one at a time in Python floats (whose operations round as
+        numpy's elementwise ones do): the same kernel, hit test and steps as the lockstep walk,
+        without numpy's per-call cost on tiny arrays."""
+        records = self._tri.view(np.float64).reshape(-1, 9)
+        adjacency = self.adjacency
+        for ray in rays.tolist():
+            dx, dy, dz = d[ray].tolist()
+            tri = int(cur[ray])
+            for _ in range(steps):
+                sx, sy, sz, e1x, e1y, e1z, e2x, e2y, e2z = records[tri].tolist()
+                hx = dy * e2z - dz * e2y
+                hy = dz * e2x - dx * e2z
+                hz = dx * e2y - dy * e2x
+                det = e1x * hx + e1y * hy + e1z * hz
+                if det == 0.0:
+                    break
+                inv = 1.0 / det
+                u = (sx * hx + sy * hy + sz * hz) * inv
+                qx = sy * e1z - sz * e1y
+                qy = sz * e1x - sx * e1z
+                qz = sx * e1y - sy * e1x
+                v = (dx * qx + dy * qy + dz * qz) * inv
+                t = (e2x * qx + e2y * qy + e2z * qz) * inv
+                w0 = 1.0 - u - v
+                if u >= -SLACK and v >= -SLACK and u + v <= 1.0 + SLACK and t > 0.0:
+                    walk_tri[ray] = tri
+                    walk_t[ray] = t
+                    near[ray] = min(min(u, v), w0) < TIE
+                    break
+                sign = 1.0 if t > 0.0 else -1.0 if t < 0.0 else 0.0 if t == 0.0 else math.nan
+                w0, w1, w2 = w0 * sign, u * sign, v * sign
+                if not math.isfinite(w0 + w1 + w2):
+                    break
+                edge = 1 if w1 < w0 else 0
+                if w2 < min(w0, w1):
+                    edge = 2
+                tri = int(adjacency[tri, edge])
+                if tri < 0:
+                    break
 
     def naive_walk(self, origin: npt.ArrayLike, directions: npt.ArrayLike,
                    vertices: npt.ArrayLike, start: npt.ArrayLike) -> tuple[Ints, Floats]:
         """The walk alone, with no certificate: (triangle, t), -1 / inf where it found no hit.
         A hit, not necessarily the first: for comparison only."""
         o, d = check_rays(origin, directions)
-        self._prepare(o, vertices)
-        return self._walk(d, start)
+        self._prepare(o, vertices, facing=False)
+        return self._walk(d, start)[:2]
+
+    def _back_rays(self, unit: Floats, d: Floats) -> npt.NDArray[np.bool_]:
+        """(k,) bool: rays that may cross, or hit within the slack, a triangle of B or one
+        sharing a vertex with B (B's neighbourhood): the ray meets the triangle's widened bounding
+        sphere, and the kernel accepts it with ``BACK_SLACK`` at t > -BACK_SLACK or the ray
+        grazes the triangle's plane within ``GRAZE`` rad."""
+        k = len(unit)
+        out = np.zeros(k, dtype=bool)
+        if not np.any(self._back):
+            return out
+        marked = np.zeros(self.vertex_count, dtype=bool)
+        marked[self.triangles[self._back].ravel()] = True
+        near = np.flatnonzero(marked[self._triangles_t].any(axis=0))
+        g = self._soa[:, near]
+        e1, e2 = g[3:6], g[6:9]
+        # a sphere round each triangle's centroid through its farthest corner, widened
+        centre = (e1 + e2) * (1.0 / 3.0) - g[0:3]
+        spread = np.stack([e1 + e2, e1 + e1 - e2, e2 + e2 - e1])
+        radius = np.sqrt((spread * spread).sum(axis=1).max(axis=0)) * (1.0 / 3.0)
+        dist2 = (centre * centre).sum(axis=0)
+        radius = radius * (1.0 + MARGIN_REL) + MARGIN_MM + MARGIN_REL * np.sqrt(dist2)
+        q = dist2 - radius * radius
+        h = np.where(q > 0.0, np.sqrt(np.maximum(q, 0.0)), -np.inf)
+        pair = np.flatnonzero(unit @ centre >= h)
+        if len(pair) == 0:
+            return out
+        ri, which = np.divmod(pair, len(near))
+        tris = near[which]
+        tg = _gather(self._tri, tris, 9)
+        dd = d[ri]
+        det, bu, bv, t = ray_triangle(tg[:, 0], tg[:, 1], tg[:, 2], dd[:, 0], dd[:, 1], dd[:, 2],
+                                      tg[:, 3], tg[:, 4], tg[:, 5], tg[:, 6], tg[:, 7], tg[:, 8])
+        graze = det * det <= GRAZE * GRAZE * self._norm2(dd) * self._n2[tris]
+        with np.errstate(invalid="ignore"):
+            hit = inside_triangle(det, bu, bv, BACK_SLACK) & (t > -BACK_SLACK)
+        out[ri[hit | graze]] = True
+        return out
+
+    def _ties(self, d: Floats, rays: Ints, walk_tri: Ints) -> tuple[Ints, Ints, Floats]:
+        """(ray, triangle, t) of every kernel hit among the triangles round the corners of the
+        walk's triangle, for ``rays`` whose hit lies near an edge or a vertex."""
+        corners = self.triangles[walk_tri[rays]].ravel()
+        lo, hi = self._star_start[corners], self._star_start[corners + 1]
+        count = hi - lo
+        owner = np.repeat(np.repeat(rays, 3), count)
+        offset = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+        tris = self._star[np.repeat(lo, count) + offset]
+        t, hit = self._mt(d[owner], tris)[:2]
+        return owner[hit], tris[hit], t[hit]
+
+    def _brute(self, d: Floats, rays: Ints) -> tuple[Ints, Ints, Floats]:
+        """(ray, triangle, t) of the exhaustive first hit of each of a few ``rays`` (none where
+        there is none): every triangle, the reference's arithmetic."""
+        soa = self._soa
+        dd = d[rays][:, None, :]
+        det, u, v, t = ray_triangle(soa[0], soa[1], soa[2], dd[..., 0], dd[..., 1], dd[..., 2],
+                                    soa[3], soa[4], soa[5], soa[6], soa[7], soa[8])
+        t = np.where(inside_triangle(det, u, v, SLACK) & (t > 0.0), t, np.inf)
+        idx = np.argmin(t, axis=1)  # the first of equal minima: the smallest index
+        best = t[np.arange(len(rays)), idx]
+        hit = np.isfinite(best)
+        return rays[hit], idx[hit], best[hit]
+
+    def _certified(self, d: Floats, unit: Floats, length: Floats, rays: Ints, walk_tri: Ints,
+                   walk_t: Floats) -> tuple[Ints, Ints, Floats]:
+        """(ray, triangle, t) candidates from the sphere hierarchy for ``rays``, bounded by the
+        walk's hit where there is one, that hit included."""
+        if len(rays) <= BRUTE_RAYS:
+            return self._brute(d, rays)
+        found = walk_tri[rays] >= 0
+        bound = np.where(found, walk_t[rays] * length[rays] * (1.0 + BOUND_REL) + MARGIN_MM,
+                         np.inf)
+        local, tris = self._search(unit[rays], bound)
+        owner = rays[local]
+        t, hit = self._mt(d[owner], tris)[:2]
+        walked = rays[found]
+        return (np.r_[owner[hit], walked], np.r_[tris[hit], walk_tri[walked]],
+                np.r_[t[hit], walk_t[walked]])
 
     def first_hits(self, origin: npt.ArrayLike, directions: npt.ArrayLike,
                    vertices: npt.ArrayLike, start: npt.ArrayLike | None = None) -> FirstHits:
@@ -331,29 +550,45 @@ class RayWalker:
         o, d = check_rays(origin, directions)
         k = len(d)
         self._prepare(o, vertices)
+        back = int(self._back.sum())
         if start is None:
             triangle, t = exhaustive_first_hits(o, d, vertices, self.triangles)
             none = np.zeros(k, dtype=bool)
-            return FirstHits(triangle, t, _points(o, d, t), none, none.copy())
-        walk_tri, walk_t = self._walk(d, start)
+            return FirstHits(triangle, t, _points(o, d, t), none, none.copy(), none.copy(),
+                             back)
+        walk_tri, walk_t, near = self._walk(d, start)
         found = walk_tri >= 0
-        length = np.sqrt((d * d).sum(axis=1))
+        length = np.sqrt(self._norm2(d))
         unit = d / length[:, None]
-        bound = np.where(found, walk_t * length * (1.0 + BOUND_REL) + MARGIN_MM, np.inf)
-        rays, tris = self._search(unit, bound)
-        t, hit = self._mt(d[rays], tris)[:2]
-        rays = np.r_[rays[hit], np.flatnonzero(found)]
-        tris = np.r_[tris[hit], walk_tri[found]]
-        t = np.r_[t[hit], walk_t[found]]
-        order = np.lexsort((tris, t, rays))
-        rays, tris, t = rays[order], tris[order], t[order]
-        first = np.r_[True, rays[1:] != rays[:-1]]
-        triangle = np.full(k, -1, dtype=np.int64)
-        best_t = np.full(k, np.inf)
-        triangle[rays[first]] = tris[first]
-        best_t[rays[first]] = t[first]
-        return FirstHits(triangle, best_t, _points(o, d, best_t), ~found,
-                         found & (triangle != walk_tri))
+        triangle = walk_tri.copy()
+        best_t = walk_t.copy()
+        shortcut = np.zeros(k, dtype=bool)
+        if self._w_max is not None and self._w_max <= 1:
+            # rays with no entry cross the surface exactly w(O) times, w(O) <= 1
+            clear = ~self._back_rays(unit, d)
+            shortcut = clear & found
+            if np.any(clear & ~found):
+                w = self._w_max if self._w_max <= 0 else self._winding()
+                if w is not None and w <= 0:
+                    shortcut |= clear  # no crossing at all: no hit (and the walk found none)
+        certify = np.flatnonzero(~shortcut)
+        ties = np.flatnonzero(shortcut & near)
+        parts = [self._ties(d, ties, walk_tri)] if len(ties) else []
+        if len(certify):
+            parts.append(self._certified(d, unit, length, certify, walk_tri, walk_t))
+            triangle[certify] = -1
+            best_t[certify] = np.inf
+        if parts:
+            rays = np.concatenate([p[0] for p in parts] + [ties])
+            tris = np.concatenate([p[1] for p in parts] + [walk_tri[ties]])
+            t = np.concatenate([p[2] for p in parts] + [walk_t[ties]])
+            order = np.lexsort((tris, t, rays))
+            rays, tris, t = rays[order], tris[order], t[order]
+            first = np.r_[True, rays[1:] != rays[:-1]]
+            triangle[rays[first]] = tris[first]
+            best_t[rays[first]] = t[first]
+        return FirstHits(triangle, best_t, _points(o, d, best_t), ~found & ~shortcut,
+                         found & (triangle != walk_tri), shortcut, back)
 
 
 def _points(o: Floats, d: Floats, t: Floats) -> Floats:
