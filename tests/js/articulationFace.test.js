@@ -243,3 +243,19 @@ test( 'posing the face allocates nothing: a thousand poses trigger no garbage co
 	assert.equal( quiet, 0, `${ quiet } collections during 1,000 face poses` );
 
 } );
+
+test( 'posing the face again with the same lips and jaw changes nothing and redoes nothing', () => {
+
+	const head = faceHead();
+	const state = lipState();
+	const face = new FacePose( FACE.rig, head, state );
+	state.set( 'lip_rounding', 3 );
+	const gap = face.pose( state.values, jaw( 10 ) );
+	const positions = head.part( 'lower_lip' ).geometry.attributes.position;
+	const before = positions.version;
+	assert.equal( face.pose( state.values, jaw( 10 ) ), gap );
+	assert.equal( positions.version, before, 'the geometry was not flagged for upload' );
+	assert.notEqual( face.pose( state.values, jaw( 12 ) ), gap, 'a new jaw pose poses the face' );
+	assert.ok( positions.version > before );
+
+} );

@@ -38,6 +38,8 @@ export class FacePose {
 		const lipNames = definition.parameters.map( ( p ) => p.name );
 		this.lipIndex = Int32Array.from( lipNames, ( name ) => state.indexOf( name ) );
 		this.lipValues = new Float64Array( lipNames.length );
+		/** The inputs of the last pose (lip values, then the jaw pose): the same again is a no-op. */
+		this.last = new Float64Array( lipNames.length + 12 ).fill( NaN );
 		const skins = this.parts.filter( ( part ) => part.tissue === 'skin' );
 		const seam = seamGroups( skins );
 		this.meshes = this.parts.map( ( part ) => {
@@ -67,6 +69,8 @@ export class FacePose {
 	pose( values, jawPose ) {
 
 		for ( let k = 0; k < this.lipIndex.length; k ++ ) this.lipValues[ k ] = values[ this.lipIndex[ k ] ];
+		// Tongue and velum sliders leave the face as it was: nothing to redo.
+		if ( this.unchanged( jawPose ) ) return this.rig.gaps[ GAP_LIPS ];
 		poseFace( this.rig, this.lipValues, jawPose, this.out );
 		for ( let m = 0; m < this.meshes.length; m ++ ) {
 
@@ -84,6 +88,29 @@ export class FacePose {
 
 		weldSeam( this.seam );
 		return this.rig.gaps[ GAP_LIPS ];
+
+	}
+
+	/** Whether the lip values and the jaw pose are those of the last pose (and remember them). */
+	unchanged( jawPose ) {
+
+		const { last, lipValues } = this;
+		let same = true;
+		for ( let k = 0; k < lipValues.length; k ++ ) {
+
+			same = same && last[ k ] === lipValues[ k ];
+			last[ k ] = lipValues[ k ];
+
+		}
+
+		for ( let k = 0; k < 12; k ++ ) {
+
+			same = same && last[ lipValues.length + k ] === jawPose[ k ];
+			last[ lipValues.length + k ] = jawPose[ k ];
+
+		}
+
+		return same;
 
 	}
 
