@@ -29,6 +29,7 @@ ROUTES = {
                     {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
     "pharynx_mesh": [("post", "/api/v1/collision/correct",
                       {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
+    "phoneme_targets": [("get", "/api/v1/phonemes", None), ("get", "/api/v1/phonemes/T", None)],
 }
 
 

@@ -33,6 +33,8 @@ from glasshead.constants import (
     MANIFEST_FILE,
     MANIFEST_FORMAT_VERSION,
     PHARYNX_GLB,
+    PHONEME_TARGETS_FILE,
+    PHONEME_TARGETS_FORMAT_VERSION,
     REBUILD_COMMAND,
     TONGUE_RIG_FILE,
     VELUM_REST_GLB,
@@ -100,6 +102,42 @@ def read_landmarks(data: bytes) -> dict:
     return validate_landmarks(_json(data))
 
 
+#: What every phoneme target holds (glasshead.pipeline.phoneme_targets).
+PHONEME_TARGET_KEYS = ("arpabet", "ipa", "kind", "examples", "features", "params", "contexts",
+                       "source", "volume_change_pct", "epg")
+
+
+def read_phoneme_targets(data: bytes) -> dict:
+    """The phoneme targets: format version, one target per phoneme with its parameters and
+    synthetic EPG (8 rows of 0/1, R1 first)."""
+    document = _json(data)
+    if not isinstance(document, dict):
+        raise ValueError("the phoneme targets must be a JSON object")
+    version = document.get("format_version")
+    if version != PHONEME_TARGETS_FORMAT_VERSION:
+        raise ValueError(f"phoneme targets format_version {version!r} is not "
+                         f"{PHONEME_TARGETS_FORMAT_VERSION}")
+    targets = document.get("targets")
+    if not isinstance(targets, list) or not targets:
+        raise ValueError("the phoneme targets list no targets")
+    for k, target in enumerate(targets):
+        missing = [key for key in PHONEME_TARGET_KEYS
+                   if not isinstance(target, dict) or key not in target]
+        if missing:
+            raise ValueError(f"phoneme target {k} lacks {', '.join(missing)}")
+        rows = target["epg"].get("rows") if isinstance(target["epg"], dict) else None
+        if not isinstance(rows, list) or len(rows) != 8 or any(
+                not isinstance(r, str) or len(r) != 8 or set(r) - {"0", "1"} for r in rows):
+            raise ValueError(f"phoneme target {target['arpabet']}: epg.rows must be 8 strings "
+                             "of 8 '0'/'1'")
+        if not isinstance(target["params"], dict) or not all(
+                isinstance(v, (int, float)) and not isinstance(v, bool)
+                for v in target["params"].values()):
+            raise ValueError(f"phoneme target {target['arpabet']}: params must map names to "
+                             "numbers")
+    return document
+
+
 def read_glb_mesh(data: bytes) -> tuple:
     """(vertices (n, 3) float64, faces (m, 3) int64) of a one-mesh GLB, in its vertex order."""
     import io
@@ -137,6 +175,7 @@ ASSETS: tuple[AssetSpec, ...] = (
     # The tongue's collision with the velum and the pharyngeal wall (geometry.tract_collision).
     AssetSpec("velum_mesh", VELUM_REST_GLB, read_glb_mesh),
     AssetSpec("pharynx_mesh", PHARYNX_GLB, read_glb_mesh),
+    AssetSpec("phoneme_targets", PHONEME_TARGETS_FILE, read_phoneme_targets),
 )
 
 

@@ -245,5 +245,9 @@ PHARYNX_GLB = "pharynx.glb"
 LANDMARKS_FILE = "landmarks.json"
 #: Format version of the landmarks file; its readers refuse any other version.
 LANDMARKS_FORMAT_VERSION = 1
+#: The articulation target of every phoneme (glasshead.pipeline.phoneme_targets).
+PHONEME_TARGETS_FILE = "phoneme-targets.json"
+#: Format version of the phoneme targets file; its readers refuse any other version.
+PHONEME_TARGETS_FORMAT_VERSION = 1
 #: The command that rebuilds every asset, named in the API's 503 answers.
 REBUILD_COMMAND = "glasshead build"

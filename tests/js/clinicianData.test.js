@@ -33,6 +33,8 @@ const ROUTES = {
 	'GET poses?limit=1000': () => [ 200, { poses: [ { id: 3, name: 'alveolar stop' } ] } ],
 	'GET poses/3': () => [ 200, { id: 3, name: 'alveolar stop', params: { tip_height: 6 } } ],
 	'POST epg/contacts': () => [ 200, { rows: FRONT } ],
+	'GET phonemes': () => [ 200, { format_version: 1, count: 1, phonemes: [ { arpabet: 'T', ipa: 't', kind: 'consonant', examples: [ 'tie', 'cat' ], source: { kind: 'fit', shapes: [ 'tt-alveolar-closure(a)' ], rms_mm: 0.9 } } ] } ],
+	'GET phonemes/T': () => [ 200, { arpabet: 'T', ipa: 't', kind: 'consonant', examples: [ 'tie', 'cat' ], params: { tip_height: 2, velum_opening: 0 }, epg: { rows: FRONT, indices: {} } } ],
 	'GET epg/recordings/7': () => [ 200, { id: 7, name: 'tata', n_frames: 2, frame_rate_hz: 100, t_s: [ 0.5, 0.51 ], frames: [ EMPTY, FRONT ] } ],
 	'POST epg/recordings/7/compare': () => [ 200, { agreement: [ 0.8, 1 ], reference_frame: [ 0, 0 ], codes: [ EMPTY, EMPTY ], summary: { mean_agreement: 0.9 } } ],
 };
@@ -42,7 +44,10 @@ test( 'the choices list the recordings and each source\'s targets by name', asyn
 	const { api } = fakeApi( ROUTES );
 	const choices = await new ClinicianData( { api } ).choices();
 	assert.deepEqual( choices.recordings, [ { value: '7', label: 'tata (2 frames, 100 Hz)' } ] );
-	assert.deepEqual( choices.groups, [ { title: 'Saved poses', targets: [ { value: 'pose:3', label: 'alveolar stop' } ] } ] );
+	assert.deepEqual( choices.groups, [
+		{ title: 'Saved poses', targets: [ { value: 'pose:3', label: 'alveolar stop' } ] },
+		{ title: 'Phoneme targets', targets: [ { value: 'phoneme:T', label: '/t/ T as in "tie"' } ] },
+	] );
 	assert.equal( choices.empty, false );
 	assert.equal( recordingLabel( { name: 'x', n_frames: 1 } ), 'x (1 frames)' );
 
@@ -53,8 +58,11 @@ test( 'nothing to choose from says so', async () => {
 	const { api } = fakeApi( {
 		'GET epg/recordings?limit=1000': () => [ 200, { total: 0, recordings: [] } ],
 		'GET poses?limit=1000': () => [ 200, { poses: [] } ],
+		'GET phonemes': () => [ 503, { detail: 'asset phoneme_targets (phoneme-targets.json) is missing' } ],
 	} );
-	assert.equal( ( await new ClinicianData( { api } ).choices() ).empty, true );
+	const choices = await new ClinicianData( { api } ).choices();
+	assert.equal( choices.empty, true );
+	assert.match( choices.groups[ 1 ].error, /phoneme-targets.json/, 'the unbuilt phoneme targets say why their group is empty' );
 
 } );
 
@@ -90,11 +98,26 @@ test( 'a saved pose target is its synthetic EPG, and the comparison posts it as 
 
 } );
 
+test( 'a phoneme target is its built synthetic EPG, posted as the reference', async () => {
+
+	const { api, requests } = fakeApi( ROUTES );
+	const data = new ClinicianData( { api } );
+	const target = await data.target( 'phoneme:T' );
+	assert.equal( target.label, '/t/ T as in "tie"' );
+	assert.equal( target.count, 1 );
+	assert.deepEqual( target.params, { tip_height: 2, velum_opening: 0 } );
+	near( target.indices.percent[ 0 ], 1000 / 62, 1e-12, 'percent contact' );
+	assert.ok( ! requests.some( ( r ) => r.key === 'POST epg/contacts' ), 'the built pattern is used as it is' );
+	await data.compare( await data.recording( '7' ), target );
+	assert.deepEqual( requests.at( - 1 ).body, { reference: { label: '/t/ T as in "tie"', frames: [ FRONT ] } } );
+
+} );
+
 test( 'an unknown target kind is refused, and a server error arrives as an ApiError', async () => {
 
 	const { api } = fakeApi( { 'GET epg/recordings/8': () => [ 404, { detail: 'no recording 8' } ] } );
 	const data = new ClinicianData( { api } );
-	await assert.rejects( data.target( 'phoneme:t' ), /There is no target "phoneme:t"/ );
+	await assert.rejects( data.target( 'gesture:t' ), /There is no target "gesture:t"/ );
 	await assert.rejects( data.recording( '8' ), ( error ) => error instanceof ApiError && error.message === 'GET /api/v1/epg/recordings/8 failed with HTTP 404: no recording 8' );
 
 } );

@@ -123,6 +123,11 @@ def vtl_observations_step(ctx):
             "registration_rms_mm": registration["icp_trimmed_rms_mm"]}
 
 
+def phoneme_targets_step(ctx):
+    from glasshead.pipeline.phoneme_targets import build_step
+    return build_step(ctx)
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -139,6 +144,7 @@ STEPS = [
     ("tract-collision", tract_collision_step),
     ("landmarks", landmarks_step),
     ("vtl-observations", vtl_observations_step),
+    ("phoneme-targets", phoneme_targets_step),
 ]
 
 

@@ -256,5 +256,9 @@ export const PHARYNX_GLB = 'pharynx.glb';
 export const LANDMARKS_FILE = 'landmarks.json';
 /** Format version of the landmarks file; its readers refuse any other version. */
 export const LANDMARKS_FORMAT_VERSION = 1;
+/** The articulation target of every phoneme (glasshead.pipeline.phoneme_targets). */
+export const PHONEME_TARGETS_FILE = 'phoneme-targets.json';
+/** Format version of the phoneme targets file; its readers refuse any other version. */
+export const PHONEME_TARGETS_FORMAT_VERSION = 1;
 /** The command that rebuilds every asset, named in the API's 503 answers. */
 export const REBUILD_COMMAND = 'glasshead build';

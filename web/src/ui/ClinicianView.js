@@ -88,7 +88,9 @@ export class ClinicianView {
 			const choices = await this.data.choices();
 			for ( const group of choices.groups ) {
 
-				this.targetSelect.append( h( 'optgroup', { label: group.title }, ...group.targets.map( ( t ) => h( 'option', { value: t.value }, t.label ) ) ) );
+				const options = group.targets.map( ( t ) => h( 'option', { value: t.value }, t.label ) );
+				if ( group.error ) options.push( h( 'option', { value: '', disabled: true }, `unavailable: ${ group.error }` ) );
+				this.targetSelect.append( h( 'optgroup', { label: group.title }, ...options ) );
 
 			}
 

@@ -36,14 +36,23 @@ export class ClinicianData {
 	 */
 	async choices() {
 
+		// A source that cannot be listed (e.g. phoneme targets not built: 503) leaves its group
+		// empty, with the reason, instead of hiding every other target.
 		const [ recordings, ...targetLists ] = await Promise.all( [
 			this.api.get( 'epg/recordings?limit=1000' ),
-			...this.sources.map( ( source ) => source.list() ),
+			...this.sources.map( ( source ) => source.list().catch( ( error ) => error ) ),
 		] );
-		const groups = this.sources.map( ( source, k ) => ( {
-			title: source.title,
-			targets: targetLists[ k ].map( ( target ) => ( { value: `${ source.kind }:${ target.id }`, label: target.label } ) ),
-		} ) );
+		const groups = this.sources.map( ( source, k ) => {
+
+			const list = targetLists[ k ];
+			const group = {
+				title: source.title,
+				targets: list instanceof Error ? [] : list.map( ( target ) => ( { value: `${ source.kind }:${ target.id }`, label: target.label } ) ),
+			};
+			if ( list instanceof Error ) group.error = list.message;
+			return group;
+
+		} );
 		return {
 			recordings: recordings.recordings.map( ( r ) => ( { value: String( r.id ), label: recordingLabel( r ) } ) ),
 			groups,

@@ -1,5 +1,6 @@
 // What the views load from the API, all through the one HTTP client (api.js): the anatomy meshes,
-// the tongue rig with the collision tables and the face rig, and the electrode layouts. Scene
+// the tongue rig with the collision tables and the face rig, the electrode layouts and the phoneme
+// targets. Scene
 // objects are handed what these return and fetch nothing themselves. Every function takes the
 // client as `api` (tests pass one made by createApi( { fetchImpl } )).
 
@@ -124,5 +125,25 @@ export async function loadEpgLayout( { api = pageApi, grids = EPG_GRIDS } = {} )
 	const byName = Object.fromEntries( grids.map( ( grid, k ) => [ grid, layouts[ k ] ] ) );
 	const first = layouts[ 0 ];
 	return { grids: byName, contact: first?.contact, midline: first?.midline };
+
+}
+
+/**
+ * The phoneme targets (GET /phonemes): { format_version, count, phonemes: [{ arpabet, ipa, kind,
+ * examples, source: { kind, shapes, rms_mm }, url }] }.
+ */
+export async function loadPhonemeList( { api = pageApi } = {} ) {
+
+	return api.get( 'phonemes' );
+
+}
+
+/**
+ * One phoneme's target (GET /phonemes/{symbol}, ARPAbet or IPA): its parameters of every rig, its
+ * synthetic EPG (epg.rows, R1 first; epg.indices), contexts, source, examples and features.
+ */
+export async function loadPhonemeTarget( symbol, { api = pageApi } = {} ) {
+
+	return api.get( `phonemes/${ encodeURIComponent( symbol ) }` );
 
 }

@@ -1,9 +1,10 @@
 // Where the clinician's targets come from. A target is what a client's EPG is compared with: today
-// a saved pose (a named parameter set from the workbench) shown as its synthetic EPG; later a
-// fitted phoneme target. The clinician view only ever talks to a TargetSource:
+// a saved pose (a named parameter set from the workbench) or a phoneme's articulation target
+// (GET /phonemes), each shown as its synthetic EPG. The clinician view only ever talks to a
+// TargetSource:
 //
-//   kind                   short name used in ids ('pose'; a phoneme source would be 'phoneme')
-//   title                  what the chooser calls the group ('Saved poses')
+//   kind                   short name used in ids ('pose', 'phoneme')
+//   title                  what the chooser calls the group ('Saved poses', 'Phoneme targets')
 //   list()                 -> Promise<[{ id, label, description }]>, id unique within the source
 //   frames( id )           -> Promise<{ label, rows: string[][], t_s: number[] | null,
 //                              reference: object }>: the target's EPG frames (8 row strings each,
@@ -14,6 +15,7 @@
 // source needs no change to the view: add an object with these members to TARGET_SOURCES.
 
 import { api as pageApi } from '../api.js';
+import { loadPhonemeList, loadPhonemeTarget } from './loaders.js';
 
 /** Saved poses (GET /poses): each is one static frame, its synthetic EPG from POST /epg/contacts. */
 export class SavedPoseTargets {
@@ -50,10 +52,61 @@ export class SavedPoseTargets {
 
 }
 
+/** How a phoneme is listed: its IPA in slashes, its ARPAbet symbol and an example word. */
+export function phonemeLabel( phoneme ) {
+
+	const example = phoneme.examples?.length ? ` as in "${ phoneme.examples[ 0 ] }"` : '';
+	return `/${ phoneme.ipa }/ ${ phoneme.arpabet }${ example }`;
+
+}
+
+/**
+ * The phoneme targets (GET /phonemes, docs/targets.md): each one static frame, the synthetic EPG
+ * the build computed for its parameters (the same contacts the browser computes for them). Ids are
+ * ARPAbet symbols ('phoneme:T').
+ */
+export class PhonemeTargets {
+
+	/** @param {{ api?: object }} options the HTTP client the targets are read through */
+	constructor( { api = pageApi } = {} ) {
+
+		this.kind = 'phoneme';
+		this.title = 'Phoneme targets';
+		this.api = api;
+
+	}
+
+	async list() {
+
+		const body = await loadPhonemeList( { api: this.api } );
+		return body.phonemes.map( ( phoneme ) => ( {
+			id: phoneme.arpabet,
+			label: phonemeLabel( phoneme ),
+			description: phoneme.source?.shapes?.length ? `fitted to ${ phoneme.source.shapes.join( ', ' ) }` : 'from phonetic reasoning',
+		} ) );
+
+	}
+
+	async frames( id ) {
+
+		const target = await loadPhonemeTarget( id, { api: this.api } );
+		const label = phonemeLabel( target );
+		return {
+			label,
+			rows: [ target.epg.rows ],
+			t_s: null,
+			params: target.params,
+			reference: { label, frames: [ target.epg.rows ] },
+		};
+
+	}
+
+}
+
 /** Every source of targets, in the order the chooser lists them. */
 export function targetSources( options ) {
 
-	return [ new SavedPoseTargets( options ) ];
+	return [ new SavedPoseTargets( options ), new PhonemeTargets( options ) ];
 
 }
 

@@ -1,0 +1,480 @@
+"""Build step: an articulation target for every phoneme of the inventory (``glasshead.phonemes``).
+
+Writes ``assets/build/phoneme-targets.json`` (``PHONEME_TARGETS_FILE``, format
+``PHONEME_TARGETS_FORMAT_VERSION``). For each of the 39 phonemes: every parameter of the tongue
+rig (tongue and ``jaw_opening``), of the face rig (lips) and of the velum rig; the per-context
+targets (/a i u/) of a measured consonant; the source (the JD3 shape(s) and their fit error, or
+the reasoning); the tongue's volume change; the synthetic EPG (8 rows, R1 first) and its emuR
+indices; examples and features. docs/targets.md describes every rule below.
+
+How a measured target is made (``measured_target``):
+
+1. Coronal: the rig's edge heights from VTL's side elevations, which the mid-sagittal outline
+   cannot show: front edges from TS3 (tip), middle from TS2, back from TS1, each clipped to its
+   range (``coronal_from_vtl``).
+2. Jaw from VTL's JA (``fit2d.jaw_opening_from_vtl``), lips from LP, LD and JX
+   (``lips_from_vtl``), the velum by nasality.
+3. The 10 sagittal parameters fitted to the shape's outline (``fit2d.fit_outline``) with the
+   coronal values and the jaw held; when the tongue's volume ends more than ``VOLUME_GOAL_PCT``
+   from rest the fit is repeated from its result with the volume weight ten times heavier, up
+   to three times.
+
+A consonant's own target is its /a/-context fit (the open vowel pulls the tongue least); the /i/
+and /u/ fits are kept as ``contexts``. Reasoning-based targets (W, R, HH, Y and AE) are built
+from fitted ones as ``glasshead.phonemes`` describes (``REASONED``).
+
+The step is skipped when the SHA-256 of its inputs (the built rig, observations, collision
+tables, EPG layout, face and velum rigs, the real EPG recording, and the code: this module,
+``phonemes``, the fitting and synthetic EPG modules) is the one the file records.
+"""
+
+import hashlib
+import inspect
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from glasshead import phonemes as phoneme_inventory
+from glasshead.constants import (
+    COLLISION_TABLES_FILE,
+    EPG_LAYOUT_FILE,
+    FACE_RIG_FILE,
+    FACE_RIG_LIP_PARAMETERS,
+    PHONEME_TARGETS_FILE,
+    PHONEME_TARGETS_FORMAT_VERSION,
+    TONGUE_RIG_FILE,
+    VELUM_PARAMETER,
+    VELUM_RIG_FILE,
+)
+from glasshead.epg import synthetic
+from glasshead.epg.contacts import probes_from_layout
+from glasshead.epg.indices import INDEX_SLOTS, epg_indices
+from glasshead.epg.sequence import rows_to_strings
+from glasshead.fitting import epg_observations, fit2d, objective2d, optimizer
+from glasshead.fitting.objective2d import MidSagittalSection
+from glasshead.geometry.collision_format import decode_collision_tables
+from glasshead.geometry.tongue_surface import TongueRig
+from glasshead.pipeline.outputs import current_output, write_json
+
+#: Bump when the output changes in a way that must rebuild it.
+BUILDER = 1
+OBSERVATIONS_FILE = fit2d.OBSERVATIONS_FILE
+#: The real EPG recording the realism checks read (under the reference data directory).
+ENGASSIM = "epg/emur-engassim.json"
+#: Percent: the most a target's tongue volume may differ from rest.
+VOLUME_GOAL_PCT = 5.0
+#: Percent: the fit is repeated with a heavier volume weight beyond this (a margin under the goal).
+VOLUME_REFIT_PCT = 4.5
+VOLUME_REFITS = 3
+#: The vowel context a consonant's own target comes from.
+MAIN_CONTEXT = "a"
+#: The modules whose code shapes the output; their text is part of the cache key.
+CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_observations, synthetic)
+#: Built files read, and the data file.
+INPUT_FILES = (TONGUE_RIG_FILE, OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
+               FACE_RIG_FILE, VELUM_RIG_FILE)
+
+# --- Jaw, lips and velum from VTL's settings ------------------------------------------------------
+
+#: mm. JD3's lip protrusion LP in its unrounded shapes (/a/ 0.72, /i/ 0.77, /t/(a) 0.72): the
+#: lips at rest, counted as no protrusion.
+VTL_LP_REST_MM = 0.7
+#: mm of lip_rounding per mm of LP beyond rest (VTL has no separate rounding: its rounded vowels
+#: are protruded and narrowed together).
+ROUNDING_PER_LP_MM = 1.0
+#: mm. JD3 moves its jaw back (JX) by 5 mm in its labiodental shapes to bring the lower lip under
+#: the upper incisors; the rig tucks the lower lip instead. JX within this of 0 (the vowels go
+#: to -2) counts as no tuck; from there to -5 the tuck grows to its maximum.
+VTL_JX_TUCK_START_MM = 2.0
+VTL_JX_TUCK_FULL_MM = 5.0
+#: The face rig's lip gap (mm) with the lips open at jaw openings (deg), as measured on the
+#: built rig (docs/face-rig.md, "Measured"): lip_opening = LD / gap at the target's jaw.
+RIG_LIP_GAP = ((0.0, 1.0), (5.0, 7.8), (10.0, 13.9), (15.0, 19.6), (20.0, 24.7), (25.0, 29.4))
+
+MAPPING_TEXT = {
+    "jaw": "jaw_opening = -2 - JA (deg), JD3's standard JA being -2 deg and negative opening, "
+           "clipped to the rig's range (fit2d.jaw_opening_from_vtl)",
+    "lip_opening": "0 when LD <= 0 (VTL's lips closed or pressed); otherwise LD divided by the "
+                   "rig's open-lip gap at the target's jaw opening, clipped to 0..1",
+    "lip_protrusion": f"LP - {VTL_LP_REST_MM} mm, clipped to the rig's range",
+    "lip_rounding": f"{ROUNDING_PER_LP_MM} x (LP - {VTL_LP_REST_MM} mm), clipped: protruded "
+                    "lips are rounded, retracted ones spread",
+    "upper_lip_raise": "0 (VTL has no such parameter)",
+    "lower_lip_tuck": f"from VTL's jaw retraction JX: 0 down to -{VTL_JX_TUCK_START_MM} mm, "
+                      f"growing linearly to the rig's maximum at -{VTL_JX_TUCK_FULL_MM} mm",
+    "velum_opening": "1 (lowered) for the nasals /m n ŋ/, 0 (raised) for every other phoneme",
+    "coronal": "edge heights (left and right alike) from VTL's side elevations: front from TS3, "
+               "middle from TS2, back from TS1, mm, clipped; other coronal parameters neutral",
+}
+
+#: Coronal section -> VTL side elevation parameter.
+SIDE_ELEVATION = (("front", "TS3"), ("middle", "TS2"), ("back", "TS1"))
+
+
+def _interp_gap(jaw_deg: float) -> float:
+    xs, ys = zip(*RIG_LIP_GAP, strict=True)
+    return float(np.interp(jaw_deg, xs, ys))
+
+
+def _clip(spec: dict, value: float) -> float:
+    return float(np.clip(value, spec["min"], spec["max"]))
+
+
+def lips_from_vtl(settings: dict, jaw_opening: float, lip_table: dict) -> dict:
+    """The face rig's lip parameters for a VTL shape's settings (see ``MAPPING_TEXT``)."""
+    lp, ld = settings["lips"]["LP"], settings["lips"]["LD"]
+    jx = settings["jaw"]["JX"]
+    opening = 0.0 if ld <= 0 else ld / _interp_gap(jaw_opening)
+    tuck_share = (-jx - VTL_JX_TUCK_START_MM) / (VTL_JX_TUCK_FULL_MM - VTL_JX_TUCK_START_MM)
+    tuck_spec = lip_table["lower_lip_tuck"]
+    return {
+        "lip_opening": _clip(lip_table["lip_opening"], opening),
+        "lip_rounding": _clip(lip_table["lip_rounding"],
+                              ROUNDING_PER_LP_MM * (lp - VTL_LP_REST_MM)),
+        "lip_protrusion": _clip(lip_table["lip_protrusion"], lp - VTL_LP_REST_MM),
+        "upper_lip_raise": _clip(lip_table["upper_lip_raise"], 0.0),
+        "lower_lip_tuck": _clip(tuck_spec, tuck_spec["min"] + float(np.clip(tuck_share, 0, 1))
+                                * (tuck_spec["max"] - tuck_spec["min"])),
+    }
+
+
+def coronal_from_vtl(rig: TongueRig, settings: dict) -> dict:
+    """Edge heights from VTL's side elevations (see ``MAPPING_TEXT``)."""
+    values = {}
+    for section, name in SIDE_ELEVATION:
+        for side in ("left", "right"):
+            parameter = f"{section}_{side}_edge_height"
+            if parameter in rig.parameters:
+                values[parameter] = _clip(rig.parameters[parameter],
+                                          float(settings["tongue"][name]))
+    return values
+
+
+# --- Fits -----------------------------------------------------------------------------------------
+
+
+class Context:
+    """What every target needs: the rig, its section, the palate's tables and probes, the lip and
+    velum tables and the observations by name."""
+
+    def __init__(self, assets_dir: Path):
+        self.rig = TongueRig(json.loads((assets_dir / TONGUE_RIG_FILE).read_text()))
+        self.section = MidSagittalSection(self.rig)
+        self.rest_volume = self.rig.volume(self.rig.neutral)
+        self.tables = decode_collision_tables((assets_dir / COLLISION_TABLES_FILE).read_bytes())
+        layout = json.loads((assets_dir / EPG_LAYOUT_FILE).read_text())
+        self.probes = probes_from_layout(layout["grids"]["reading62"])
+        face = json.loads((assets_dir / FACE_RIG_FILE).read_text())
+        self.lip_table = {p["name"]: p for p in face["parameters"]}
+        velum = json.loads((assets_dir / VELUM_RIG_FILE).read_text())
+        self.velum_table = {p["name"]: p for p in velum["parameters"]}
+        observations = json.loads((assets_dir / OBSERVATIONS_FILE).read_text())
+        self.shapes = {s["name"]: s for s in observations["shapes"]}
+
+    def volume_change(self, tongue: dict) -> float:
+        return 100.0 * (self.rig.volume(self.rig.values_from(tongue)) / self.rest_volume - 1.0)
+
+    def epg(self, tongue: dict) -> dict:
+        """The synthetic EPG of a tongue parameter set: rows (R1 first) and emuR indices."""
+        frame = synthetic.synthetic_frame(self.rig, self.rig.values_from(tongue), self.tables,
+                                          self.probes)
+        values = epg_indices(frame.grid[None])
+        return {"rows": rows_to_strings(frame.grid),
+                "indices": {name: round(float(values[name][0]), 4) for name in INDEX_SLOTS},
+                "grid": frame.grid}
+
+
+def measured_target(ctx: Context, shape_name: str, nasal: bool) -> dict:
+    """The fitted target of one JD3 shape: params (all rigs), fit report and volume change."""
+    rig, shape = ctx.rig, ctx.shapes[shape_name]
+    base = rig.neutral.copy()
+    base[rig.jaw_parameter] = fit2d.jaw_opening_from_vtl(shape, rig)
+    for name, value in coronal_from_vtl(rig, shape["settings"]).items():
+        base[rig.parameter_names.index(name)] = value
+    weight = fit2d.VOLUME_WEIGHT
+    report = fit2d.fit_outline(rig, shape["tongue_outline"], base=base, section=ctx.section,
+                               name=shape_name, volume_weight=weight)
+    refits = 0
+    while abs(report.volume_change_pct) > VOLUME_REFIT_PCT and refits < VOLUME_REFITS:
+        weight *= 10.0
+        refits += 1
+        start = rig.values_from(report.params)
+        report = fit2d.fit_outline(rig, shape["tongue_outline"], base=start,
+                                   section=ctx.section, name=shape_name, volume_weight=weight)
+    tongue = {name: round(value, 4) for name, value in report.params.items()}
+    jaw = tongue[rig.jaw["parameter"]]
+    params = {**tongue, **lips_from_vtl(shape["settings"], jaw, ctx.lip_table),
+              VELUM_PARAMETER: velum_value(ctx, nasal)}
+    return {"params": params, "fit": {
+        "shape": shape_name, "rms_mm": round(report.rms_mm, 3),
+        "max_error_mm": round(report.max_error_mm, 3), "at_limit": report.at_limit,
+        "evaluations": report.evaluations, "volume_weight": weight, "volume_refits": refits}}
+
+
+def velum_value(ctx: Context, nasal: bool) -> float:
+    spec = ctx.velum_table[VELUM_PARAMETER]
+    return float(spec["max"] if nasal else spec["min"])
+
+
+# --- Reasoning-based targets ----------------------------------------------------------------------
+
+
+def _shift(ctx: Context, params: dict, changes: dict) -> dict:
+    """params with each named value moved by ``changes[name]`` (or set, for "=value" strings),
+    clipped to its rig's range."""
+    tables = {**ctx.rig.parameters, **ctx.lip_table, **ctx.velum_table}
+    out = dict(params)
+    for name, change in changes.items():
+        value = float(change[1:]) if isinstance(change, str) else out[name] + change
+        out[name] = round(_clip(tables[name], value), 4)
+    return out
+
+
+#: How each reasoning-based target is made from a fitted one (glasshead.phonemes's reasoning):
+#: (phoneme, base target, changes, description).
+REASONED = (
+    ("W", "UW", {"lip_rounding": 3.0, "lip_protrusion": 2.0, "lip_opening": "=0.3"},
+     "the /u/ target with the lips rounded 3 mm and protruded 2 mm further (clipped to the rig's "
+     "ranges) and their opening narrowed to 0.3 of the jaw's gap"),
+    ("R", "SH", {"tip_height": -4.0, "blade_height": -2.0, "root_advancement": -3.0,
+                 "front_left_edge_height": "=0", "front_right_edge_height": "=0",
+                 "lip_rounding": 2.0, "lip_protrusion": 1.0},
+     "the postalveolar fricative target with the tip lowered 4 mm, the blade lowered 2 mm (a gap "
+     "kept from the palate), the root retracted 3 mm, no sibilant groove (front edges neutral) "
+     "and the lips rounded 2 mm and protruded 1 mm further"),
+    ("Y", "Y", {"dorsum_height": -2.0, "blade_height": -2.0},
+     "the palatal fricative fit with the dorsum and blade lowered 2 mm (an approximant is wider)"),
+    ("AE", "AE", {"jaw_opening": 2.0},
+     "the /ɛ/ fit with the jaw opened 2 degrees further (clipped to the rig's range)"),
+)
+
+
+def neutral_target(ctx: Context) -> dict:
+    """The rig's rest pose for every parameter, the velum raised."""
+    params = {name: float(spec["neutral"]) for name, spec in ctx.rig.parameters.items()}
+    params.update({name: float(spec["neutral"]) for name, spec in ctx.lip_table.items()})
+    params[VELUM_PARAMETER] = velum_value(ctx, False)
+    return params
+
+
+# --- The build ------------------------------------------------------------------------------------
+
+
+def input_key(assets_dir: Path, data_dir: Path) -> str:
+    digest = hashlib.sha256()
+    for name in INPUT_FILES:
+        digest.update(name.encode() + b"\0" + (assets_dir / name).read_bytes() + b"\0")
+    digest.update((data_dir / ENGASSIM).read_bytes())
+    for module in (*CODE, inspect.getmodule(input_key)):
+        digest.update(inspect.getsource(module).encode())
+    digest.update(f"{PHONEME_TARGETS_FORMAT_VERSION}/{BUILDER}".encode())
+    return digest.hexdigest()
+
+
+def _tongue_only(ctx: Context, params: dict) -> dict:
+    return {name: value for name, value in params.items() if name in ctx.rig.parameters}
+
+
+def _finish(ctx: Context, params: dict) -> dict:
+    """Volume and synthetic EPG of a parameter set."""
+    tongue = _tongue_only(ctx, params)
+    epg = ctx.epg(tongue)
+    return {"params": params, "volume_change_pct": round(ctx.volume_change(tongue), 3),
+            "epg": {"rows": epg["rows"], "indices": epg["indices"]}}, epg["grid"]
+
+
+def _features(p) -> dict:
+    return {"voiced": p.voiced, "nasal": p.nasal, "place": p.place, "manner": p.manner,
+            "rounded": p.rounded}
+
+
+def build_targets(ctx: Context) -> tuple[list[dict], dict]:
+    """Every phoneme's target in inventory order, and the synthetic grids by ARPAbet symbol."""
+    fits: dict[str, dict] = {}
+    targets: dict[str, dict] = {}
+    grids: dict[str, np.ndarray] = {}
+
+    def fitted(shape_name, nasal):
+        key = (shape_name, nasal)
+        if key not in fits:
+            fits[key] = measured_target(ctx, shape_name, nasal)
+        return fits[key]
+
+    for p in phoneme_inventory.INVENTORY:
+        if p.shape is None:
+            continue
+        if p.contexts:
+            contexts = {}
+            for c in p.contexts:
+                made = fitted(f"{p.shape}({c})", p.nasal)
+                body, grid = _finish(ctx, made["params"])
+                contexts[c] = {**body, "fit": made["fit"]}
+                if c == MAIN_CONTEXT:
+                    grids[p.arpabet] = grid
+            main = contexts[MAIN_CONTEXT]
+            source = {"kind": "fit", "shapes": [f"{p.shape}({c})" for c in p.contexts],
+                      "main_shape": main["fit"]["shape"], "rms_mm": main["fit"]["rms_mm"],
+                      "max_error_mm": main["fit"]["max_error_mm"],
+                      "at_limit": main["fit"]["at_limit"],
+                      "context_rms_mm": {c: contexts[c]["fit"]["rms_mm"] for c in contexts},
+                      "reasoning": p.reasoning}
+            targets[p.arpabet] = {"params": main["params"], "contexts": contexts,
+                                  "volume_change_pct": main["volume_change_pct"],
+                                  "epg": main["epg"], "source": source}
+        else:
+            made = fitted(p.shape, p.nasal)
+            body, grid = _finish(ctx, made["params"])
+            grids[p.arpabet] = grid
+            targets[p.arpabet] = {**body, "contexts": {}, "source": {
+                "kind": "fit", "shapes": [p.shape], "main_shape": p.shape,
+                "rms_mm": made["fit"]["rms_mm"], "max_error_mm": made["fit"]["max_error_mm"],
+                "at_limit": made["fit"]["at_limit"], "reasoning": p.reasoning}}
+
+    for symbol, base, changes, description in REASONED:
+        params = _shift(ctx, targets[base]["params"], changes)
+        body, grid = _finish(ctx, params)
+        grids[symbol] = grid
+        previous = targets.get(symbol, {}).get("source", {})
+        kind = "fit, adjusted" if previous else "reasoning"
+        source = {**previous, "kind": kind, "from": base if base != symbol else None,
+                  "adjustment": description,
+                  "reasoning": phoneme_inventory.lookup(symbol).reasoning}
+        targets[symbol] = {**body, "contexts": targets.get(symbol, {}).get("contexts", {}),
+                           "source": source}
+
+    body, grid = _finish(ctx, neutral_target(ctx))
+    grids["HH"] = grid
+    targets["HH"] = {**body, "contexts": {}, "source": {
+        "kind": "reasoning", "from": None, "adjustment": "the rig's rest pose",
+        "reasoning": phoneme_inventory.lookup("HH").reasoning}}
+
+    out = []
+    for p in phoneme_inventory.INVENTORY:
+        t = targets[p.arpabet]
+        out.append({"arpabet": p.arpabet, "ipa": p.ipa, "kind": p.kind,
+                    "examples": list(p.examples), "features": _features(p),
+                    "velum": "lowered" if p.velum_lowered else "raised", **t})
+    return out, grids
+
+
+#: The realism rules: (phonemes, rule name, test of a grid).
+def _sides_only(grid) -> bool:
+    grid = np.asarray(grid).astype(bool)
+    middle = grid[:, 2:6].sum()
+    return epg_observations.side_contact(grid) and middle <= 2
+
+
+def _little_contact(grid) -> bool:
+    return int(np.asarray(grid).sum()) <= 6
+
+
+RULES = (
+    (("T", "D", "N"), "complete closure across a front row with contact along both sides",
+     lambda g: epg_observations.front_closure(g) and epg_observations.side_contact(g)),
+    (("S", "Z"), "contact along the sides with a central groove open in the front rows",
+     epg_observations.central_groove),
+    (("K", "G"), "complete closure across a back row", epg_observations.back_closure),
+    (("IY",), "contact at the sides only (outer columns in most rows, at most 2 of the middle "
+              "four columns' electrodes)", _sides_only),
+    (("AA",), "little or no contact (at most 6 electrodes)", _little_contact),
+)
+
+
+def realism(grids: dict, classes: dict) -> dict:
+    """The five rules per phoneme, and each EPG class's agreement with its phonemes' patterns."""
+    checks = []
+    for symbols, rule, test in RULES:
+        for symbol in symbols:
+            checks.append({"phoneme": symbol, "rule": rule, "pass": bool(test(grids[symbol])),
+                           "rows": rows_to_strings(grids[symbol])})
+    shares = {}
+    for name, frames in classes.items():
+        majority = frames.majority
+        shares[name] = {
+            "frames": int(len(frames.frames)),
+            "majority": rows_to_strings(majority),
+            "agreement": {s: round(epg_observations.agreement(grids[s], majority), 4)
+                          for s in epg_observations.PHONEMES_OF[name]}}
+    return {"rules": checks, "passed": sum(c["pass"] for c in checks), "of": len(checks),
+            "agreement": shares}
+
+
+def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
+    """Write the targets; returns (document, skipped)."""
+    from glasshead.epg.formats import parse_emur_json
+
+    assets_dir, data_dir = Path(assets_dir), Path(data_dir)
+    out_path = Path(out_path) if out_path else assets_dir / PHONEME_TARGETS_FILE
+    digest = input_key(assets_dir, data_dir)
+    existing = None if force else current_output(out_path, digest, BUILDER,
+                                                 PHONEME_TARGETS_FORMAT_VERSION)
+    if existing is not None:
+        return existing, True
+    started = time.perf_counter()
+    ctx = Context(assets_dir)
+    targets, grids = build_targets(ctx)
+    classes = epg_observations.class_frames(parse_emur_json((data_dir / ENGASSIM).read_bytes()))
+    document = {
+        "format_version": PHONEME_TARGETS_FORMAT_VERSION,
+        "builder": BUILDER,
+        "source": {"sha256": digest, "inputs": [*INPUT_FILES, ENGASSIM]},
+        "parameters": {"tongue": list(ctx.rig.parameter_names),
+                       "lips": list(FACE_RIG_LIP_PARAMETERS), "velum": [VELUM_PARAMETER]},
+        "main_context": MAIN_CONTEXT,
+        "mapping": MAPPING_TEXT,
+        "volume_goal_pct": VOLUME_GOAL_PCT,
+        "count": len(targets),
+        "targets": targets,
+        "realism": realism(grids, classes),
+        "build_seconds": round(time.perf_counter() - started, 3),
+    }
+    out_path.parent.mkdir(parents=True, exist_ok=True)
+    write_json(out_path, document)
+    return document, False
+
+
+def build_step(ctx) -> dict:
+    """``glasshead build`` step: the report lists each target's fit RMS and volume change, the
+    realism rules and the agreement shares."""
+    document, skipped = build_phoneme_targets(ctx.assets_dir, ctx.data_dir)
+    return {"step": "phoneme-targets", "skipped": skipped, "count": document["count"],
+            "build_seconds": document["build_seconds"],
+            "targets": {t["arpabet"]: {"source": t["source"]["kind"],
+                                       "rms_mm": t["source"].get("rms_mm"),
+                                       "volume_change_pct": t["volume_change_pct"]}
+                        for t in document["targets"]},
+            "realism": {"passed": document["realism"]["passed"],
+                        "of": document["realism"]["of"],
+                        "rules": [{k: r[k] for k in ("phoneme", "rule", "pass")}
+                                  for r in document["realism"]["rules"]]},
+            "agreement": {name: c["agreement"]
+                          for name, c in document["realism"]["agreement"].items()}}
+
+
+def main(argv=None):
+    import sys
+
+    from glasshead.settings import get_settings
+
+    argv = sys.argv[1:] if argv is None else argv
+    settings = get_settings()
+    document, skipped = build_phoneme_targets(settings.assets_dir, settings.data_dir,
+                                              force="--force" in argv)
+    print(f"{document['count']} targets ({'up to date' if skipped else 'built'} in "
+          f"{document['build_seconds']:.1f} s)")
+    for t in document["targets"]:
+        print(f"{t['arpabet']:3s} {t['ipa']:3s} {t['source']['kind']:14s} "
+              f"rms {t['source'].get('rms_mm') or 0:5.2f}  dV {t['volume_change_pct']:+5.1f} %  "
+              f"{' '.join(t['epg']['rows'])}")
+    r = document["realism"]
+    for rule in r["rules"]:
+        print(f"{rule['phoneme']:3s} {'pass' if rule['pass'] else 'FAIL'}  {rule['rule']}")
+    for name, c in r["agreement"].items():
+        print(f"{name}: {c['agreement']}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

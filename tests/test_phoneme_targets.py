@@ -1,0 +1,162 @@
+"""Phoneme targets (pipeline.phoneme_targets): built from the real rig and JD3 observations, read
+through the asset store and served by GET /phonemes. No mocks: the build runs on the built
+assets."""
+
+import shutil
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+from glasshead.constants import FACE_RIG_LIP_PARAMETERS, PHONEME_TARGETS_FILE, VELUM_PARAMETER
+from glasshead.fitting import epg_observations as obs
+from glasshead.phonemes import INVENTORY
+from glasshead.pipeline.phoneme_targets import (
+    INPUT_FILES,
+    VOLUME_GOAL_PCT,
+    build_phoneme_targets,
+)
+
+
+@pytest.fixture(scope="module")
+def built(built_assets, data_dir, tmp_path_factory):
+    """A copy of the built inputs and the targets built from them (twice: the second skips)."""
+    directory = tmp_path_factory.mktemp("targets")
+    for name in INPUT_FILES:
+        shutil.copy(built_assets / name, directory / name)
+    document, skipped = build_phoneme_targets(directory, data_dir, force=True)
+    again, skipped_again = build_phoneme_targets(directory, data_dir)
+    return {"dir": directory, "document": document, "skipped": skipped,
+            "again": again, "skipped_again": skipped_again}
+
+
+@pytest.fixture(scope="module")
+def targets(built):
+    return {t["arpabet"]: t for t in built["document"]["targets"]}
+
+
+def grid(target):
+    return np.array([[int(c) for c in row] for row in target["epg"]["rows"]], dtype=np.uint8)
+
+
+def test_every_phoneme_has_a_target_with_every_parameter_in_range(built, targets, built_assets):
+    import json
+    rig = json.loads((built_assets / "tongue-rig.json").read_text())["parameters"]
+    face = json.loads((built_assets / "face-rig.json").read_text())["parameters"]
+    velum = json.loads((built_assets / "velum-rig.json").read_text())["parameters"]
+    specs = {p["name"]: p for p in [*rig, *face, *velum]}
+    assert set(targets) == {p.arpabet for p in INVENTORY} and len(targets) == 39
+    for symbol, target in targets.items():
+        assert set(target["params"]) == set(specs), symbol
+        for name, value in target["params"].items():
+            assert specs[name]["min"] - 1e-9 <= value <= specs[name]["max"] + 1e-9, (symbol, name)
+        assert len(target["epg"]["rows"]) == 8 and all(len(r) == 8 for r in target["epg"]["rows"])
+        assert "percent" in target["epg"]["indices"]
+        assert target["examples"] and target["source"]["kind"]
+    assert set(FACE_RIG_LIP_PARAMETERS) <= set(specs)
+
+
+def test_nasals_lower_the_velum_and_no_others(targets):
+    for p in INVENTORY:
+        value = targets[p.arpabet]["params"][VELUM_PARAMETER]
+        assert value == (1.0 if p.nasal else 0.0), p.arpabet
+    assert {p.arpabet for p in INVENTORY if p.nasal} == {"M", "N", "NG"}
+
+
+def test_every_target_keeps_the_volume_within_five_percent(targets):
+    for symbol, target in targets.items():
+        assert abs(target["volume_change_pct"]) <= VOLUME_GOAL_PCT, symbol
+        for context, variant in target["contexts"].items():
+            assert abs(variant["volume_change_pct"]) <= VOLUME_GOAL_PCT, (symbol, context)
+
+
+def test_measured_consonants_keep_their_a_i_u_variants(targets):
+    for p in INVENTORY:
+        if p.shape and p.kind == "consonant":
+            contexts = targets[p.arpabet]["contexts"]
+            assert set(contexts) == {"a", "i", "u"}, p.arpabet
+            assert contexts["i"]["fit"]["shape"] == f"{p.shape}(i)"
+            assert targets[p.arpabet]["source"]["shapes"] == [f"{p.shape}({c})" for c in "aiu"]
+
+
+def test_reasoned_targets_say_why(targets):
+    for symbol in ("W", "R", "HH"):
+        assert targets[symbol]["source"]["kind"] == "reasoning"
+        assert targets[symbol]["source"]["reasoning"]
+    assert targets["W"]["params"]["lip_rounding"] > targets["UW"]["params"]["lip_rounding"] or \
+        targets["UW"]["params"]["lip_rounding"] == 10.0
+
+
+def test_the_open_vowel_has_little_contact(targets):
+    assert grid(targets["AA"]).sum() <= 6
+
+
+def test_the_realism_report_matches_the_patterns(built, targets):
+    """The report's verdicts are the rules applied to the built patterns (which rules pass is
+    reported in docs/targets.md; the 2D fits do not yet reach the palate for /t/, /s/, /k/)."""
+    realism = built["document"]["realism"]
+    verdict = {r["phoneme"]: r["pass"] for r in realism["rules"]}
+    assert verdict["T"] == (obs.front_closure(grid(targets["T"]))
+                            and obs.side_contact(grid(targets["T"])))
+    assert verdict["S"] == obs.central_groove(grid(targets["S"]))
+    assert verdict["K"] == obs.back_closure(grid(targets["K"]))
+    assert verdict["AA"] is True
+    assert set(realism["agreement"]) == {"alveolar_stop", "alveolar_fricative", "velar_stop"}
+    for entry in realism["agreement"].values():
+        for symbol, share in entry["agreement"].items():
+            assert 0 <= share <= 1
+            majority = np.array([[int(c) for c in r] for r in entry["majority"]])
+            assert share == pytest.approx(obs.agreement(grid(targets[symbol]), majority), abs=1e-4)
+
+
+def test_the_second_build_is_skipped(built):
+    assert built["skipped"] is False and built["skipped_again"] is True
+    assert built["again"]["source"]["sha256"] == built["document"]["source"]["sha256"]
+    assert built["document"]["build_seconds"] < 180
+
+
+@pytest.fixture()
+def client(built):
+    from glasshead.api.app import create_app
+    from glasshead.asset_store import ASSETS, AssetStore
+    app = create_app()
+    app.state.assets = AssetStore(built["dir"], specs=ASSETS)
+    with TestClient(app) as c:
+        yield c
+
+
+def test_the_list_and_each_target_are_served(client):
+    listed = client.get("/api/v1/phonemes")
+    assert listed.status_code == 200
+    body = listed.json()
+    assert body["count"] == 39 and body["phonemes"][0]["arpabet"] == "AA"
+    assert {"arpabet", "ipa", "kind", "examples", "source"} <= set(body["phonemes"][0])
+    for symbol in ("T", "t", "ah1", "Ah0", "%CA%83", "ʃ", "tʃ"):
+        response = client.get(f"/api/v1/phonemes/{symbol}")
+        assert response.status_code == 200, symbol
+    assert client.get("/api/v1/phonemes/ah1").json()["arpabet"] == "AH"
+    assert client.get("/api/v1/phonemes/%CA%83").json()["arpabet"] == "SH"
+    one = client.get("/api/v1/phonemes/N").json()
+    assert one["params"][VELUM_PARAMETER] == 1.0 and len(one["epg"]["rows"]) == 8
+    assert set(one["contexts"]) == {"a", "i", "u"}
+
+
+def test_an_unknown_symbol_is_a_404_pointing_to_the_list(client):
+    response = client.get("/api/v1/phonemes/QQ")
+    assert response.status_code == 404
+    assert "'QQ'" in response.json()["detail"] and "/api/v1/phonemes" in response.json()["detail"]
+
+
+def test_an_unbuilt_file_is_a_503(built, tmp_path):
+    from glasshead.api.app import create_app
+    from glasshead.asset_store import AssetStore
+    for name in INPUT_FILES:
+        shutil.copy(built["dir"] / name, tmp_path / name)
+    app = create_app()
+    app.state.assets = AssetStore(tmp_path)
+    with TestClient(app) as c:
+        app.state.assets = AssetStore(tmp_path)
+        for path in ("/api/v1/phonemes", "/api/v1/phonemes/T"):
+            response = c.get(path)
+            assert response.status_code == 503
+            assert response.json()["file"] == PHONEME_TARGETS_FILE
