@@ -185,8 +185,10 @@ describe( 'synthetic EPG and the clinician view', { timeout: 300_000 }, () => {
 		const state = await clinician();
 		assert.equal( state.error, null );
 		const shown = await epg();
-		// The palatogram shown is the built target's.
+		// The palatogram shown is the built target's, and the browser's own contacts for its
+		// parameters (the 3D palate, tongue and jaw only) are the same.
 		assert.deepEqual( shown.synthetic.rows, built.body.epg.rows );
+		assert.deepEqual( state.target3d.rows, built.body.epg.rows );
 		// Front closure: a complete row across R1-R4. The build's realism report says whether the
 		// fitted /t/ reaches it (docs/targets.md); the view must show what the build computed.
 		const rows = built.body.epg.rows;

@@ -91,7 +91,10 @@ export class TargetPalate3D {
 
 		await this.ready;
 		if ( ! this.state ) return null;
-		this.state.assign( params ?? {} );
+		// The palate view poses the tongue and jaw only: a target's lip and velum values (phoneme
+		// targets set every rig's parameters) do not touch the palate.
+		const known = new Set( this.state.names );
+		this.state.assign( Object.fromEntries( Object.entries( params ?? {} ).filter( ( [ name ] ) => known.has( name ) ) ) );
 		this.articulation.update();
 		return this.live.report();
 
