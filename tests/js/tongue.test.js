@@ -168,6 +168,17 @@ test( 'evaluation writes into the same arrays and keeps the topology', () => {
 
 } );
 
+test( 'evaluation without normals writes the same positions and leaves the normals alone', () => {
+
+	const full = rig.evaluate( rig.valuesFrom( { tip_advancement: 5 } ), rig.createSurface() );
+	const surface = rig.createSurface();
+	surface.normals.fill( 7 );
+	rig.evaluate( rig.valuesFrom( { tip_advancement: 5 } ), surface, false );
+	assert.deepEqual( surface.positions, full.positions );
+	assert.ok( surface.normals.every( ( x ) => x === 7 ) );
+
+} );
+
 test( 'evaluation allocates nothing: thousands of calls trigger no garbage collection', async () => {
 
 	const surface = rig.createSurface();

@@ -222,16 +222,18 @@ export class TongueRig {
 	 * Write the surface for parameter values into surface.positions and surface.normals.
 	 * @param {Float64Array} values length parameterCount (see valuesFrom())
 	 * @param {ReturnType<TongueRig['createSurface']>} surface from createSurface()
+	 * @param {boolean} [normals] false leaves surface.normals as they were: for a caller that
+	 *   recomputes them after moving the vertices (collision) anyway
 	 * @returns the surface
 	 */
-	evaluate( values, surface ) {
+	evaluate( values, surface, normals = true ) {
 
 		this.posedControls( values );
 		this.writeVertices();
 		const vertices = this.vertices;
 		const positions = surface.positions;
 		for ( let k = 0; k < vertices.length; k ++ ) positions[ k ] = vertices[ k ];
-		vertexNormals( vertices, this.index, this.normalSums, surface.normals );
+		if ( normals ) vertexNormals( vertices, this.index, this.normalSums, surface.normals );
 		return surface;
 
 	}
