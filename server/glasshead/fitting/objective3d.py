@@ -13,7 +13,8 @@ error finite and bounded but gives no gradient; an optimiser should start from a
 origin lies inside the rig surface (the rig's hub always does at rest).
 
 First crossings come from ``fitting.ray_walk.RayWalker``: exact (equal to the exhaustive
-search), walking from the hits of the previous call.
+search), walking from the hits of the previous call; with the origin inside the rig surface
+(winding number 1) most rays are certified by counting crossings, the rest by a sphere search.
 """
 
 import numpy as np

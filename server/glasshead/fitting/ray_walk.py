@@ -1,5 +1,6 @@
 """First crossings of rays from one origin with a deforming mesh of fixed topology: a walk over
-the triangle adjacency from the previous hits, certified against a refitted sphere hierarchy.
+the triangle adjacency from the previous hits, certified by counting crossings (most rays) or
+against a refitted sphere hierarchy.
 
 Definition (the reference, ``exhaustive_first_hits``): for ray i, origin O and direction d_i,
 every triangle is tested with the project's two-sided Moller-Trumbore kernel
@@ -13,8 +14,25 @@ Method, per evaluation (vertices change, triangles never do):
 1. Walk. Each ray starts at its previous hit triangle and, in lockstep with the others, steps
    across the edge opposite the most negative barycentric (sign-corrected by t, so that the step
    goes toward the ray's direction in the cone from O) until the kernel reports a hit, for at
-   most ``WALK_STEPS`` steps. This gives a hit T at t_w, nearly always in 0 to 2 steps.
-2. Certificate. A hierarchy of bounding spheres over fixed groups of triangles (built once per
+   most ``WALK_STEPS`` steps (the last ``TAIL`` rays one at a time, in Python floats). This gives
+   a hit T at t_w, nearly always in 0 to 2 steps.
+2. Crossing count (most rays). The mesh is closed and consistently oriented (checked once), so
+   along any ray from O (exits) - (entries) = w(O), the winding number of the surface around O.
+   A crossing of a triangle with (a - O) . n > 0 at t > 0 is an exit (t (d . n) = (a - O) . n).
+   B, per pose, is every other triangle (with a margin: O behind the plane by more than
+   ``FACING`` rad), and N(B) the triangles sharing a vertex with B. A ray that meets no triangle
+   of N(B) (bounding spheres, then the kernel with the wider ``BACK_SLACK``, grazing rays
+   counted) has no entry, so exactly w(O) crossings. An upper bound on w(O) comes from the
+   triangles' solid angles (``_facing``); when it is at most 1 such a ray's only crossing is the
+   walk's T (w = 1), or it has none (w = 0, computed exactly when needed). The kernel's slack
+   also accepts a ray passing just outside a triangle; for a triangle outside N(B) every
+   triangle round its corners faces away from O, so their projections from O tile a
+   neighbourhood of it and such a ray crosses one of them there: every kernel hit lies within
+   the slack of the one crossing, on a triangle sharing a corner with T. So when T's hit is
+   within ``TIE`` (barycentric) of an edge, the triangles round T's corners are tested too, and
+   the smallest (t, index) kept.
+3. Certificate (the other rays: those meeting N(B), a walk without a hit, a winding number that
+   may exceed 1). A hierarchy of bounding spheres over fixed groups of triangles (built once per
    topology from the rest pose, a k-d split so groups are compact; leaves are two triangles
    sharing their longest edge, mid nodes ``MID`` leaves, top nodes ``TOP`` mid nodes) is
    refitted to the current vertices: a leaf's sphere holds its triangles' vertices, a parent's
@@ -23,24 +41,28 @@ Method, per evaluation (vertices change, triangles never do):
    meets each enclosing sphere, at a distance from O no smaller than |c| - R. The search keeps
    the top spheres the ray meets no farther than r_w = t_w |d| (widened), then the mid and
    leaf spheres it meets, and tests every triangle of every kept leaf with the same kernel.
-3. Answer: the smallest (t, index) among the walk's T and the tested triangles.
+   Up to ``BRUTE_RAYS`` such rays are tested against every triangle instead (cheaper than the
+   refit). Answer: the smallest (t, index) among the walk's T and the tested triangles.
 
-Why it is exact: the triangles never tested are those in a sphere the ray misses, or meets only
-beyond r_w. Neither can hold a hit with t <= t_w (a hit point lies in the triangle, widened by the
-slack, so in every enclosing sphere, at distance t |d| from O), so every triangle that could tie
-with or beat T is tested, with bit-identical arithmetic to the exhaustive search (numpy's
-elementwise operations round alike whatever the array layout). The minimum over that set is the
-exhaustive minimum. The walk only sets the bound r_w; a wrong walk (a fold in front of T, a
-tie on a shared edge) costs extra tests, never a wrong answer. Rays whose walk found no hit
-(a step limit, a ray leaving the mesh) fall back to the same search with no distance bound,
-which is exhaustive over the hierarchy; the very first evaluation is brute force.
+Why the certificate is exact: the triangles never tested are those in a sphere the ray misses,
+or meets only beyond r_w. Neither can hold a hit with t <= t_w (a hit point lies in the triangle,
+widened by the slack, so in every enclosing sphere, at distance t |d| from O), so every triangle
+that could tie with or beat T is tested, with bit-identical arithmetic to the exhaustive search
+(numpy's elementwise operations, and Python's float operations, round alike whatever the array
+layout). The minimum over that set is the exhaustive minimum. The walk only sets the bound r_w; a
+wrong walk (a fold in front of T, a tie on a shared edge) costs extra tests, never a wrong
+answer. Rays whose walk found no hit (a step limit, a ray leaving the mesh) fall back to the
+same search with no distance bound, which is exhaustive over the hierarchy; the very first
+evaluation is brute force.
 
 The margins cover the kernel's rounding: with the slack 1e-9, a hit lies within 1e-9 of two
 edge lengths of its triangle, and the computed barycentrics err by about 1e-16 |O - a| /
 (sin(theta) sin(gamma)) edge lengths, theta the angle between the ray and the triangle's plane,
 gamma the triangle's smallest angle; the 1e-5 mm margin covers that for sin(theta) sin(gamma) >
 1e-8 at 100 mm, i.e. every ray but one grazing a triangle's plane within 1e-8 rad, where the
-kernel's own answer is rounding noise.
+kernel's own answer is rounding noise. The crossing count's margins are wider: B takes every
+triangle seen within 1e-6 rad of edge-on, and rays are tested against N(B) with a slack of 1e-6
+and counted as crossing when within 1e-6 rad of its planes.
 """
 
 import math
@@ -178,7 +200,9 @@ class FirstHits:
     """Per ray: ``triangle`` (k,) int64 (-1: no hit), ``t`` (k,) the ray parameter (inf: none),
     ``point`` (k, 3) O + t d (nan: none), ``fallback`` (k,) bool rays whose walk found no hit and
     were searched without a bound, ``overturned`` (k,) bool rays where a nearer triangle than the
-    walk's was found (a fold in front of it, or a tie on an edge)."""
+    walk's was found (a fold in front of it, or a tie on an edge), ``shortcut`` (k,) bool rays
+    answered by the crossing count (no sphere search), ``back_facing`` |B|, the triangles that
+    do not face away from O in this pose."""
 
     triangle: Ints
     t: Floats
@@ -258,7 +282,8 @@ class RayWalker:
             raise ValueError("vertices must be finite")
         rel = v - origin
         # corners by coordinate, corner and triangle: every array below is a contiguous row
-        g = np.take(np.ascontiguousarray(rel.T), self._triangles_t, axis=1)  # (3, 3, m)
+        rel_t = np.ascontiguousarray(rel.T)
+        g = np.take(rel_t, self._triangles_t, axis=1)  # (3, 3, m)
         a, b, c = g[:, 0], g[:, 1], g[:, 2]
         # rows: s (= -a), e1, e2, each xyz, as first_hits_from_origin builds them
         soa = np.empty((9, len(self.triangles)))
@@ -269,9 +294,9 @@ class RayWalker:
         self._tri = _rows(soa.T)
         self._rel = _rows(rel)
         if facing:
-            self._facing(g, soa)
+            self._facing(g, soa, rel_t)
 
-    def _facing(self, g: Floats, soa: Floats) -> None:
+    def _facing(self, g: Floats, soa: Floats, rel_t: Floats) -> None:
         """Per pose: the triangles that do not face away from O (``_back``, the set B), and
         an integer upper bound on the winding number of the surface around O (``_w_max``, None
         when there is none).
@@ -291,16 +316,16 @@ class RayWalker:
         facing = (g[:, 0] * n).sum(axis=0)  # D = (a - O) . n
         n2 = (n * n).sum(axis=0)
         self._n2 = n2
-        r2 = (g * g).sum(axis=0)  # (3, m): |corner - O|^2
+        vertex_r2 = (rel_t * rel_t).sum(axis=0)  # |v - O|^2 per vertex
         # B: O in front of the plane, or behind it by no more than FACING rad
-        back = facing * facing <= (FACING * FACING) * r2[0] * n2
+        back = facing * facing <= (FACING * FACING) * vertex_r2[self._triangles_t[0]] * n2
         back |= facing <= 0.0
         self._back = back
         self._w_max = None
         self._exact_winding = None
         if not self._oriented:
             return
-        r = np.sqrt(r2)
+        r = np.take(np.sqrt(vertex_r2), self._triangles_t)  # (3, m)
         dots = (g * g[:, [1, 2, 0]]).sum(axis=0)  # a.b, b.c, c.a
         den = r[0] * r[1] * r[2] + (dots * r[[2, 0, 1]]).sum(axis=0)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -566,11 +591,13 @@ class RayWalker:
         if self._w_max is not None and self._w_max <= 1:
             # rays with no entry cross the surface exactly w(O) times, w(O) <= 1
             clear = ~self._back_rays(unit, d)
-            shortcut = clear & found
-            if np.any(clear & ~found):
-                w = self._w_max if self._w_max <= 0 else self._winding()
-                if w is not None and w <= 0:
-                    shortcut |= clear  # no crossing at all: no hit (and the walk found none)
+            w = self._w_max
+            if w == 1 and np.any(clear & ~found):
+                w = self._winding()
+            if w is not None and w <= 0:
+                shortcut = clear & ~found  # no crossing at all (a walk's hit here: certified)
+            elif w == 1:
+                shortcut = clear & found  # one crossing, the walk's
         certify = np.flatnonzero(~shortcut)
         ties = np.flatnonzero(shortcut & near)
         parts = [self._ties(d, ties, walk_tri)] if len(ties) else []
