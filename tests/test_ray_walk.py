@@ -241,3 +241,16 @@ def test_rays_through_vertices_and_edges_take_the_smallest_tied_triangle(rig, se
     _assert_exhaustive(hits, origin, directions, vertices, rig.triangles)
     assert hits.overturned.sum() > 50  # the walk's triangle lost the tie on many rays
     assert hits.shortcut.mean() > 0.9
+
+
+def test_a_mesh_that_is_not_consistently_oriented_is_never_certified_by_counting(rig, setup):
+    rest, origin, directions, _ = setup
+    flipped = rig.triangles.copy()
+    flipped[10] = flipped[10, ::-1]  # one triangle's normal inward: crossings no longer count
+    walker = RayWalker(flipped, rest)
+    assert not walker._oriented
+    previous = walker.first_hits(origin, directions[:200], rest).triangle
+    vertices = rig.vertices(rig.values_from({"body_height": 1.0}))
+    hits = walker.first_hits(origin, directions[:200], vertices, previous)
+    _assert_exhaustive(hits, origin, directions[:200], vertices, flipped)
+    assert not hits.shortcut.any()
