@@ -111,21 +111,21 @@ const variants = {
 // DiagramSection.update call them).
 const rig = articulation.rig;
 const stages = {
-	'tongue surface': () => rig.evaluate( values, articulation.surface ),
+	'tongue surface': () => rig.evaluate( values, articulation.surface, false ),
 	'collision correction': () => {
 
 		articulation.positions.set( articulation.surface.positions );
 		correctVertices( articulation.positions, articulation.vertexCount, articulation.tables, articulation.flags, articulation.stats );
 
 	},
-	'tongue normals': () => {
+	'tongue normals': () => vertexNormals( articulation.positions, articulation.triangles, articulation.normalSums, articulation.normals ),
+	'jaw pose': () => jawPose( values[ articulation.jawIndex ], rig.jaw, articulation.jawPose ),
+	'face rig': () => {
 
-		if ( articulation.stats[ STAT_CORRECTED ] > 0 ) vertexNormals( articulation.positions, articulation.triangles, articulation.normalSums, articulation.normals );
-		else articulation.normals.set( articulation.surface.normals );
+		faceRig.last.fill( NaN ); // the pose returns at once when nothing changed
+		faceRig.pose( values, articulation.jawPose );
 
 	},
-	'jaw pose': () => jawPose( values[ articulation.jawIndex ], rig.jaw, articulation.jawPose ),
-	'face rig': () => faceRig.pose( values, articulation.jawPose ),
 	'velum pose': () => {
 
 		velum.opening = NaN;

@@ -122,7 +122,7 @@ function buildBvh( positions, triangles ) {
 
 	}
 
-	const start = [], size = [], right = [];
+	const start = [], size = [], right = [], axes = [];
 	let depth = 0;
 	function split( from, to, level ) {
 
@@ -130,6 +130,7 @@ function buildBvh( positions, triangles ) {
 		start.push( from );
 		size.push( 0 );
 		right.push( - 1 );
+		axes.push( 0 );
 		depth = Math.max( depth, level );
 		if ( to - from <= LEAF_SIZE ) {
 
@@ -151,6 +152,7 @@ function buildBvh( positions, triangles ) {
 		}
 
 		const axis = [ 0, 1, 2 ].reduce( ( best, c ) => ( hi[ c ] - lo[ c ] > hi[ best ] - lo[ best ] ? c : best ), 0 );
+		axes[ node ] = axis;
 		const part = Array.from( order.subarray( from, to ) ).sort( ( p, q ) => centroid[ 3 * p + axis ] - centroid[ 3 * q + axis ] || p - q );
 		order.set( part, from );
 		const middle = ( from + to ) >> 1;
@@ -161,7 +163,7 @@ function buildBvh( positions, triangles ) {
 	}
 
 	split( 0, count, 0 );
-	return { order, nodeStart: Int32Array.from( start ), nodeSize: Int32Array.from( size ), nodeRight: Int32Array.from( right ), depth };
+	return { order, nodeStart: Int32Array.from( start ), nodeSize: Int32Array.from( size ), nodeRight: Int32Array.from( right ), nodeAxis: Uint8Array.from( axes ), depth };
 
 }
 
@@ -231,7 +233,7 @@ function meshFirstHit( collider, mesh ) {
 	const a = mesh.boxes[ first ], b = mesh.boxes[ Math.min( first + 1, mesh.boxes.length - 1 ) ];
 	const ox = collider.origin[ 0 ], oy = collider.origin[ 1 ], oz = collider.origin[ 2 ];
 	const pos = mesh.positions, tri = mesh.triangles, order = mesh.order;
-	const starts = mesh.nodeStart, sizes = mesh.nodeSize, rights = mesh.nodeRight;
+	const starts = mesh.nodeStart, sizes = mesh.nodeSize, rights = mesh.nodeRight, axes = mesh.nodeAxis;
 	let best = ray[ 0 ];
 	let top = 0;
 	stack[ top ++ ] = 0;
@@ -288,8 +290,20 @@ function meshFirstHit( collider, mesh ) {
 		const size = sizes[ node ];
 		if ( size === 0 ) {
 
-			stack[ top ++ ] = rights[ node ];
-			stack[ top ++ ] = node + 1;
+			// The child nearer along the ray first (left holds the lower coordinates on the split
+			// axis): a crossing found there shortens the segment the other must meet.
+			const axis = axes[ node ];
+			if ( ( axis === 0 ? dx : axis === 1 ? dy : dz ) >= 0 ) {
+
+				stack[ top ++ ] = rights[ node ];
+				stack[ top ++ ] = node + 1;
+
+			} else {
+
+				stack[ top ++ ] = node + 1;
+				stack[ top ++ ] = rights[ node ];
+
+			}
 			continue;
 
 		}

@@ -20,6 +20,7 @@ import { jawPose, POSE_LENGTH } from '../core/jaw.js';
 import { meshVolume, vertexNormals } from '../core/meshVolume.js';
 import { TongueRig } from '../core/tongue.js';
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../core/collision.js';
+import { enclose, movingMesh } from '../core/movingMesh.js';
 import { correctTract, createTractCollider, setTractPose, tractOrigin } from '../core/tractCollision.js';
 import { velumSegment } from '../core/velum.js';
 import { ParamState } from '../core/paramState.js';
@@ -105,6 +106,7 @@ export class Articulation {
 		geometry.setAttribute( 'normal', new BufferAttribute( this.normals, 3 ) );
 		geometry.setIndex( new BufferAttribute( this.triangles, 1 ) );
 		geometry.computeBoundingSphere();
+		this.sphereMesh = movingMesh( this.positions, this.triangles, Uint32Array.from( { length: this.vertexCount }, ( _, v ) => v ) );
 		const part = head.part( TONGUE_PART );
 		if ( part ) {
 
@@ -162,7 +164,8 @@ export class Articulation {
 		const values = this.state.values;
 		const rig = this.rig;
 
-		rig.evaluate( values, this.surface );
+		// Normals once, from the corrected positions (step 3), not from the surface as well.
+		rig.evaluate( values, this.surface, false );
 		this.sagittalPoints.set( rig.points );
 		this.hub.set( rig.hub );
 		this.directions.set( rig.direction );
@@ -181,8 +184,7 @@ export class Articulation {
 
 		} else this.tractStats.fill( 0 );
 
-		if ( this.stats[ STAT_CORRECTED ] > 0 || this.tractStats[ STAT_CORRECTED ] > 0 ) vertexNormals( this.positions, this.triangles, this.normalSums, this.normals );
-		else this.normals.set( this.surface.normals );
+		vertexNormals( this.positions, this.triangles, this.normalSums, this.normals );
 
 		jawPose( values[ this.jawIndex ], rig.jaw, this.jawPose );
 		const p = this.jawPose;
@@ -231,7 +233,8 @@ export class Articulation {
 		if ( ! geometry ) return;
 		geometry.attributes.position.needsUpdate = true;
 		geometry.attributes.normal.needsUpdate = true;
-		geometry.computeBoundingSphere();
+		// Every tongue vertex moves: measured from a fixed centre in one pass.
+		enclose( this.sphereMesh, this.positions, geometry.boundingSphere );
 		const part = this.head.part( TONGUE_PART );
 		if ( part?.geometry === geometry ) {
 
