@@ -3,8 +3,8 @@
 // range; the tongue first corrected against the palate, as in the frame).
 //
 // Methods, timed in this run over the same poses, interleaved pose by pose:
-//   ours  web/src/core/tractCollision.js: the velum's BVH boxes blended between its measured
-//         poses (no refit), exact two-sided Moller-Trumbore at the leaves;
+//   ours  web/src/core/tractCollision.js: the depth screen, then exact two-sided Moller-Trumbore
+//         over the triangles listed in the vertex's cell of directions (no refit, no search);
 //   bvh   three-mesh-bvh: the velum's BVH refit to the posed velum each frame, then raycastFirst
 //         from T to each vertex on it and on the wall's BVH, the nearer hit taken: the same
 //         question, asked the usual way.
@@ -147,7 +147,7 @@ for ( const input of inputs ) {
 const perPose = Object.fromEntries( Object.entries( times ).map( ( [ name, list ] ) => [ name, list.map( median ) ] ) );
 const ms = ( v ) => `${ v.toFixed( 4 ) } ms`;
 console.log( `tongue against velum and pharyngeal wall: ${ n } tongue vertices, ${ velum.triangles.length / 3 } velum and ${ wall.index.count / 3 } wall triangles, ${ POSES } poses (seed ${ SEED }), ${ ROUNDS } rounds` );
-console.log( `  ours (blended BVH boxes, no refit)           median ${ ms( median( perPose.ours ) ) } per frame` );
+console.log( `  ours (depth screen + cell lists)             median ${ ms( median( perPose.ours ) ) } per frame` );
 console.log( `  three-mesh-bvh refit + raycastFirst          median ${ ms( median( perPose.bvh ) ) } per frame` );
 console.log( `  ratio: ours faster by ${ ( median( perPose.bvh ) / median( perPose.ours ) ).toFixed( 1 ) }x` );
 console.log( `  per frame: ${ ( tested / POSES ).toFixed( 0 ) } vertices tested, ${ ( corrected / POSES ).toFixed( 1 ) } corrected` );
