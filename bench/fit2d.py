@@ -21,7 +21,15 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.fitting.fit2d import FitReport, fit_all, load_inputs
+from glasshead.fitting.fit2d import (
+    NEUTRAL_WEIGHT,
+    VOLUME_BOUND_PCT,
+    VOLUME_BOUND_WEIGHT,
+    VOLUME_WEIGHT,
+    FitReport,
+    fit_all,
+    load_inputs,
+)
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.fitting.optimizer import METHODS
 
@@ -64,7 +72,9 @@ def bench_objective(rig, shape, runs):
     free = [p for p in rig.parameter_names if rig.parameters[p]["group"] == "tongue sagittal"]
     plain = Objective2D(rig, shape["tongue_outline"], free, section=section)
     weighted = Objective2D(rig, shape["tongue_outline"], free, section=section,
-                           volume_weight=0.01, neutral_weight=0.02)
+                           volume_weight=VOLUME_WEIGHT, neutral_weight=NEUTRAL_WEIGHT,
+                           volume_bound_pct=VOLUME_BOUND_PCT,
+                           volume_bound_weight=VOLUME_BOUND_WEIGHT)
     rng = np.random.default_rng(SEED)
     xs = rng.uniform(plain.lower, plain.upper, (32, len(free)))
     state = {"k": 0}

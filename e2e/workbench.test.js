@@ -214,7 +214,7 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		for ( const [ text, message ] of [
 			[ '{"tip_height": 5,', /not valid JSON/ ],
 			[ '{"tip_heigth": 5}', /Unknown parameter "tip_heigth": did you mean "tip_height"\?/ ],
-			[ '{"tip_height": 40}', /tip_height = 40 is outside its range -5 to 8 mm/ ],
+			[ '{"tip_height": 40}', /tip_height = 40 is outside its range -18 to 8 mm/ ],
 		] ) {
 
 			await jsonBox().fill( text );

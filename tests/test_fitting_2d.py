@@ -128,15 +128,17 @@ def test_vtl_i_has_a_higher_fronter_dorsum_than_a(rig, section, shapes):
         assert 0 < report.evaluations <= 3000
         assert 0 < report.seconds < 30
         assert math.isfinite(report.rms_mm) and 0 <= report.rms_mm <= report.max_error_mm
-        assert abs(report.volume_change_pct) < 15
+        assert abs(report.volume_change_pct) <= 5.0
         assert report.rays > 50
         assert set(report.at_limit) <= set(report.params)
         assert report.params["jaw_opening"] == pytest.approx(
             jaw_opening_from_vtl(shapes[name], rig))
     assert tops["i"][1] > tops["a"][1] + 5
     assert tops["i"][0] > tops["a"][0] + 10
-    assert fits["i"].params["dorsum_height"] > fits["a"].params["dorsum_height"]
-    # /a/ fits within the goal's neighbourhood; /i/ does not (the rig's ranges stop short).
+    # /i/ brings the root forward (genioglossus), far beyond /a/'s.
+    assert fits["i"].params["root_advancement"] > fits["a"].params["root_advancement"] + 10
+    # /a/ fits within the goal's neighbourhood; /i/ does not (the ranges stop short where the
+    # pages would fold at a corner of the ranges, see docs/fitting.md).
     assert fits["a"].rms_mm < 1.5
 
 

@@ -153,7 +153,8 @@ def test_a_build_whose_velum_rig_is_damaged_stops_naming_the_files(built_assets,
 def test_the_api_corrects_against_the_velum_and_the_wall_when_given_an_opening(
         start_app, built_assets, collider, tongue_poses):
     _, client = start_app(built_assets)
-    vertices, _ = tongue_poses[0]
+    # The first seeded pose that the tract corrects at this opening.
+    vertices = next(v for v, _ in tongue_poses if correct_tract(v, collider, 1.0)[2]["corrected"])
     body = {"vertices": vertices.tolist(), "velum_opening": 1.0}
     answer = client.post("/api/v1/collision/correct", json=body)
     assert answer.status_code == 200, answer.text

@@ -52,7 +52,7 @@ test( 'an unknown name, a value out of range or not a number is refused and chan
 	state.set( 'tip_height', 2 );
 	const before = Float32Array.from( state.values );
 	assert.throws( () => state.set( 'tip_heigth', 1 ), /Unknown parameter "tip_heigth": did you mean "tip_height"\?/ );
-	assert.throws( () => state.set( 'tip_height', 40 ), /tip_height = 40 is outside its range -5 to 8 mm/ );
+	assert.throws( () => state.set( 'tip_height', 40 ), /tip_height = 40 is outside its range -18 to 8 mm/ );
 	assert.throws( () => state.set( 'tip_height', '3' ), /tip_height must be a number, got "3"/ );
 	assert.throws( () => state.set( 'tip_height', Number.NaN ), /tip_height must be a finite number/ );
 	assert.deepEqual( state.values, before );

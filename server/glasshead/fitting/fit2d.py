@@ -37,6 +37,11 @@ VTL_JA_REST = -2.0
 #: one parameter over its whole range costs 0.02 mm^2, enough to break ties only.
 VOLUME_WEIGHT = 0.01
 NEUTRAL_WEIGHT = 0.02
+#: The tongue is nearly incompressible: beyond VOLUME_BOUND_PCT of its rest volume (on the
+#: objective's coarse surface, within 0.15 % of the exact change) every further percent costs
+#: VOLUME_BOUND_WEIGHT mm^2, as much as a 1 mm RMS misfit, so every fit stays within 5 %.
+VOLUME_BOUND_PCT = 4.5
+VOLUME_BOUND_WEIGHT = 1.0
 #: A parameter within this fraction of its range of a limit is reported as at the limit.
 LIMIT_FRACTION = 0.005
 MAX_EVALS = 3000
@@ -80,6 +85,7 @@ def jaw_opening_from_vtl(shape, rig: TongueRig) -> float:
 
 def fit_outline(rig: TongueRig, outline, *, method="bobyqa", free=None, base=None,
                 volume_weight=VOLUME_WEIGHT, neutral_weight=NEUTRAL_WEIGHT,
+                volume_bound_pct=VOLUME_BOUND_PCT, volume_bound_weight=VOLUME_BOUND_WEIGHT,
                 max_evals=MAX_EVALS, section=None, name="", ftol_abs=FTOL_ABS,
                 xtol_abs=XTOL_ABS, root_cut_deg=ROOT_CUT_DEG, **options) -> FitReport:
     """Fit the free parameters (default: the sagittal ones) to one mid-sagittal outline (n, 2),
@@ -87,7 +93,8 @@ def fit_outline(rig: TongueRig, outline, *, method="bobyqa", free=None, base=Non
     keyword options go to ``optimizer.minimize``."""
     free = list(free) if free is not None else sagittal_parameters(rig)
     objective = Objective2D(rig, outline, free, base=base, volume_weight=volume_weight,
-                            neutral_weight=neutral_weight, section=section,
+                            neutral_weight=neutral_weight, volume_bound_pct=volume_bound_pct,
+                            volume_bound_weight=volume_bound_weight, section=section,
                             root_cut_deg=root_cut_deg)
     x0 = objective.base[objective.index]
     result = minimize(objective, x0, objective.lower, objective.upper, method=method,

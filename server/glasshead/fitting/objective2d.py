@@ -28,14 +28,17 @@ rig's pages turn in order, so each ray crosses the rig's section once. The error
 defined when a ray crosses more than once (the crossing nearest the observed point counts) or
 not at all (the crossing is taken at the origin).
 
-The objective a fit minimises (mm^2) adds two optional, weighted terms to the squared RMS:
+The objective a fit minimises (mm^2) adds optional, weighted terms to the squared RMS:
 
     rms^2 + volume_weight * (100 dV / V0)^2 + neutral_weight * sum(((x - neutral) / range)^2)
+          + volume_bound_weight * max(0, |100 dV / V0| - volume_bound_pct)^2
 
 dV / V0 is the relative volume change from the rest volume (the tongue is incompressible: a
 mid-sagittal fit could otherwise swell it to match a 2D outline); the neutral term pulls each
 free parameter, normalised by its range, toward its neutral value, so parameters the outline
-does not determine stay there instead of wandering to a range limit.
+does not determine stay there instead of wandering to a range limit. The bound term is a steep
+wall: nothing inside the band, and outside it every percent costs as much as a large misfit, so
+a fit keeps the volume within the band unless the outline cannot be matched any other way.
 """
 
 import math
@@ -237,13 +240,16 @@ class Objective2D:
     """
 
     def __init__(self, rig: TongueRig, outline, free: Sequence[str], *, base=None, origin=None,
-                 volume_weight=0.0, neutral_weight=0.0, root_cut_deg=ROOT_CUT_DEG,
+                 volume_weight=0.0, neutral_weight=0.0, volume_bound_pct=None,
+                 volume_bound_weight=0.0, root_cut_deg=ROOT_CUT_DEG,
                  spacing_mm=SPACING_MM, section: MidSagittalSection | None = None):
         unknown = [name for name in free if name not in rig.parameters]
         if unknown or not free:
             raise ValueError(f"free parameters must be known rig parameters; got {list(free)}")
-        if volume_weight < 0 or neutral_weight < 0:
+        if volume_weight < 0 or neutral_weight < 0 or volume_bound_weight < 0:
             raise ValueError("the volume and neutral weights cannot be negative")
+        if volume_bound_pct is not None and not volume_bound_pct > 0:
+            raise ValueError("the volume bound must be a positive percentage")
         self.rig = rig
         self.section = section or MidSagittalSection(rig)
         self.free = list(free)
@@ -258,6 +264,8 @@ class Objective2D:
                                                        spacing_mm=spacing_mm))
         self.volume_weight = float(volume_weight)
         self.neutral_weight = float(neutral_weight)
+        self.volume_bound_pct = None if volume_bound_pct is None else float(volume_bound_pct)
+        self.volume_bound_weight = float(volume_bound_weight)
         self.evaluations = 0
 
     def values(self, x) -> np.ndarray:
@@ -286,8 +294,13 @@ class Objective2D:
         self.evaluations += 1
         x = np.asarray(x, dtype=np.float64)
         value = float(np.mean(self.errors(x) ** 2))
-        if self.volume_weight:
-            value += self.volume_weight * self.volume_change(x, exact=False) ** 2
+        bound = self.volume_bound_pct is not None and self.volume_bound_weight > 0
+        if self.volume_weight or bound:
+            change = self.volume_change(x, exact=False)
+            value += self.volume_weight * change**2
+            if bound:
+                value += self.volume_bound_weight * max(0.0, abs(change)
+                                                        - self.volume_bound_pct) ** 2
         if self.neutral_weight:
             value += self.neutral_weight * float(
                 np.sum(((x - self.neutral) / (self.upper - self.lower)) ** 2))

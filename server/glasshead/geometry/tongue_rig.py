@@ -117,29 +117,36 @@ PAGE_SAMPLES = 31
 # are displacements from the rest shape, so the table stays valid when the rest shape is refit).
 # Sagittal moves: (point, (dx, dy)) in mm per unit. Coronal moves: (control, offset), radial mm
 # per unit along the control's page direction, given for one section and applied to each.
+#
+# The sagittal ranges cover what the mid-sagittal fits to VocalTractLab's JD3 shapes reach for
+# (docs/fitting.md): the root comes 18 mm forward for /i/-like shapes, the tip drops 18 mm and
+# thins for the back rounded vowels and /i/, the back of the dorsum drops 10 mm where the root
+# comes forward. Each range is as wide as it can be while every corner of the sagittal and jaw
+# ranges still keeps the pages in order (tests/test_tongue_surface.py): the dorsum and blade
+# advancements, the blade height and the back dorsum height are held there, not by the shapes.
 
 SAGITTAL_PARAMETERS = (
-    ("tip_advancement", "mm", -4.0, 10.0, "Moves the tip pair (A, B) forward.",
+    ("tip_advancement", "mm", -4.0, 14.0, "Moves the tip pair (A, B) forward.",
      (("A", (1.0, 0.0)), ("B", (1.0, 0.0)), ("C", (0.4, 0.0)), ("S", (0.5, 0.0)))),
-    ("tip_height", "mm", -5.0, 8.0, "Raises the tip pair (A, B).",
+    ("tip_height", "mm", -18.0, 8.0, "Raises the tip pair (A, B).",
      (("A", (0.0, 1.0)), ("B", (0.0, 1.0)), ("C", (0.0, 0.6)), ("D", (0.0, 0.2)),
       ("S", (0.0, 0.5)), ("R", (0.0, 0.2)))),
-    ("tip_thickness", "mm", -3.0, 3.0,
+    ("tip_thickness", "mm", -6.0, 3.0,
      "Moves the tip pair apart vertically (negative: toward each other).",
      (("A", (0.0, -0.5)), ("B", (0.0, 0.5)))),
-    ("blade_advancement", "mm", -4.0, 6.0, "Moves the blade (C, D) forward; the tip follows.",
+    ("blade_advancement", "mm", -4.0, 8.0, "Moves the blade (C, D) forward; the tip follows.",
      (("A", (0.8, 0.0)), ("B", (0.8, 0.0)), ("C", (1.0, 0.0)), ("D", (0.6, 0.0)))),
-    ("blade_height", "mm", -4.0, 8.0, "Raises the blade (C, D).",
+    ("blade_height", "mm", -4.0, 10.0, "Raises the blade (C, D).",
      (("C", (0.0, 1.0)), ("D", (0.0, 0.7)), ("E", (0.0, 0.2)))),
-    ("dorsum_advancement", "mm", -4.0, 6.0, "Moves the dorsum (E to H) forward.",
+    ("dorsum_advancement", "mm", -6.0, 6.0, "Moves the dorsum (E to H) forward.",
      (("C", (0.2, 0.0)), ("D", (0.5, 0.0)), ("E", (0.8, 0.0)), ("F", (1.0, 0.0)),
       ("G", (1.0, 0.0)),
       ("H", (0.5, 0.0)))),
-    ("dorsum_height", "mm", -6.0, 10.0, "Raises the centre of the dorsum (E to H).",
+    ("dorsum_height", "mm", -6.0, 12.0, "Raises the centre of the dorsum (E to H).",
      (("E", (0.0, 0.4)), ("F", (0.0, 1.0)), ("G", (0.0, 1.0)), ("H", (0.0, 0.5)))),
-    ("back_dorsum_height", "mm", -6.0, 8.0, "Raises the back of the dorsum (H to J).",
+    ("back_dorsum_height", "mm", -10.0, 10.0, "Raises the back of the dorsum (H to J).",
      (("H", (0.0, 0.5)), ("I", (0.0, 1.0)), ("J", (0.0, 0.6)))),
-    ("root_advancement", "mm", -8.0, 8.0, "Moves the root (J to M) forward.",
+    ("root_advancement", "mm", -8.0, 18.0, "Moves the root (J to M) forward.",
      (("J", (0.5, 0.0)), ("K", (1.0, 0.0)), ("L", (1.0, 0.0)), ("M", (0.6, 0.0)))),
     ("body_height", "mm", -5.0, 8.0, "Raises the whole upper surface, tip to root.",
      (("S", (0.0, 0.5)), ("A", (0.0, 1.0)), ("B", (0.0, 1.0)), ("C", (0.0, 1.0)),
