@@ -1,0 +1,153 @@
+"""The EPG error (fitting.objective_epg) on the built rig, palate and Reading layout: no mocks."""
+
+import json
+
+import numpy as np
+import pytest
+
+from glasshead.constants import COLLISION_TABLES_FILE, EPG_LAYOUT_FILE, TONGUE_RIG_FILE
+from glasshead.epg import synthetic
+from glasshead.epg.contacts import probes_from_layout
+from glasshead.fitting.objective_epg import BACK_MM, REACH_MM, EpgObjective, wanted_from_rows
+from glasshead.geometry.collision_exact import ray_triangle_hits
+from glasshead.geometry.collision_format import decode_collision_tables
+from glasshead.geometry.tongue_surface import TongueRig
+
+#: Poses that reach the palate: the tip raised (R1 and R2), the body and sides raised, the back
+#: raised (R6-R8). Where the uncorrected tongue runs 4 mm past the palate at a side electrode
+#: (R7C1 with the back dorsum at 8 and the dorsum at 8, or the body at 4 with the edges at 6),
+#: the correction can leave the corrected surface 0.51-0.57 mm behind that electrode, just out
+#: of the probe's 0.5 mm reach, and the synthetic EPG reads no contact where this error reads
+#: one: the contact fits keep wanted contacts within ``fit_contact.PRESS_MM`` of the palate.
+POSES = {
+    "tip": {"tip_height": 8.0, "blade_height": 2.0, "body_height": 2.0},
+    "sides": {"body_height": 3.0, "front_left_edge_height": 6.0, "front_right_edge_height": 6.0,
+              "middle_left_edge_height": 6.0, "middle_right_edge_height": 6.0},
+    "back": {"dorsum_height": 7.0, "back_dorsum_height": 7.0},
+}
+
+
+@pytest.fixture(scope="module")
+def scene(built_assets):
+    rig = TongueRig(json.loads((built_assets / TONGUE_RIG_FILE).read_text()))
+    tables = decode_collision_tables((built_assets / COLLISION_TABLES_FILE).read_bytes())
+    layout = json.loads((built_assets / EPG_LAYOUT_FILE).read_text())
+    probes = probes_from_layout(layout["grids"]["reading62"])
+    return rig, tables, probes
+
+
+def _own(scene, params):
+    rig, tables, probes = scene
+    values = rig.values_from(params)
+    frame = synthetic.synthetic_frame(rig, values, tables, probes)
+    return values, frame
+
+
+@pytest.mark.parametrize("pose", ["rest", *POSES])
+def test_the_error_is_zero_for_a_pose_whose_own_pattern_is_wanted(scene, pose):
+    rig, _tables, probes = scene
+    values, frame = _own(scene, POSES.get(pose, {}))
+    if pose != "rest":
+        assert frame.contacts.sum() >= 4, pose  # the pose does reach the palate
+    objective = EpgObjective(probes, frame.grid, rig.triangles)
+    assert objective(rig.vertices(values)) == 0.0
+    np.testing.assert_array_equal(objective.predicted(rig.vertices(values)), frame.contacts)
+
+
+@pytest.mark.parametrize("pose", list(POSES))
+def test_a_perturbation_raises_it(scene, pose):
+    rig, _tables, probes = scene
+    values, frame = _own(scene, POSES[pose])
+    objective = EpgObjective(probes, frame.grid, rig.triangles)
+    lowered = values.copy()
+    lowered[rig.parameter_names.index("body_height")] -= 3.0
+    assert objective(rig.vertices(lowered)) > 0.3
+    # The wanted pattern perturbed instead: one contacted electrode no longer wanted, one free
+    # electrode wanted.
+    wanted = frame.contacts.copy()
+    touched, free = np.flatnonzero(wanted)[0], np.flatnonzero(wanted == 0)[0]
+    wanted[touched], wanted[free] = 0, 1
+    assert EpgObjective(probes, wanted, rig.triangles)(rig.vertices(values)) > 0.1
+
+
+def test_the_error_grows_with_the_gap_in_small_steps(scene):
+    """Lowering the raised tongue step by step raises the error step by step. The error is
+    continuous while each ray's crossing moves on the surface; it jumps where a ray slips off the
+    tongue's side onto a farther part (R5C2 here, 7.8 -> 12.0 mm at 2.8 mm), and only there."""
+    rig, _tables, probes = scene
+    values, frame = _own(scene, POSES["sides"])
+    objective = EpgObjective(probes, frame.grid, rig.triangles)
+    k = rig.parameter_names.index("body_height")
+    errors, distances = [], []
+    for drop in np.linspace(0.0, 4.0, 41):
+        v = values.copy()
+        v[k] -= drop
+        distances.append(objective.distances(rig.vertices(v)))
+        errors.append(objective.error_from_distances(distances[-1]))
+    steps = np.diff(errors)
+    assert np.all(steps >= -1e-9) and errors[-1] > 0.5
+    moved = np.abs(np.diff(distances, axis=0)).max(axis=1)
+    # 0.1 mm of body height moves the error by less than 0.3 mm (grazing rays move their
+    # crossing up to 1.2 mm) unless some ray jumped by more than 2 mm (slipped off an edge).
+    assert np.all((steps < 0.3) | (moved > 2.0))
+    assert np.sum(moved > 2.0) <= 3 and np.median(steps) < 0.1
+
+
+def test_distances_are_the_first_entering_crossing_of_every_triangle(scene):
+    """The culled, vectorised distances equal a brute-force cast against every triangle."""
+    rig, _tables, probes = scene
+    objective = EpgObjective(probes, np.zeros(probes.count), rig.triangles)
+    for params in POSES.values():
+        vertices = rig.vertices(rig.values_from(params))
+        tri = vertices[rig.triangles]
+        a, e1, e2 = tri[:, 0], tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+        entering = np.einsum("ij,kj->ik", probes.directions, np.cross(e1, e2)) < 0
+        got = objective.distances(vertices)
+        for k in range(probes.count):
+            start = probes.origins[k] - BACK_MM * probes.directions[k]
+            t = ray_triangle_hits(probes.directions[k][None], a, e1, e2, origin=start[None])
+            t = t - BACK_MM
+            hit = np.isfinite(t) & entering[k] & (t <= REACH_MM)
+            if hit.any():
+                best = t[hit][np.argmin(np.abs(t[hit]))]
+                assert got[k] == pytest.approx(best, abs=1e-9)
+            else:
+                assert got[k] > 0
+
+
+def test_a_tongue_past_the_palate_reads_negative(scene):
+    rig, _tables, probes = scene
+    values = rig.values_from({"body_height": 8.0, "dorsum_height": 12.0})
+    distances = EpgObjective(probes, np.zeros(probes.count), rig.triangles).distances(
+        rig.vertices(values))
+    assert distances.min() < -1.0
+
+
+def test_uncorrected_contacts_agree_with_the_synthetic_epg(scene):
+    """The error reads the uncorrected tongue (module docstring); over poses drawn toward the
+    palate its contacts (distance <= tolerance) are the synthetic EPG's on at least 99 % of the
+    electrodes."""
+    rig, tables, probes = scene
+    rng = np.random.default_rng(7)
+    objective = EpgObjective(probes, np.zeros(probes.count), rig.triangles)
+    same = total = 0
+    for _ in range(40):
+        values = rig.neutral + rng.uniform(0.0, 0.6, rig.neutral.shape) * rig.maximum
+        values[rig.jaw_parameter] = rng.uniform(0.0, 4.0)
+        values = np.clip(values, rig.minimum, rig.maximum)
+        frame = synthetic.synthetic_frame(rig, values, tables, probes)
+        same += int((objective.predicted(rig.vertices(values)) == frame.contacts).sum())
+        total += probes.count
+    assert same / total >= 0.99
+
+
+def test_bad_inputs_are_refused(scene):
+    rig, _tables, probes = scene
+    with pytest.raises(ValueError, match="wanted"):
+        EpgObjective(probes, np.zeros(5), rig.triangles)
+    with pytest.raises(ValueError, match="weights"):
+        EpgObjective(probes, np.zeros(probes.count), rig.triangles,
+                     weights=np.zeros(probes.count))
+    with pytest.raises(ValueError, match="margin"):
+        EpgObjective(probes, np.zeros(probes.count), rig.triangles, margin=-1.0)
+    assert wanted_from_rows(["01111110"] + ["0" * 8] * 7)[0, 1] == 1
