@@ -18,6 +18,11 @@ How a measured target is made (``measured_target``):
    coronal values and the jaw held; when the tongue's volume ends more than ``VOLUME_GOAL_PCT``
    from rest the fit is repeated from its result with the volume weight ten times heavier, up
    to three times.
+4. Contact (``contact_target``): the shapes of the consonants of the three real EPG classes
+   (/t d n/, /s z/, /k g ŋ/, every context) and /i/ are fitted again with the outline and an
+   EPG error together (``fitting.fit_contact``): toward the class's real majority pattern
+   (``fitting.epg_observations``), weighted per electrode by how clear its majority is, or for
+   /i/ toward the pattern its realism rule describes (``RULE_GOALS``).
 
 A consonant's own target is its /a/-context fit (the open vowel pulls the tongue least); the /i/
 and /u/ fits are kept as ``contexts``. Reasoning-based targets (W, R, HH, Y and AE) are built
@@ -31,6 +36,7 @@ tables, EPG layout, face and velum rigs, the real EPG recording, and the code: t
 import hashlib
 import inspect
 import json
+import multiprocessing
 import time
 from pathlib import Path
 
@@ -52,14 +58,21 @@ from glasshead.epg import synthetic
 from glasshead.epg.contacts import probes_from_layout
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices
 from glasshead.epg.sequence import rows_to_strings
-from glasshead.fitting import epg_observations, fit2d, objective2d, optimizer
+from glasshead.fitting import (
+    epg_observations,
+    fit2d,
+    fit_contact,
+    objective2d,
+    objective_epg,
+    optimizer,
+)
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.outputs import current_output, write_json
 
 #: Bump when the output changes in a way that must rebuild it.
-BUILDER = 1
+BUILDER = 2
 OBSERVATIONS_FILE = fit2d.OBSERVATIONS_FILE
 #: The real EPG recording the realism checks read (under the reference data directory).
 ENGASSIM = "epg/emur-engassim.json"
@@ -71,7 +84,8 @@ VOLUME_REFITS = 3
 #: The vowel context a consonant's own target comes from.
 MAIN_CONTEXT = "a"
 #: The modules whose code shapes the output; their text is part of the cache key.
-CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_observations, synthetic)
+CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_observations, synthetic,
+        objective_epg, fit_contact)
 #: Built files read, and the data file.
 INPUT_FILES = (TONGUE_RIG_FILE, OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
                FACE_RIG_FILE, VELUM_RIG_FILE)
@@ -157,9 +171,10 @@ def coronal_from_vtl(rig: TongueRig, settings: dict) -> dict:
 
 class Context:
     """What every target needs: the rig, its section, the palate's tables and probes, the lip and
-    velum tables and the observations by name."""
+    velum tables, the observations by name and, given the data directory, the real EPG classes
+    (``fitting.epg_observations.class_frames`` of ``ENGASSIM``)."""
 
-    def __init__(self, assets_dir: Path):
+    def __init__(self, assets_dir: Path, data_dir: Path | None = None):
         self.rig = TongueRig(json.loads((assets_dir / TONGUE_RIG_FILE).read_text()))
         self.section = MidSagittalSection(self.rig)
         self.rest_volume = self.rig.volume(self.rig.neutral)
@@ -172,6 +187,12 @@ class Context:
         self.velum_table = {p["name"]: p for p in velum["parameters"]}
         observations = json.loads((assets_dir / OBSERVATIONS_FILE).read_text())
         self.shapes = {s["name"]: s for s in observations["shapes"]}
+        self.classes: dict = {}
+        if data_dir is not None:
+            from glasshead.epg.formats import parse_emur_json
+
+            self.classes = epg_observations.class_frames(
+                parse_emur_json((Path(data_dir) / ENGASSIM).read_bytes()))
 
     def volume_change(self, tongue: dict) -> float:
         return 100.0 * (self.rig.volume(self.rig.values_from(tongue)) / self.rest_volume - 1.0)
@@ -186,8 +207,8 @@ class Context:
                 "grid": frame.grid}
 
 
-def measured_target(ctx: Context, shape_name: str, nasal: bool) -> dict:
-    """The fitted target of one JD3 shape: params (all rigs), fit report and volume change."""
+def outline_fit(ctx: Context, shape_name: str) -> tuple[fit2d.FitReport, dict]:
+    """The 2D fit of one JD3 shape (steps 1-3 of the module docstring) and its report."""
     rig, shape = ctx.rig, ctx.shapes[shape_name]
     base = rig.neutral.copy()
     base[rig.jaw_parameter] = fit2d.jaw_opening_from_vtl(shape, rig)
@@ -203,14 +224,139 @@ def measured_target(ctx: Context, shape_name: str, nasal: bool) -> dict:
         start = rig.values_from(report.params)
         report = fit2d.fit_outline(rig, shape["tongue_outline"], base=start,
                                    section=ctx.section, name=shape_name, volume_weight=weight)
-    tongue = {name: round(value, 4) for name, value in report.params.items()}
-    jaw = tongue[rig.jaw["parameter"]]
-    params = {**tongue, **lips_from_vtl(shape["settings"], jaw, ctx.lip_table),
+    return report, {"shape": shape_name, "rms_mm": round(report.rms_mm, 3),
+                    "max_error_mm": round(report.max_error_mm, 3), "at_limit": report.at_limit,
+                    "evaluations": report.evaluations, "volume_weight": weight,
+                    "volume_refits": refits}
+
+
+# --- Contact fits ---------------------------------------------------------------------------------
+
+#: The wanted patterns of vowels with a realism rule and no real EPG frames, written from the
+#: rule's text (``RULES``): shape -> (goal name, rule text, per-electrode (wanted, weight) by
+#: column of R2-R8 and of R1). /i/: "contact at the sides only": the outer columns (1 and 8)
+#: touched in R2-R8, the middle four (3-6) free in every row; columns 2 and 7, and R1's outer
+#: electrodes (columns 2 and 7), are what the rule leaves open (weight 0). /a/ ("little or no
+#: contact") is left to the 2D fit, which meets it.
+RULE_GOALS = {
+    "i": ("rule: sides only", "contact at the sides only: outer columns touched in R2-R8, the "
+                              "middle four columns free; columns 2 and 7 left open"),
+}
+#: The coronal groups each goal frees (``fit_contact.CORONAL_GROUPS``): the groove only for the
+#: sibilants, whose real frames keep the middle columns open in the front rows.
+CORONAL_OF_GOAL = {
+    "alveolar_fricative": fit_contact.CORONAL_GROUPS,
+}
+CORONAL_DEFAULT = ("width", "edge_height", "side_bulge")
+
+
+def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
+    """(wanted, weights), (8, 8) each, of a ``RULE_GOALS`` shape (see there)."""
+    if shape_name != "i":
+        raise KeyError(shape_name)
+    wanted = np.zeros((8, 8), dtype=np.uint8)
+    weights = epg_observations.ELECTRODES.astype(np.float64)
+    wanted[1:, [0, 7]] = 1
+    weights[:, [1, 6]] = 0.0
+    return wanted, weights
+
+
+def contact_goal(ctx: Context, shape_name: str) -> dict | None:
+    """What a shape's contact fit aims at, or None when it gets none: ``name`` (the EPG class or
+    the rule), ``wanted`` and ``weights`` (8, 8). A class's wanted pattern is its real majority;
+    each electrode weighs |2 p - 1|, p the share of the class's frames that touch it, so an
+    electrode touched in every frame (or none) counts fully and one touched in half of them not
+    at all."""
+    stem = shape_name.split("(")[0]
+    for name, symbols in epg_observations.PHONEMES_OF.items():
+        if name in ctx.classes and any(phoneme_inventory.lookup(s).shape == stem
+                                       for s in symbols):
+            frames = ctx.classes[name].frames
+            share = frames.mean(axis=0)
+            weights = np.abs(2.0 * share - 1.0) * epg_observations.ELECTRODES
+            return {"name": name, "wanted": ctx.classes[name].majority, "weights": weights,
+                    "frames": int(len(frames))}
+    if shape_name in RULE_GOALS:
+        wanted, weights = rule_pattern(shape_name)
+        return {"name": RULE_GOALS[shape_name][0], "wanted": wanted, "weights": weights,
+                "rule": RULE_GOALS[shape_name][1]}
+    return None
+
+
+def _agreement(grid, goal) -> float:
+    """Share of the electrodes with weight that agree with the goal's wanted pattern (for a class:
+    of all 62, as ``epg_observations.agreement``)."""
+    if "frames" in goal:
+        return epg_observations.agreement(grid, goal["wanted"])
+    counted = goal["weights"] > 0
+    return float(((np.asarray(grid) == goal["wanted"]) & counted).sum() / counted.sum())
+
+
+def _contact_start(ctx: Context, objective: fit_contact.ContactObjective, fitted) -> np.ndarray:
+    """The better start (lower objective) of the 2D fit's result and the rest tongue (with the 2D
+    fit's jaw and VTL's edge heights): a 2D fit of an open-vowel context can leave the tongue so
+    far below the palate that BOBYQA stalls before it gets there."""
+    rig = ctx.rig
+    rest = rig.neutral.copy()
+    rest[rig.jaw_parameter] = fitted[rig.jaw_parameter]
+    for k, name in enumerate(rig.parameter_names):
+        if name.endswith("_edge_height"):
+            rest[k] = fitted[k]
+    index = [rig.parameter_names.index(members[0]) for _, members in objective.groups]
+    candidates = [objective.x0, np.clip(rest[index], objective.lower, objective.upper)]
+    return min(candidates, key=objective)
+
+
+def tongue_fit(ctx: Context, shape_name: str) -> dict:
+    """The tongue of one JD3 shape: the 2D fit and, for the shapes with a contact goal, the
+    contact fit from it. Returns ``tongue`` (rig values by name) and ``fit`` (the report)."""
+    rig, shape = ctx.rig, ctx.shapes[shape_name]
+    report, fit = outline_fit(ctx, shape_name)
+    goal = contact_goal(ctx, shape_name)
+    if goal is None:
+        return {"tongue": {n: round(v, 4) for n, v in report.params.items()}, "fit": fit}
+    fitted = rig.values_from(report.params)
+    plain = objective_epg.EpgObjective(ctx.probes, goal["wanted"], rig.triangles,
+                                       weights=goal["weights"])
+    before_grid = ctx.epg(report.params)["grid"]
+    coronal = CORONAL_OF_GOAL.get(goal["name"], CORONAL_DEFAULT)
+    epg = objective_epg.EpgObjective(ctx.probes, goal["wanted"], rig.triangles,
+                                     weights=goal["weights"], margin=fit_contact.MARGIN_MM,
+                                     press_mm=fit_contact.PRESS_MM)
+    objective = fit_contact.ContactObjective(rig, shape["tongue_outline"], epg, base=fitted,
+                                             groups=fit_contact.free_groups(rig, coronal=coronal),
+                                             section=ctx.section)
+    start = _contact_start(ctx, objective, fitted)
+    contact = fit_contact.fit_contact(rig, shape["tongue_outline"], ctx.probes, goal["wanted"],
+                                      base=objective.values(start), weights=goal["weights"],
+                                      section=ctx.section, coronal=coronal, name=shape_name)
+    tongue = {n: round(v, 4) for n, v in contact.params.items()}
+    after_grid = ctx.epg(tongue)["grid"]
+    fit = {**fit, "rms_mm": round(contact.rms_mm, 3),
+           "max_error_mm": round(contact.max_error_mm, 3), "at_limit": contact.at_limit,
+           "evaluations": fit["evaluations"] + contact.evaluations,
+           "contact": {"goal": goal["name"], "rule": goal.get("rule"),
+                       "epg_error_mm": round(contact.epg_error_mm, 3),
+                       "agreement": round(_agreement(after_grid, goal), 4),
+                       "evaluations": contact.evaluations, "seconds": round(contact.seconds, 2),
+                       "stop": contact.stop, "coronal": list(coronal),
+                       "before": {"rms_mm": fit["rms_mm"],
+                                  "epg_error_mm": round(plain(rig.vertices(fitted)), 3),
+                                  "agreement": round(_agreement(before_grid, goal), 4),
+                                  "rows": rows_to_strings(before_grid),
+                                  "volume_change_pct": round(report.volume_change_pct, 3)}}}
+    return {"tongue": tongue, "fit": fit}
+
+
+def measured_target(ctx: Context, shape_name: str, nasal: bool, made: dict | None = None) -> dict:
+    """The fitted target of one JD3 shape: params (all rigs) and the fit report; ``made`` is the
+    shape's ``tongue_fit`` when already done."""
+    made = made or tongue_fit(ctx, shape_name)
+    tongue = made["tongue"]
+    jaw = tongue[ctx.rig.jaw["parameter"]]
+    params = {**tongue, **lips_from_vtl(ctx.shapes[shape_name]["settings"], jaw, ctx.lip_table),
               VELUM_PARAMETER: velum_value(ctx, nasal)}
-    return {"params": params, "fit": {
-        "shape": shape_name, "rms_mm": round(report.rms_mm, 3),
-        "max_error_mm": round(report.max_error_mm, 3), "at_limit": report.at_limit,
-        "evaluations": report.evaluations, "volume_weight": weight, "volume_refits": refits}}
+    return {"params": params, "fit": made["fit"]}
 
 
 def velum_value(ctx: Context, nasal: bool) -> float:
@@ -290,17 +436,54 @@ def _features(p) -> dict:
             "rounded": p.rounded}
 
 
+def shape_names() -> list[str]:
+    """Every JD3 shape a target is fitted to, once, in inventory order."""
+    names: list[str] = []
+    for p in phoneme_inventory.INVENTORY:
+        if p.shape is None:
+            continue
+        for name in ([f"{p.shape}({c})" for c in p.contexts] if p.contexts else [p.shape]):
+            if name not in names:
+                names.append(name)
+    return names
+
+
+#: Worker processes for the fits (each fit is single-threaded numpy).
+WORKERS = 2
+_POOL_CONTEXT: Context | None = None
+
+
+def _tongue_job(shape_name: str) -> dict:
+    assert _POOL_CONTEXT is not None
+    return tongue_fit(_POOL_CONTEXT, shape_name)
+
+
+def fit_tongues(ctx: Context, names: list[str], workers: int = WORKERS) -> dict[str, dict]:
+    """``tongue_fit`` of every shape named, by name; the contact fits (the slow ones) first, over
+    ``workers`` forked processes that share the context (one process where fork is missing). The
+    fits are deterministic, so the result does not depend on the number of workers."""
+    global _POOL_CONTEXT
+    order = sorted(names, key=lambda n: contact_goal(ctx, n) is None)
+    if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
+        _POOL_CONTEXT = ctx
+        try:
+            with multiprocessing.get_context("fork").Pool(workers) as pool:
+                made = pool.map(_tongue_job, order, chunksize=1)
+        finally:
+            _POOL_CONTEXT = None
+    else:
+        made = [tongue_fit(ctx, name) for name in order]
+    return dict(zip(order, made, strict=True))
+
+
 def build_targets(ctx: Context) -> tuple[list[dict], dict]:
     """Every phoneme's target in inventory order, and the synthetic grids by ARPAbet symbol."""
-    fits: dict[str, dict] = {}
     targets: dict[str, dict] = {}
     grids: dict[str, np.ndarray] = {}
+    tongues = fit_tongues(ctx, shape_names())
 
     def fitted(shape_name, nasal):
-        key = (shape_name, nasal)
-        if key not in fits:
-            fits[key] = measured_target(ctx, shape_name, nasal)
-        return fits[key]
+        return measured_target(ctx, shape_name, nasal, tongues[shape_name])
 
     for p in phoneme_inventory.INVENTORY:
         if p.shape is None:
@@ -320,6 +503,8 @@ def build_targets(ctx: Context) -> tuple[list[dict], dict]:
                       "at_limit": main["fit"]["at_limit"],
                       "context_rms_mm": {c: contexts[c]["fit"]["rms_mm"] for c in contexts},
                       "reasoning": p.reasoning}
+            if "contact" in main["fit"]:
+                source["contact"] = main["fit"]["contact"]
             targets[p.arpabet] = {"params": main["params"], "contexts": contexts,
                                   "volume_change_pct": main["volume_change_pct"],
                                   "epg": main["epg"], "source": source}
@@ -331,6 +516,8 @@ def build_targets(ctx: Context) -> tuple[list[dict], dict]:
                 "kind": "fit", "shapes": [p.shape], "main_shape": p.shape,
                 "rms_mm": made["fit"]["rms_mm"], "max_error_mm": made["fit"]["max_error_mm"],
                 "at_limit": made["fit"]["at_limit"], "reasoning": p.reasoning}}
+            if "contact" in made["fit"]:
+                targets[p.arpabet]["source"]["contact"] = made["fit"]["contact"]
 
     for symbol, base, changes, description in REASONED:
         params = _shift(ctx, targets[base]["params"], changes)
@@ -382,29 +569,57 @@ RULES = (
 )
 
 
-def realism(grids: dict, classes: dict) -> dict:
-    """The five rules per phoneme, and each EPG class's agreement with its phonemes' patterns."""
+def _grid(rows) -> np.ndarray:
+    return np.array([[int(c) for c in r] for r in rows], dtype=np.uint8)
+
+
+def realism(grids: dict, classes: dict, before: dict | None = None) -> dict:
+    """The five rules per phoneme, and each EPG class's agreement with its phonemes' patterns;
+    ``before``: the 2D fits' grids of the contact-fitted targets (by symbol), reported beside.
+    Each class also says how many of its own real frames pass its rule."""
+    before = before or {}
     checks = []
     for symbols, rule, test in RULES:
         for symbol in symbols:
-            checks.append({"phoneme": symbol, "rule": rule, "pass": bool(test(grids[symbol])),
-                           "rows": rows_to_strings(grids[symbol])})
+            check = {"phoneme": symbol, "rule": rule, "pass": bool(test(grids[symbol])),
+                     "rows": rows_to_strings(grids[symbol])}
+            if symbol in before:
+                check["pass_before_contact_fit"] = bool(test(before[symbol]))
+            checks.append(check)
     shares = {}
     for name, frames in classes.items():
         majority = frames.majority
+        test = next(t for symbols, _, t in RULES
+                    if set(symbols) & set(epg_observations.PHONEMES_OF[name]))
         shares[name] = {
             "frames": int(len(frames.frames)),
             "majority": rows_to_strings(majority),
+            "real_frames_passing_rule": round(float(np.mean([test(f) for f in frames.frames])),
+                                              4),
+            "majority_passes_rule": bool(test(majority)),
             "agreement": {s: round(epg_observations.agreement(grids[s], majority), 4)
-                          for s in epg_observations.PHONEMES_OF[name]}}
+                          for s in epg_observations.PHONEMES_OF[name]},
+            "agreement_before_contact_fit": {
+                s: round(epg_observations.agreement(before[s], majority), 4)
+                for s in epg_observations.PHONEMES_OF[name] if s in before}}
     return {"rules": checks, "passed": sum(c["pass"] for c in checks), "of": len(checks),
+            "passed_before_contact_fit": sum(c.get("pass_before_contact_fit", c["pass"])
+                                             for c in checks),
             "agreement": shares}
+
+
+def _before_grids(targets: list[dict]) -> dict:
+    """The 2D fits' grids of the contact-fitted targets' own (main) shapes, by symbol."""
+    out = {}
+    for t in targets:
+        contact = t["source"].get("contact")
+        if contact:
+            out[t["arpabet"]] = _grid(contact["before"]["rows"])
+    return out
 
 
 def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
     """Write the targets; returns (document, skipped)."""
-    from glasshead.epg.formats import parse_emur_json
-
     assets_dir, data_dir = Path(assets_dir), Path(data_dir)
     out_path = Path(out_path) if out_path else assets_dir / PHONEME_TARGETS_FILE
     digest = input_key(assets_dir, data_dir)
@@ -413,9 +628,8 @@ def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
     if existing is not None:
         return existing, True
     started = time.perf_counter()
-    ctx = Context(assets_dir)
+    ctx = Context(assets_dir, data_dir)
     targets, grids = build_targets(ctx)
-    classes = epg_observations.class_frames(parse_emur_json((data_dir / ENGASSIM).read_bytes()))
     document = {
         "format_version": PHONEME_TARGETS_FORMAT_VERSION,
         "builder": BUILDER,
@@ -427,7 +641,11 @@ def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
         "volume_goal_pct": VOLUME_GOAL_PCT,
         "count": len(targets),
         "targets": targets,
-        "realism": realism(grids, classes),
+        "contact_fit": {"epg_weight": fit_contact.EPG_WEIGHT, "margin_mm": fit_contact.MARGIN_MM,
+                        "press_mm": fit_contact.PRESS_MM, "rule_goals": dict(RULE_GOALS),
+                        "weights": "|2 p - 1| per electrode, p the share of the class's real "
+                                   "frames touching it"},
+        "realism": realism(grids, ctx.classes, _before_grids(targets)),
         "build_seconds": round(time.perf_counter() - started, 3),
     }
     out_path.parent.mkdir(parents=True, exist_ok=True)
@@ -435,18 +653,31 @@ def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
     return document, False
 
 
+def _report_line(target: dict) -> dict:
+    """A target's line in the build report: its source, 2D RMS, volume change and, when contact
+    fitted, its EPG error and agreement (before and after the contact fit)."""
+    line = {"source": target["source"]["kind"], "rms_mm": target["source"].get("rms_mm"),
+            "volume_change_pct": target["volume_change_pct"]}
+    contact = target["source"].get("contact")
+    if contact:
+        line.update({"goal": contact["goal"], "epg_error_mm": contact["epg_error_mm"],
+                     "agreement": contact["agreement"],
+                     "before": {k: contact["before"][k] for k in
+                                ("rms_mm", "epg_error_mm", "agreement", "volume_change_pct")}})
+    return line
+
+
 def build_step(ctx) -> dict:
     """``glasshead build`` step: the report lists each target's fit RMS and volume change, the
-    realism rules and the agreement shares."""
+    realism rules (before and after the contact fits) and the agreement shares."""
     document, skipped = build_phoneme_targets(ctx.assets_dir, ctx.data_dir)
     return {"step": "phoneme-targets", "skipped": skipped, "count": document["count"],
             "build_seconds": document["build_seconds"],
-            "targets": {t["arpabet"]: {"source": t["source"]["kind"],
-                                       "rms_mm": t["source"].get("rms_mm"),
-                                       "volume_change_pct": t["volume_change_pct"]}
-                        for t in document["targets"]},
+            "targets": {t["arpabet"]: _report_line(t) for t in document["targets"]},
             "realism": {"passed": document["realism"]["passed"],
                         "of": document["realism"]["of"],
+                        "passed_before_contact_fit":
+                            document["realism"]["passed_before_contact_fit"],
                         "rules": [{k: r[k] for k in ("phoneme", "rule", "pass")}
                                   for r in document["realism"]["rules"]]},
             "agreement": {name: c["agreement"]
