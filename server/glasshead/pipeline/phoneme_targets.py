@@ -696,14 +696,24 @@ def main(argv=None):
     print(f"{document['count']} targets ({'up to date' if skipped else 'built'} in "
           f"{document['build_seconds']:.1f} s)")
     for t in document["targets"]:
+        contact = t["source"].get("contact")
+        extra = "" if not contact else (
+            f"  {contact['goal']}: EPG {contact['before']['epg_error_mm']:.2f} -> "
+            f"{contact['epg_error_mm']:.2f} mm, agreement {contact['before']['agreement']:.2f} "
+            f"-> {contact['agreement']:.2f}, 2D rms before {contact['before']['rms_mm']:.2f}")
         print(f"{t['arpabet']:3s} {t['ipa']:3s} {t['source']['kind']:14s} "
               f"rms {t['source'].get('rms_mm') or 0:5.2f}  dV {t['volume_change_pct']:+5.1f} %  "
-              f"{' '.join(t['epg']['rows'])}")
+              f"{' '.join(t['epg']['rows'])}{extra}")
     r = document["realism"]
     for rule in r["rules"]:
-        print(f"{rule['phoneme']:3s} {'pass' if rule['pass'] else 'FAIL'}  {rule['rule']}")
+        before = rule.get("pass_before_contact_fit")
+        was = "" if before is None else f" (2D fit alone: {'pass' if before else 'FAIL'})"
+        print(f"{rule['phoneme']:3s} {'pass' if rule['pass'] else 'FAIL'}{was}  {rule['rule']}")
+    print(f"{r['passed']} of {r['of']} rules pass ({r['passed_before_contact_fit']} with the 2D "
+          "fits alone)")
     for name, c in r["agreement"].items():
-        print(f"{name}: {c['agreement']}")
+        print(f"{name}: {c['agreement']} (2D fits alone {c['agreement_before_contact_fit']}; "
+              f"real frames passing the rule {c['real_frames_passing_rule']:.0%})")
     return 0
 
 
