@@ -4,7 +4,7 @@ features, example words and the measured shape each articulation target is fitte
 Features follow the IPA chart (place, manner, voicing; vowel height, backness, rounding). The
 ``source`` of each target names the VocalTractLab JD3 shape it is fitted to (docs/observations.md)
 with the vowel contexts measured for it, or, where no shape was measured, says why the target is
-built from phonetic reasoning instead (docs/fitting.md, "Targets"). Nasals lower the velum;
+built from phonetic reasoning instead (docs/targets.md). Nasals lower the velum;
 every other phoneme raises it.
 
 Symbols are accepted as ARPAbet (any case, stress digits ignored) or IPA (``lookup``).
