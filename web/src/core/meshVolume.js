@@ -33,25 +33,7 @@ function normalise( sums, target ) {
 export function vertexNormals( positions, index, sums, target ) {
 
 	sums.fill( 0 );
-	for ( let t = 0; t < index.length; t += 3 ) {
-
-		const a = 3 * index[ t ];
-		const b = 3 * index[ t + 1 ];
-		const c = 3 * index[ t + 2 ];
-		const ux = positions[ b ] - positions[ a ];
-		const uy = positions[ b + 1 ] - positions[ a + 1 ];
-		const uz = positions[ b + 2 ] - positions[ a + 2 ];
-		const vx = positions[ c ] - positions[ a ];
-		const vy = positions[ c + 1 ] - positions[ a + 1 ];
-		const vz = positions[ c + 2 ] - positions[ a + 2 ];
-		const nx = uy * vz - uz * vy;
-		const ny = uz * vx - ux * vz;
-		const nz = ux * vy - uy * vx;
-		sums[ a ] += nx; sums[ a + 1 ] += ny; sums[ a + 2 ] += nz;
-		sums[ b ] += nx; sums[ b + 1 ] += ny; sums[ b + 2 ] += nz;
-		sums[ c ] += nx; sums[ c + 1 ] += ny; sums[ c + 2 ] += nz;
-
-	}
+	addTriangleNormals( positions, index, sums );
 
 	return normalise( sums, target );
 
@@ -79,5 +61,36 @@ export function meshVolume( positions, index ) {
 	}
 
 	return sum / 6;
+
+}
+
+/**
+ * Each triangle adds ( b - a ) x ( c - a ) (twice its area along its normal) to the sums of its
+ * corners: the accumulation of vertexNormals(), for callers that keep part of the sums.
+ * @param {Float32Array|Float64Array} positions xyz per vertex
+ * @param {Uint32Array|number[]} index triangles
+ * @param {Float64Array} sums xyz per vertex, added to
+ */
+export function addTriangleNormals( positions, index, sums ) {
+
+	for ( let t = 0; t < index.length; t += 3 ) {
+
+		const a = 3 * index[ t ];
+		const b = 3 * index[ t + 1 ];
+		const c = 3 * index[ t + 2 ];
+		const ux = positions[ b ] - positions[ a ];
+		const uy = positions[ b + 1 ] - positions[ a + 1 ];
+		const uz = positions[ b + 2 ] - positions[ a + 2 ];
+		const vx = positions[ c ] - positions[ a ];
+		const vy = positions[ c + 1 ] - positions[ a + 1 ];
+		const vz = positions[ c + 2 ] - positions[ a + 2 ];
+		const nx = uy * vz - uz * vy;
+		const ny = uz * vx - ux * vz;
+		const nz = ux * vy - uy * vx;
+		sums[ a ] += nx; sums[ a + 1 ] += ny; sums[ a + 2 ] += nz;
+		sums[ b ] += nx; sums[ b + 1 ] += ny; sums[ b + 2 ] += nz;
+		sums[ c ] += nx; sums[ c + 1 ] += ny; sums[ c + 2 ] += nz;
+
+	}
 
 }

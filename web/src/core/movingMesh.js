@@ -5,6 +5,8 @@
 // those of meshVolume.vertexNormals() up to the order of summation. Nothing here allocates but
 // movingMesh(), once.
 
+import { addTriangleNormals } from './meshVolume.js';
+
 /**
  * Split a mesh for partial updates (once).
  * @param {Float32Array|Float64Array} positions rest positions, xyz per vertex
@@ -34,7 +36,7 @@ export function movingMesh( positions, index, moving, extra = [] ) {
 	const triangles = Uint32Array.from( corners );
 	const vertices = Uint32Array.from( new Set( [ ...corners, ...extra ] ) ).sort();
 	const sums = new Float64Array( 3 * count );
-	addTriangles( positions, Uint32Array.from( fixedTriangles ), sums );
+	addTriangleNormals( positions, Uint32Array.from( fixedTriangles ), sums );
 	const fixed = new Float64Array( 3 * vertices.length );
 	vertices.forEach( ( v, k ) => fixed.set( sums.subarray( 3 * v, 3 * v + 3 ), 3 * k ) );
 
@@ -63,31 +65,6 @@ function distanceSq( positions, o, centre ) {
 
 }
 
-/** Each triangle adds ( b - a ) x ( c - a ) to the sums of its corners. */
-function addTriangles( positions, index, sums ) {
-
-	for ( let t = 0; t < index.length; t += 3 ) {
-
-		const a = 3 * index[ t ];
-		const b = 3 * index[ t + 1 ];
-		const c = 3 * index[ t + 2 ];
-		const ux = positions[ b ] - positions[ a ];
-		const uy = positions[ b + 1 ] - positions[ a + 1 ];
-		const uz = positions[ b + 2 ] - positions[ a + 2 ];
-		const vx = positions[ c ] - positions[ a ];
-		const vy = positions[ c + 1 ] - positions[ a + 1 ];
-		const vz = positions[ c + 2 ] - positions[ a + 2 ];
-		const nx = uy * vz - uz * vy;
-		const ny = uz * vx - ux * vz;
-		const nz = ux * vy - uy * vx;
-		sums[ a ] += nx; sums[ a + 1 ] += ny; sums[ a + 2 ] += nz;
-		sums[ b ] += nx; sums[ b + 1 ] += ny; sums[ b + 2 ] += nz;
-		sums[ c ] += nx; sums[ c + 1 ] += ny; sums[ c + 2 ] += nz;
-
-	}
-
-}
-
 /**
  * Unit vertex normals of the posed mesh into target, written only for mesh.vertices (the others
  * keep what they hold: their rest normals).
@@ -107,7 +84,7 @@ export function updateNormals( mesh, positions, target ) {
 
 	}
 
-	addTriangles( positions, mesh.triangles, sums );
+	addTriangleNormals( positions, mesh.triangles, sums );
 	for ( let k = 0; k < vertices.length; k ++ ) {
 
 		const o = 3 * vertices[ k ];
