@@ -182,3 +182,24 @@ def test_minimize_finds_a_bounded_minimum_with_each_method():
         assert np.allclose(result.x, [1.0, -2.0, 2.5], atol=1e-3), (method, result)
         assert result.error == pytest.approx(0.25, abs=1e-5)
         assert result.evaluations > 0 and result.seconds >= 0 and result.stop
+
+
+def test_the_optimiser_reports_progress_after_every_evaluation_and_a_raising_callback_stops_it():
+    from glasshead.fitting.optimizer import minimize
+
+    calls = []
+    result = minimize(lambda x: float(((x - 1.0) ** 2).sum()), [0.0, 0.0], [-5.0, -5.0],
+                      [5.0, 5.0], progress=lambda n, best: calls.append((n, best)))
+    assert [n for n, _ in calls] == list(range(1, result.evaluations + 1))
+    assert calls[-1][1] == result.error
+
+    class CancelledError(Exception):
+        pass
+
+    def cancel_after_five(n, best):
+        if n > 5:
+            raise CancelledError("cancelled by the job")
+
+    with pytest.raises(CancelledError, match="cancelled by the job"):
+        minimize(lambda x: float(((x - 1.0) ** 2).sum()), [0.0, 0.0], [-5.0, -5.0], [5.0, 5.0],
+                 progress=cancel_after_five)

@@ -53,11 +53,14 @@ def minimize(objective: Callable[[np.ndarray], float], x0, lower, upper, *,
              method: str = "bobyqa", max_evals: int = 2000, xtol_rel: float = 1e-6,
              xtol_abs: float = 1e-6, ftol_abs: float = 1e-10, ftol_rel: float = 0.0,
              max_seconds: float = 0.0, stopval: float | None = None,
-             initial_step=None) -> OptimizeResult:
+             initial_step=None,
+             progress: Callable[[int, float], None] | None = None) -> OptimizeResult:
     """Minimise ``objective(x) -> float`` from x0 within [lower, upper] with a local NLopt method.
 
     xtol_abs matters as well as xtol_rel: the rig's neutral values are 0, where a relative step
     test alone never passes. ``initial_step`` (scalar or (n,)) defaults to a tenth of each range.
+    ``progress(evaluations, best_error)``, when given, is called after every evaluation (for a
+    job's progress bar); it must be cheap, and an exception it raises stops the fit.
     Raises ValueError for an unknown method, mismatched shapes, empty or inverted bounds or an x0
     outside them.
     """
@@ -88,6 +91,12 @@ def minimize(objective: Callable[[np.ndarray], float], x0, lower, upper, *,
             value = math.inf
         if value < best["f"]:
             best["f"], best["x"] = value, np.array(x, dtype=np.float64)
+        if progress is not None:
+            try:
+                progress(best["n"], best["f"])
+            except Exception as error:  # NLopt swallows exceptions from callbacks: keep it
+                best["error"] = error
+                raise nlopt.ForcedStop from error
         return value
 
     opt = nlopt.opt(METHODS[method], x0.size)
@@ -114,6 +123,10 @@ def minimize(objective: Callable[[np.ndarray], float], x0, lower, upper, *,
                                 f"nlopt code {opt.last_optimize_result()}")
     except nlopt.RoundoffLimited:
         stop = "round-off limited"
+    except nlopt.ForcedStop:
+        if "error" in best:
+            raise best["error"] from None
+        stop = "forced stop"
     seconds = time.perf_counter() - started
     return OptimizeResult(x=np.clip(best["x"], lower, upper), error=best["f"],
                           evaluations=best["n"], seconds=seconds, method=method, stop=stop)
