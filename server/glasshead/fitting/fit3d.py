@@ -1,0 +1,341 @@
+"""3D surface fits: the rig's tongue against measured tongue surfaces (VocalTractLab's sheets).
+
+The error is the paper's 3D error (``objective3d.RayError3D``): rays from an origin O inside the
+tongue to each observed vertex, the residual the distance along the ray from the vertex to the
+rig's first crossing, walked over the triangle adjacency from the previous evaluation's hits.
+
+Which parameters move: the 10 sagittal and the 21 coronal tongue parameters, within their
+ranges. The jaw stays where the caller puts it (``fit_shape3d``: from VTL's jaw angle, as
+``fit2d`` sets it). ``fit_shape3d`` starts from the mid-sagittal fit of the shape's outline,
+which sets the sagittal parameters; the 3D fit then mostly adjusts the cross-sections.
+
+The origin is the rig's hub posed at the starting values (the hub moves with the jaw only), on
+z = 0: the same origin as the 2D fit's, inside the tongue, fixed for the fit.
+
+What is compared (``visible_mask``), the 3D form of the 2D rule (``objective2d``):
+
+- the root below the rig's root cut: an observed vertex behind O whose direction from O, seen
+  in the mid-sagittal plane (its x and y), falls more than ROOT_CUT_DEG below O's horizontal
+  is left out. VTL's root runs down to the hyoid, the rig's root ends about 28 degrees below the
+  hub, where it turns into the floor of the mouth: such rays would meet the rig's floor;
+- for a rib grid (VTL's sheet: ribs from root to tip, points across), the underside after the
+  tip: the ribs after the tip rib, found on the ribs' middle points as ``objective2d.tip_index``
+  finds it on an outline (the first rib after the highest one from which the next rib is no
+  further forward). VTL's last three or four ribs drop to the floor of the mouth or collapse
+  onto the tip: a construction of its model, which imaging rarely sees. An ungridded surface
+  (``fit_surface`` with ``mask=None``) gets the root cut only; a caller that knows more passes
+  its own mask.
+
+The objective (mm^2) is the 2D fit's, with the squared 3D RMS in place of the 2D one:
+
+    rms^2 + volume_weight (100 dV / V0)^2 + neutral_weight sum(((x - neutral) / range)^2)
+          + volume_bound_weight max(0, |100 dV / V0| - volume_bound_pct)^2
+
+with fit2d's weights: the volume terms on the coarse surface of ``MidSagittalSection``, the
+neutral pull on every free parameter. Reports give the plain RMS over every kept ray, the exact
+volume change and the parameters at a range limit (``fit2d.LIMIT_FRACTION``).
+
+Speed: an evaluation is the rig's surface (2,978 vertices) and the walk of every ray; a
+surface with more than MAX_RAYS kept vertices is fitted on an evenly spread subset of MAX_RAYS of
+them (the report's RMS is over them all).
+"""
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from glasshead.fitting import fit2d
+from glasshead.fitting.fit2d import (
+    LIMIT_FRACTION,
+    NEUTRAL_WEIGHT,
+    VOLUME_BOUND_PCT,
+    VOLUME_BOUND_WEIGHT,
+    VOLUME_WEIGHT,
+    FitReport,
+    jaw_opening_from_vtl,
+    sagittal_parameters,
+)
+from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection
+from glasshead.fitting.objective3d import RayError3D
+from glasshead.fitting.optimizer import minimize
+from glasshead.geometry.tongue_surface import TongueRig
+
+CORONAL_PREFIX = "tongue coronal"
+MAX_EVALS = 3000
+#: Fewest kept vertices a surface needs: fewer cannot determine 31 parameters.
+MIN_RAYS = 40
+#: Kept vertices beyond this are thinned to an evenly spread subset for the fit.
+MAX_RAYS = 1000
+#: Stopping tests: 1e-5 mm^2 of objective (0.005 mm of RMS near 1 mm), 1e-3 mm of parameter.
+FTOL_ABS = 1e-5
+XTOL_ABS = 1e-3
+#: VTL's tongue sheet: ribs from root to tip, points across each rib.
+VTL_RIBS, VTL_POINTS = 37, 11
+
+
+@dataclass
+class FitReport3D(FitReport):
+    """A 3D fit's report: fit2d's fields, plus the RMS at the start and the cost of the
+    mid-sagittal fit it started from (0 when it started elsewhere)."""
+
+    start_rms_mm: float = 0.0
+    start_evaluations: int = 0
+    start_seconds: float = 0.0
+
+
+def coronal_parameters(rig: TongueRig) -> list[str]:
+    return [p for p in rig.parameter_names
+            if rig.parameters[p]["group"].startswith(CORONAL_PREFIX)]
+
+
+def surface_parameters(rig: TongueRig) -> list[str]:
+    """The parameters a 3D fit moves: sagittal, then coronal."""
+    return sagittal_parameters(rig) + coronal_parameters(rig)
+
+
+def check_observed(observed) -> np.ndarray:
+    """(k, 3) float64 observed vertices, or ValueError."""
+    points = np.asarray(observed, dtype=np.float64)
+    if points.ndim != 2 or points.shape[1] != 3:
+        raise ValueError(f"observed surface must be (k, 3) vertices, got shape {points.shape}")
+    if not np.all(np.isfinite(points)):
+        raise ValueError("observed surface has non-finite coordinates (NaN or inf)")
+    if len(points) < MIN_RAYS:
+        raise ValueError(f"observed surface has {len(points)} vertices; at least {MIN_RAYS} "
+                         "are needed")
+    return points
+
+
+def tip_rib(middles) -> int:
+    """Index of the tip rib of a root-to-tip rib sequence, from the ribs' middle points (r, 2+):
+    the first rib after the highest one from which the next is no further forward."""
+    middles = np.asarray(middles, dtype=np.float64)
+    k = int(np.argmax(middles[:, 1]))
+    while k + 1 < len(middles) and middles[k + 1, 0] >= middles[k, 0]:
+        k += 1
+    return k
+
+
+def visible_mask(observed, origin, *, grid=None, root_cut_deg=ROOT_CUT_DEG) -> np.ndarray:
+    """(k,) bool: the observed vertices a fit compares (module docstring). ``grid`` (ribs,
+    points) when the vertices are a root-to-tip rib grid, rib-major: then the ribs after the tip
+    are left out too."""
+    points = check_observed(observed)
+    origin = np.asarray(origin, dtype=np.float64)
+    offset = points[:, :2] - origin[:2]
+    elevation = np.degrees(np.arctan2(offset[:, 1], np.abs(offset[:, 0])))
+    keep = ~((offset[:, 0] < 0) & (elevation < -root_cut_deg))
+    if grid is not None:
+        ribs, across = grid
+        if ribs * across != len(points):
+            raise ValueError(f"a {ribs} x {across} grid needs {ribs * across} vertices, "
+                             f"got {len(points)}")
+        middles = points.reshape(ribs, across, 3)[:, across // 2]
+        rib = np.repeat(np.arange(ribs), across)
+        keep &= rib <= tip_rib(middles)
+    return keep
+
+
+def spread_subset(count: int, limit: int = MAX_RAYS) -> np.ndarray:
+    """Indices of an evenly spread subset of at most ``limit`` of ``count`` items."""
+    if count <= limit:
+        return np.arange(count)
+    return np.unique(np.linspace(0, count - 1, limit).round().astype(np.int64))
+
+
+class Objective3D:
+    """The 3D objective over a subset of a rig's parameters (see the module docstring).
+
+    observed (k, 3) mm with ``mask`` (k,) bool of the rays to compare; ``free`` the parameter
+    names the fit moves, every other one held at ``base`` (P,); ``__call__(x)`` (mm^2).
+    """
+
+    def __init__(self, rig: TongueRig, observed, mask, free, *, base, origin,
+                 section: MidSagittalSection, volume_weight=VOLUME_WEIGHT,
+                 neutral_weight=NEUTRAL_WEIGHT, volume_bound_pct=VOLUME_BOUND_PCT,
+                 volume_bound_weight=VOLUME_BOUND_WEIGHT, max_rays=MAX_RAYS):
+        unknown = [name for name in free if name not in rig.parameters]
+        if unknown or not free:
+            raise ValueError(f"free parameters must be known rig parameters; got {list(free)}")
+        if volume_weight < 0 or neutral_weight < 0 or volume_bound_weight < 0:
+            raise ValueError("the volume and neutral weights cannot be negative")
+        self.rig = rig
+        self.section = section
+        self.free = list(free)
+        self.index = np.array([rig.parameter_names.index(name) for name in self.free])
+        self.base = np.array(base, dtype=np.float64)
+        self.lower, self.upper = rig.minimum[self.index], rig.maximum[self.index]
+        self.neutral = rig.neutral[self.index]
+        kept = np.asarray(observed, dtype=np.float64)[mask]
+        self.kept = kept
+        self.origin = np.asarray(origin, dtype=np.float64)
+        rest = rig.vertices(self.base)
+        self.error = RayError3D(rig.triangles, rest, kept[spread_subset(len(kept), max_rays)],
+                                self.origin)
+        self.full_error = RayError3D(rig.triangles, rest, kept, self.origin)
+        self.volume_weight = float(volume_weight)
+        self.neutral_weight = float(neutral_weight)
+        self.volume_bound_pct = float(volume_bound_pct)
+        self.volume_bound_weight = float(volume_bound_weight)
+
+    def values(self, x) -> np.ndarray:
+        values = self.base.copy()
+        values[self.index] = x
+        return values
+
+    def residuals(self, x) -> np.ndarray:
+        """(kept,) residuals, mm, over every kept ray."""
+        return self.full_error.residuals(self.rig.vertices(self.values(x)))
+
+    def volume_change(self, x, exact=True) -> float:
+        rig, rest = (self.rig, self.section.rest_volume) if exact \
+            else (self.section.volume_rig, self.section.coarse_rest_volume)
+        return 100.0 * (rig.volume(self.values(x)) / rest - 1.0)
+
+    def __call__(self, x) -> float:
+        x = np.asarray(x, dtype=np.float64)
+        r = self.error.residuals(self.rig.vertices(self.values(x)))
+        value = float(np.mean(r * r))
+        if self.volume_weight or self.volume_bound_weight:
+            change = self.volume_change(x, exact=False)
+            value += self.volume_weight * change**2
+            value += self.volume_bound_weight * max(0.0, abs(change)
+                                                    - self.volume_bound_pct) ** 2
+        if self.neutral_weight:
+            value += self.neutral_weight * float(
+                np.sum(((x - self.neutral) / (self.upper - self.lower)) ** 2))
+        return value
+
+
+def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=None,
+                max_evals=MAX_EVALS, progress: Callable[[int, float], None] | None = None,
+                name="", free=None, section: MidSagittalSection | None = None,
+                volume_weight=VOLUME_WEIGHT, neutral_weight=NEUTRAL_WEIGHT,
+                volume_bound_pct=VOLUME_BOUND_PCT, volume_bound_weight=VOLUME_BOUND_WEIGHT,
+                max_rays=MAX_RAYS, ftol_abs=FTOL_ABS, xtol_abs=XTOL_ABS,
+                **options) -> FitReport3D:
+    """Fit the rig's surface to observed vertices (k, 3) float mm in the project frame.
+
+    ``base`` (P,) values to start from, which also hold the parameters not fitted (default
+    neutral); ``free`` the names fitted (default: sagittal and coronal); ``mask`` (k,) bool of
+    the vertices to compare (default ``visible_mask``'s root cut); ``progress(evaluations,
+    best_error)`` after every evaluation; other keyword options go to ``optimizer.minimize``.
+    Raises ValueError for a malformed surface, a mask of the wrong shape, or fewer than MIN_RAYS
+    vertices left to compare.
+    """
+    points = check_observed(observed)
+    start = rig.neutral.copy() if base is None else np.array(base, dtype=np.float64)
+    if start.shape != rig.neutral.shape or not np.all(np.isfinite(start)):
+        raise ValueError(f"base must be {rig.neutral.shape} finite values, got {start.shape}")
+    start = np.clip(start, rig.minimum, rig.maximum)
+    origin = np.append(rig.control_points(start)[1], 0.0)
+    if mask is None:
+        keep = visible_mask(points, origin)
+    else:
+        keep = np.asarray(mask)
+        if keep.shape != (len(points),) or keep.dtype != bool:
+            raise ValueError(f"mask must be a ({len(points)},) bool array, got "
+                             f"{keep.dtype} {keep.shape}")
+    if int(keep.sum()) < MIN_RAYS:
+        raise ValueError(f"the mask leaves {int(keep.sum())} vertices to compare; at least "
+                         f"{MIN_RAYS} are needed")
+    free = list(free) if free is not None else surface_parameters(rig)
+    objective = Objective3D(rig, points, keep, free, base=start, origin=origin,
+                            section=section or MidSagittalSection(rig),
+                            volume_weight=volume_weight, neutral_weight=neutral_weight,
+                            volume_bound_pct=volume_bound_pct,
+                            volume_bound_weight=volume_bound_weight, max_rays=max_rays)
+    x0 = start[objective.index]
+    before = objective.residuals(x0)
+    result = minimize(objective, x0, objective.lower, objective.upper, method=method,
+                      max_evals=max_evals, progress=progress, ftol_abs=ftol_abs,
+                      xtol_abs=xtol_abs, **options)
+    errors = objective.residuals(result.x)
+    margin = LIMIT_FRACTION * (objective.upper - objective.lower)
+    near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
+    values = objective.values(result.x)
+    return FitReport3D(
+        shape=name, method=method, evaluations=result.evaluations, seconds=result.seconds,
+        rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
+        volume_change_pct=objective.volume_change(result.x),
+        at_limit=[n for n, hit in zip(free, near, strict=True) if hit],
+        rays=len(errors), stop=result.stop,
+        params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)},
+        start_rms_mm=float(np.sqrt(np.mean(before**2))))
+
+
+def shape_vertices(shape) -> np.ndarray:
+    """A VTL shape record's tongue sheet (ribs * points, 3) mm, project frame."""
+    return np.asarray(shape["tongue_surface_vertices"], dtype=np.float64)
+
+
+def fit_shape3d(rig: TongueRig, shape, *, method="bobyqa", from_2d=True,
+                section: MidSagittalSection | None = None, **options) -> FitReport3D:
+    """Fit one VTL shape record by its tongue sheet: jaw from VTL, from the mid-sagittal fit of
+    its outline when ``from_2d`` (else from neutral), rib-grid mask."""
+    section = section or MidSagittalSection(rig)
+    base = rig.neutral.copy()
+    base[rig.jaw_parameter] = jaw_opening_from_vtl(shape, rig)
+    started = time.perf_counter()
+    start_evaluations = 0
+    if from_2d:
+        outline = fit2d.fit_outline(rig, shape["tongue_outline"], base=base, section=section,
+                                    name=shape["name"])
+        base = np.array([outline.params[n] for n in rig.parameter_names])
+        start_evaluations = outline.evaluations
+    start_seconds = time.perf_counter() - started
+    vertices = shape_vertices(shape)
+    origin = np.append(rig.control_points(base)[1], 0.0)
+    mask = visible_mask(vertices, origin, grid=(VTL_RIBS, VTL_POINTS)) \
+        if len(vertices) == VTL_RIBS * VTL_POINTS else None
+    report = fit_surface(rig, vertices, method=method, base=base, mask=mask,
+                         name=shape["name"], section=section, **options)
+    report.start_evaluations = start_evaluations
+    report.start_seconds = start_seconds
+    return report
+
+
+def fit_all3d(rig: TongueRig, observations, *, method="bobyqa", names=None,
+              **options) -> list[FitReport3D]:
+    """Fit every shape of an observations document (or those named), in its order."""
+    section = MidSagittalSection(rig)
+    shapes = observations["shapes"]
+    if names is not None:
+        wanted = set(names)
+        missing = wanted - {s["name"] for s in shapes}
+        if missing:
+            raise ValueError(f"no such shapes: {', '.join(sorted(missing))}")
+        shapes = [s for s in shapes if s["name"] in wanted]
+    return [fit_shape3d(rig, s, method=method, section=section, **options) for s in shapes]
+
+
+def main(argv=None):
+    import sys
+
+    from glasshead.settings import get_settings
+
+    argv = sys.argv[1:] if argv is None else argv
+    method = argv[0] if argv else "bobyqa"
+    rig, observations = fit2d.load_inputs(get_settings().assets_dir)
+    started = time.perf_counter()
+    reports = fit_all3d(rig, observations, method=method)
+    for r in reports:
+        print(f"{r.shape:32s} {r.rms_mm:6.2f} mm (from {r.start_rms_mm:5.2f})  "
+              f"max {r.max_error_mm:5.2f}  dV {r.volume_change_pct:+5.1f} %  "
+              f"{r.evaluations:5d} evals {r.seconds:5.2f} s (2D {r.start_seconds:4.2f} s)  "
+              f"{','.join(r.at_limit)}")
+    rms = np.array([r.rms_mm for r in reports])
+    total = np.array([r.seconds + r.start_seconds for r in reports])
+    print(f"{len(reports)} shapes, {method}: median RMS {np.median(rms):.2f} mm, "
+          f"{int(np.sum(rms <= 1.5))} within 1.5 mm; median "
+          f"{np.median([r.evaluations for r in reports]):.0f} evaluations, "
+          f"{np.median([r.seconds for r in reports]):.2f} s (with the 2D fit "
+          f"{np.median(total):.2f} s, at most {total.max():.2f} s); "
+          f"{time.perf_counter() - started:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
