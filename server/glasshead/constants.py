@@ -249,5 +249,15 @@ LANDMARKS_FORMAT_VERSION = 1
 PHONEME_TARGETS_FILE = "phoneme-targets.json"
 #: Format version of the phoneme targets file; its readers refuse any other version.
 PHONEME_TARGETS_FORMAT_VERSION = 1
+#: VocalTractLab's JD3 shapes in the project frame (glasshead.pipeline.vtl_observations).
+VTL_OBSERVATIONS_FILE = "vtl-observations.json"
+#: The 2D fit of every JD3 shape: errors, parameters, rays (glasshead.pipeline.fit_report).
+FIT_REPORT_FILE = "fit-report.json"
+#: Format version of the fit report; its readers refuse any other version.
+FIT_REPORT_FORMAT_VERSION = 1
+#: The fit report's overlay plots, one SVG per shape, under the assets directory.
+FIT_PLOTS_DIR = "fit-plots"
+#: The fit report as a page for a browser: a table of every shape with its plot.
+FIT_REPORT_PAGE = "fit-report.html"
 #: The command that rebuilds every asset, named in the API's 503 answers.
 REBUILD_COMMAND = "glasshead build"

@@ -260,5 +260,15 @@ export const LANDMARKS_FORMAT_VERSION = 1;
 export const PHONEME_TARGETS_FILE = 'phoneme-targets.json';
 /** Format version of the phoneme targets file; its readers refuse any other version. */
 export const PHONEME_TARGETS_FORMAT_VERSION = 1;
+/** VocalTractLab's JD3 shapes in the project frame (glasshead.pipeline.vtl_observations). */
+export const VTL_OBSERVATIONS_FILE = 'vtl-observations.json';
+/** The 2D fit of every JD3 shape: errors, parameters, rays (glasshead.pipeline.fit_report). */
+export const FIT_REPORT_FILE = 'fit-report.json';
+/** Format version of the fit report; its readers refuse any other version. */
+export const FIT_REPORT_FORMAT_VERSION = 1;
+/** The fit report's overlay plots, one SVG per shape, under the assets directory. */
+export const FIT_PLOTS_DIR = 'fit-plots';
+/** The fit report as a page for a browser: a table of every shape with its plot. */
+export const FIT_REPORT_PAGE = 'fit-report.html';
 /** The command that rebuilds every asset, named in the API's 503 answers. */
 export const REBUILD_COMMAND = 'glasshead build';
