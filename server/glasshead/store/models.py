@@ -81,3 +81,7 @@ class SavedPose(Timestamped, Base):
     name: Mapped[str] = mapped_column(String(120), unique=True)
     description: Mapped[str] = mapped_column(Text, default="")
     params: Mapped[dict] = mapped_column(JSON)
+
+
+# Tables kept in sibling modules, imported here so that every table is on Base.metadata.
+from glasshead.store.fit_jobs import FitJob  # noqa: E402, F401

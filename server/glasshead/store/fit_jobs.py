@@ -1,0 +1,66 @@
+"""The ``fit_jobs`` table: an author's observation, the fit's state and progress, and its result.
+
+A fit runs in a worker process (``glasshead.fitting.jobs``), never in a request; this row is all
+the request and the worker share. The worker moves it from ``queued`` to ``running`` and on to
+``done`` (``params`` and ``report`` set) or ``failed`` (``message`` set), and writes
+``progress`` a few times a second while it runs. A finished fit is a target: ``params`` holds a
+value for every articulation parameter (tongue, jaw, lips, velum), as a saved pose does.
+
+The observation is kept as one little-endian float64 blob (``observation_shape`` gives its
+shape): a contour (n, 2), a surface's vertices (k, 3) or a wanted EPG pattern (8, 8). A
+surface of a few hundred thousand vertices is a few megabytes this way, several times less than
+as JSON numbers, and the worker reads it back exactly.
+"""
+
+from datetime import datetime
+
+import numpy as np
+from sqlalchemy import JSON, Integer, LargeBinary, String, Text
+from sqlalchemy.orm import Mapped, mapped_column
+
+from glasshead.store.base import Base, Timestamped, UtcDateTime
+
+#: The states of a fit, in the order it passes through them (``failed`` may follow any).
+FIT_STATES = ("queued", "running", "done", "failed")
+#: The kinds of observation a fit takes.
+FIT_KINDS = ("contour", "surface", "epg")
+#: Layout of ``FitJob.observation``.
+OBSERVATION_DTYPE = np.dtype("<f8")
+
+
+class FitJob(Timestamped, Base):
+    """One fit of the tongue to an uploaded observation, and the target it made."""
+
+    __tablename__ = "fit_jobs"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    name: Mapped[str] = mapped_column(String(200))
+    #: contour, surface or epg (``FIT_KINDS``).
+    kind: Mapped[str] = mapped_column(String(20))
+    #: The optimiser: bobyqa, praxis or sbplx.
+    method: Mapped[str] = mapped_column(String(20))
+    #: queued, running, done or failed (``FIT_STATES``).
+    state: Mapped[str] = mapped_column(String(20), index=True, default="queued")
+    #: Why a fit failed (None otherwise).
+    message: Mapped[str | None] = mapped_column(Text)
+    #: ``{evaluations, best_error, fraction}`` while running; the last values once finished.
+    progress: Mapped[dict] = mapped_column(JSON, default=dict)
+    observation: Mapped[bytes] = mapped_column(LargeBinary)
+    observation_shape: Mapped[list] = mapped_column(JSON)
+    #: What the upload said beside the numbers: file name, format, frames, options of the fit.
+    source: Mapped[dict] = mapped_column(JSON, default=dict)
+    #: The fitted target: every rig parameter by name (None until done).
+    params: Mapped[dict | None] = mapped_column(JSON)
+    #: rms_mm, evaluations, seconds, volume_change_pct, at_limit, method and per-kind figures.
+    report: Mapped[dict | None] = mapped_column(JSON)
+    started_at: Mapped[datetime | None] = mapped_column(UtcDateTime())
+    finished_at: Mapped[datetime | None] = mapped_column(UtcDateTime())
+
+    def set_observation(self, points: np.ndarray) -> None:
+        points = np.ascontiguousarray(points, dtype=OBSERVATION_DTYPE)
+        self.observation = points.tobytes()
+        self.observation_shape = list(points.shape)
+
+    def get_observation(self) -> np.ndarray:
+        flat = np.frombuffer(self.observation, dtype=OBSERVATION_DTYPE).astype(np.float64)
+        return flat.reshape(self.observation_shape)
