@@ -45,18 +45,34 @@ function ensureNodeModules() {
 	stamp( 'node_modules', digest );
 }
 
-function ensureChromium() {
-	if ( existsSync( '/usr/bin/chromium' ) ) return;
+/**
+ * Installs a Debian package with apt-get when its file is missing and we run as root; prints
+ * the command to run and exits otherwise. apt-get update runs once a run.
+ */
+let aptUpdated = false;
+function ensureDebianPackage( { file, pkg, why } ) {
+	if ( existsSync( file ) ) return;
 	const isRoot = process.getuid?.() === 0;
 	if ( ! isRoot ) {
-		console.error( 'The end-to-end tests need Debian\'s Chromium at /usr/bin/chromium.\n' +
-			'Install it with:  sudo apt-get install chromium' );
+		console.error( `${why} needs Debian's ${pkg} (${file}).\n` +
+			`Install it with:  sudo apt-get install ${pkg}` );
 		process.exit( 1 );
 	}
-	step( 'Debian chromium (apt-get)', () => {
-		run( 'apt-get', [ 'update', '-qq' ] );
-		run( 'apt-get', [ 'install', '-y', '-qq', 'chromium' ], { env: { DEBIAN_FRONTEND: 'noninteractive' } } );
+	step( `Debian ${pkg} (apt-get)`, () => {
+		if ( ! aptUpdated ) run( 'apt-get', [ 'update', '-qq' ] );
+		aptUpdated = true;
+		run( 'apt-get', [ 'install', '-y', '-qq', pkg ], { env: { DEBIAN_FRONTEND: 'noninteractive' } } );
 	} );
+}
+
+function ensureChromium() {
+	ensureDebianPackage( { file: '/usr/bin/chromium', pkg: 'chromium',
+		why: 'The end-to-end tests' } );
+}
+
+function ensureEspeak() {
+	// The utterance route's phone timings and voice (docs/speech.md).
+	ensureDebianPackage( { file: '/usr/bin/espeak-ng', pkg: 'espeak-ng', why: 'Speech (POST /utterances)' } );
 }
 
 function buildAssets() {
@@ -74,6 +90,7 @@ function buildWeb() {
 
 ensurePython();
 ensureNodeModules();
+ensureEspeak();
 if ( mode === 'test' ) ensureChromium();
 buildAssets();
 buildWeb();
