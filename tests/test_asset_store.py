@@ -30,6 +30,9 @@ ROUTES = {
     "pharynx_mesh": [("post", "/api/v1/collision/correct",
                       {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
     "phoneme_targets": [("get", "/api/v1/phonemes", None), ("get", "/api/v1/phonemes/T", None)],
+    "vtl_observations": [("get", "/api/v1/observations", None),
+                         ("get", "/api/v1/observations/a", None)],
+    "fit_report": [("get", "/api/v1/observations", None), ("get", "/api/v1/observations/a", None)],
 }
 
 

@@ -29,6 +29,8 @@ from glasshead.constants import (
     COLLISION_TABLES_FILE,
     EPG_LAYOUT_FILE,
     FACE_RIG_FILE,
+    FIT_REPORT_FILE,
+    FIT_REPORT_FORMAT_VERSION,
     LANDMARKS_FILE,
     MANIFEST_FILE,
     MANIFEST_FORMAT_VERSION,
@@ -39,6 +41,7 @@ from glasshead.constants import (
     TONGUE_RIG_FILE,
     VELUM_REST_GLB,
     VELUM_RIG_FILE,
+    VTL_OBSERVATIONS_FILE,
 )
 from glasshead.epg.layout import validate_layout_document
 from glasshead.geometry.collision_format import decode_collision_tables
@@ -138,6 +141,65 @@ def read_phoneme_targets(data: bytes) -> dict:
     return document
 
 
+def _points_of(value, width: int) -> bool:
+    return isinstance(value, list) and all(
+        isinstance(p, list) and len(p) == width and all(
+            isinstance(c, (int, float)) and not isinstance(c, bool) for c in p) for p in value)
+
+
+def read_vtl_observations(data: bytes) -> dict:
+    """VocalTractLab's JD3 shapes (glasshead.pipeline.vtl_observations): each with its name,
+    class, tongue outline (n, 2) and tongue surface vertices (n, 3), mm, project frame."""
+    document = _json(data)
+    if not isinstance(document, dict) or not isinstance(document.get("shapes"), list) \
+            or not document["shapes"]:
+        raise ValueError("the observations must be a JSON object listing shapes")
+    for k, shape in enumerate(document["shapes"]):
+        missing = [key for key in ("name", "class", "tongue_outline", "tongue_surface_vertices")
+                   if not isinstance(shape, dict) or key not in shape]
+        if missing:
+            raise ValueError(f"observed shape {k} lacks {', '.join(missing)}")
+        if not _points_of(shape["tongue_outline"], 2) \
+                or not _points_of(shape["tongue_surface_vertices"], 3):
+            raise ValueError(f"observed shape {shape['name']}: the tongue outline must be (n, 2) "
+                             "and its surface vertices (n, 3) numbers")
+    return document
+
+
+#: What every shape of the fit report holds (glasshead.pipeline.fit_report); a fitted one also
+#: FIT_KEYS.
+FIT_REPORT_KEYS = ("name", "label", "source", "rms_mm")
+FIT_KEYS = ("max_error_mm", "evaluations", "seconds", "method", "volume_change_pct",
+            "at_limit", "start_params", "params", "origin", "outline", "errors", "plot")
+
+
+def read_fit_report(data: bytes) -> dict:
+    """The fit report: format version, and per shape its label, its 2D fit's error and cost,
+    the start and fitted parameters, the rays' origin, the compared outline and the errors."""
+    document = _json(data)
+    if not isinstance(document, dict):
+        raise ValueError("the fit report must be a JSON object")
+    version = document.get("format_version")
+    if version != FIT_REPORT_FORMAT_VERSION:
+        raise ValueError(f"fit report format_version {version!r} is not "
+                         f"{FIT_REPORT_FORMAT_VERSION}")
+    shapes = document.get("shapes")
+    if not isinstance(shapes, list) or not shapes:
+        raise ValueError("the fit report lists no shapes")
+    for k, shape in enumerate(shapes):
+        keys = FIT_REPORT_KEYS + (FIT_KEYS if isinstance(shape, dict)
+                                  and shape.get("rms_mm") is not None else ())
+        missing = [key for key in keys if not isinstance(shape, dict) or key not in shape]
+        if missing:
+            raise ValueError(f"fit report shape {k} lacks {', '.join(missing)}")
+        if shape["rms_mm"] is not None and (
+                not _points_of(shape["outline"], 2) or not _points_of([shape["origin"]], 3)
+                or len(shape["errors"]) != len(shape["outline"])):
+            raise ValueError(f"fit report shape {shape['name']}: the outline must be (m, 2), the "
+                             "origin (3,) and the errors one per outline point")
+    return document
+
+
 def read_glb_mesh(data: bytes) -> tuple:
     """(vertices (n, 3) float64, faces (m, 3) int64) of a one-mesh GLB, in its vertex order."""
     import io
@@ -176,6 +238,8 @@ ASSETS: tuple[AssetSpec, ...] = (
     AssetSpec("velum_mesh", VELUM_REST_GLB, read_glb_mesh),
     AssetSpec("pharynx_mesh", PHARYNX_GLB, read_glb_mesh),
     AssetSpec("phoneme_targets", PHONEME_TARGETS_FILE, read_phoneme_targets),
+    AssetSpec("vtl_observations", VTL_OBSERVATIONS_FILE, read_vtl_observations),
+    AssetSpec("fit_report", FIT_REPORT_FILE, read_fit_report),
 )
 
 

@@ -12,7 +12,8 @@ IMMUTABLE = "public, max-age=31536000, immutable"
 REVALIDATE = "no-cache"
 
 MEDIA_TYPES = {".glb": "model/gltf-binary", ".json": "application/json",
-               ".bin": "application/octet-stream"}
+               ".bin": "application/octet-stream", ".svg": "image/svg+xml",
+               ".html": "text/html; charset=utf-8"}
 
 
 def _etag(path: Path) -> str:

@@ -128,6 +128,11 @@ def phoneme_targets_step(ctx):
     return build_step(ctx)
 
 
+def fit_report_step(ctx):
+    from glasshead.pipeline.fit_report import build_step
+    return build_step(ctx)
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -145,6 +150,7 @@ STEPS = [
     ("landmarks", landmarks_step),
     ("vtl-observations", vtl_observations_step),
     ("phoneme-targets", phoneme_targets_step),
+    ("fit-report", fit_report_step),
 ]
 
 
