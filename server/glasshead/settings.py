@@ -25,6 +25,9 @@ class Settings(BaseSettings):
     web_dist_dir: Path = REPO_ROOT / "web" / "dist"
     #: SQLAlchemy URL; SQLite by default, PostgreSQL in docker-compose.
     database_url: str = f"sqlite:///{REPO_ROOT / 'var' / 'glasshead.sqlite3'}"
+    #: Worker processes that run fit jobs (POST /fits), and how many jobs may wait for them.
+    fit_workers: int = Field(1, ge=1, le=64)
+    fit_queue_limit: int = Field(8, ge=1, le=10000)
 
 
 @lru_cache

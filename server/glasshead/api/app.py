@@ -11,6 +11,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from glasshead import __version__
 from glasshead.api.static import mount_static
 from glasshead.asset_store import AssetStore, AssetUnavailableError
+from glasshead.fitting.job_runner import FitRunner
 from glasshead.settings import get_settings
 
 API_PREFIX = "/api/v1"
@@ -18,7 +19,7 @@ API_PREFIX = "/api/v1"
 #: Route modules under glasshead.api.routes, each exposing ``router``; included under API_PREFIX.
 ROUTE_MODULES = ["health", "anatomy", "recordings", "epg_compare", "epg_indices", "poses",
                  "collision", "tongue", "epg", "face", "landmarks", "velum",
-                 "phonemes", "observations"]
+                 "phonemes", "observations", "fits"]
 
 #: Functions run once at start-up (e.g. database migrations), as "module:function".
 STARTUP_HOOKS: list[str] = ["glasshead.store.db:upgrade_to_head"]
@@ -31,7 +32,10 @@ async def lifespan(app: FastAPI):
         getattr(importlib.import_module(module_name), function_name)()
     # Every built asset is read once, here; a missing or corrupt one is reported, not fatal.
     app.state.assets.load_all()
+    # Fit jobs run in worker processes; those a stopped server left are failed or queued again.
+    app.state.fits.start()
     yield
+    app.state.fits.shutdown()
 
 
 def create_app() -> FastAPI:
@@ -46,6 +50,8 @@ def create_app() -> FastAPI:
         lifespan=lifespan,
     )
     app.state.assets = AssetStore(settings.assets_dir)
+    app.state.fits = FitRunner(settings.database_url, settings.assets_dir,
+                               workers=settings.fit_workers, queue_limit=settings.fit_queue_limit)
     for name in ROUTE_MODULES:
         module = importlib.import_module(f"glasshead.api.routes.{name}")
         app.include_router(module.router, prefix=API_PREFIX)

@@ -1,0 +1,241 @@
+"""Fits: an author's observation (a contour, a surface or EPG frames) fitted into a new target.
+
+POST /fits takes a multipart upload (``file``, ``kind``, optional ``name``, ``method``,
+``max_evals`` and, for EPG, ``frame``), reads and checks it whole (``fitting.uploads``: 413 past
+the kind's size limit, 415 not the kind's format, 422 bad content, each naming the problem; no
+row is stored), stores a ``queued`` job and answers 202 with it and its Location. The fit runs
+in a worker process (``fitting.job_runner``), never in the request. Its progress is read by
+polling GET /fits/{id} or as server-sent events from GET /fits/{id}/events. A finished fit's
+``params`` are a target, listed by GET /fits?state=done. docs/fits.md describes it all.
+"""
+
+import asyncio
+import json
+from datetime import datetime
+from typing import Annotated, Literal
+
+from fastapi import (
+    APIRouter,
+    Depends,
+    File,
+    Form,
+    HTTPException,
+    Query,
+    Request,
+    Response,
+    UploadFile,
+    status,
+)
+from fastapi.concurrency import run_in_threadpool
+from fastapi.responses import StreamingResponse
+from pydantic import BaseModel, ConfigDict, Field
+from sqlalchemy import func, select
+from sqlalchemy.orm import Session
+
+from glasshead.fitting import uploads
+from glasshead.fitting.job_runner import FitRunner
+from glasshead.fitting.jobs import DEFAULT_METHOD
+from glasshead.store.db import get_engine
+from glasshead.store.fit_jobs import FitJob
+from glasshead.store.session import SessionDep
+
+router = APIRouter(tags=["fits"])
+
+Kind = Literal["contour", "surface", "epg"]
+Method = Literal["bobyqa", "praxis", "sbplx"]
+State = Literal["queued", "running", "done", "failed"]
+#: Seconds between looks at a job's row while streaming its events.
+EVENT_POLL_S = 0.2
+#: Seconds without a change after which the stream sends a comment, so proxies keep it open.
+KEEP_ALIVE_S = 15.0
+#: Seconds a client is asked to wait when the queue is full.
+RETRY_AFTER_S = 30
+#: Most evaluations an upload may ask a fit to spend.
+MAX_EVALS = 20000
+_CHUNK = 64 * 1024
+
+
+def get_fit_runner(request: Request) -> FitRunner:
+    return request.app.state.fits
+
+
+RunnerDep = Annotated[FitRunner, Depends(get_fit_runner)]
+
+
+class FitProgress(BaseModel):
+    evaluations: int = 0
+    best_error: float | None = Field(None, description="the objective's best value so far")
+    fraction: float = Field(0.0, description="share of the evaluation budget spent, 0 to 1")
+
+
+class FitOut(BaseModel):
+    model_config = ConfigDict(from_attributes=True)
+    id: int
+    name: str
+    kind: Kind
+    method: Method
+    state: State
+    message: str | None = Field(description="why the fit failed")
+    progress: FitProgress
+    source: dict = Field(description="the upload: file name, format, counts, options")
+    params: dict[str, float] | None = Field(
+        description="the fitted target: every rig parameter (tongue, jaw, lips, velum)")
+    report: dict | None = Field(
+        description="rms_mm, evaluations, seconds, volume_change_pct, at_limit, method, ...")
+    created_at: datetime
+    updated_at: datetime
+    started_at: datetime | None
+    finished_at: datetime | None
+
+
+class FitList(BaseModel):
+    fits: list[FitOut]
+    total: int
+
+
+def get_fit_record(session: Session, fit_id: int) -> FitJob:
+    job = session.get(FitJob, fit_id)
+    if job is None:
+        raise HTTPException(status_code=404, detail=f"no fit with id {fit_id}")
+    return job
+
+
+async def _read_limited(upload: UploadFile, kind: str) -> bytes:
+    """The upload's bytes, read in chunks and refused (413) once past the kind's limit."""
+    limit = uploads.MAX_BYTES[kind]
+    content = bytearray()
+    while chunk := await upload.read(_CHUNK):
+        content += chunk
+        if len(content) > limit:
+            raise HTTPException(status_code=413, detail=uploads.size_limit_message(kind))
+    return bytes(content)
+
+
+@router.post("/fits", operation_id="createFit", status_code=status.HTTP_202_ACCEPTED,
+             response_model=FitOut,
+             responses={413: {"description": "the file is past the kind's size limit"},
+                        415: {"description": "the file is not in a format of the kind"},
+                        503: {"description": "the queue is full; retry after Retry-After"}})
+async def create_fit(
+    request: Request,
+    response: Response,
+    session: SessionDep,
+    runner: RunnerDep,
+    kind: Annotated[Kind, Form(description="what the file holds")],
+    file: Annotated[UploadFile | None, File(description="the observation file")] = None,
+    name: Annotated[str | None, Form(max_length=200,
+                                     description="the target's name (default: the file's)")] = None,
+    method: Annotated[Method | None, Form(
+        description="the optimiser (default: bobyqa; sbplx for epg)")] = None,
+    max_evals: Annotated[int | None, Form(ge=10, le=MAX_EVALS,
+                                          description="cap on the fit's evaluations")] = None,
+    frame: Annotated[int | None, Form(ge=0, description="epg: fit this frame (0-based) "
+                                                        "instead of the majority")] = None,
+) -> FitJob:
+    """Queue a fit of one uploaded observation; 202 with the job, Location its URL."""
+    declared = request.headers.get("content-length", "")
+    if declared.isdigit() and int(declared) > uploads.MAX_BYTES[kind] + _CHUNK:
+        raise HTTPException(status_code=413, detail=uploads.size_limit_message(kind))
+    if file is None:
+        raise HTTPException(status_code=422, detail="field file: the upload has no file part")
+    content = await _read_limited(file, kind)
+    try:
+        observation = await run_in_threadpool(uploads.read_observation, kind, content,
+                                               file.filename, frame=frame)
+    except uploads.ObservationError as error:
+        raise HTTPException(status_code=error.status, detail=str(error)) from None
+    job = await run_in_threadpool(_store, session, runner, observation, name or file.filename
+                                  or f"{kind} fit", method, max_evals)
+    response.headers["Location"] = str(request.url_for("get_fit", fit_id=job.id).path)
+    return job
+
+
+def _store(session: Session, runner: FitRunner, observation: uploads.Observation, name: str,
+           method: str | None, max_evals: int | None) -> FitJob:
+    if runner.queue_full(session):
+        raise HTTPException(status_code=503, headers={"Retry-After": str(RETRY_AFTER_S)},
+                            detail=f"{runner.queue_limit} fits are already waiting; retry "
+                                   "later")
+    options = {} if max_evals is None else {"max_evals": max_evals}
+    job = FitJob(name=name.strip()[:200] or f"{observation.kind} fit", kind=observation.kind,
+                 method=method or DEFAULT_METHOD[observation.kind], state="queued",
+                 progress={"evaluations": 0, "best_error": None, "fraction": 0.0},
+                 source={**observation.source, "options": options})
+    job.set_observation(observation.points)
+    session.add(job)
+    session.commit()
+    runner.submit(job.id)
+    return job
+
+
+@router.get("/fits", operation_id="listFits", response_model=FitList)
+def list_fits(session: SessionDep, state: State | None = None,
+              offset: Annotated[int, Query(ge=0)] = 0,
+              limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> FitList:
+    """Fits, newest first; ``state=done`` lists the fitted targets."""
+    query = select(FitJob)
+    if state is not None:
+        query = query.where(FitJob.state == state)
+    total = session.scalar(select(func.count()).select_from(query.subquery()))
+    jobs = session.scalars(query.order_by(FitJob.id.desc()).offset(offset).limit(limit))
+    return FitList(fits=[FitOut.model_validate(j) for j in jobs], total=total)
+
+
+@router.get("/fits/{fit_id}", operation_id="getFit", response_model=FitOut)
+def get_fit(fit_id: int, session: SessionDep) -> FitJob:
+    """One fit: its state and progress, and once done its target (``params``) and report."""
+    return get_fit_record(session, fit_id)
+
+
+@router.get("/fits/{fit_id}/events", operation_id="streamFitEvents",
+            response_class=StreamingResponse,
+            responses={200: {"content": {"text/event-stream": {}},
+                             "description": "progress events, then one done or failed event"}})
+def stream_fit_events(fit_id: int, session: SessionDep) -> StreamingResponse:
+    """Server-sent events: ``progress`` (the job's state and progress) whenever its row
+    changes, then one ``done`` or ``failed`` event with the whole job, then the stream ends."""
+    get_fit_record(session, fit_id)
+    return StreamingResponse(_events(fit_id), media_type="text/event-stream",
+                             headers={"Cache-Control": "no-cache", "X-Accel-Buffering": "no"})
+
+
+def _snapshot(fit_id: int) -> dict | None:
+    with Session(get_engine()) as session:
+        job = session.get(FitJob, fit_id)
+        return None if job is None else FitOut.model_validate(job).model_dump(mode="json")
+
+
+def _event(name: str, data: dict) -> str:
+    return f"event: {name}\ndata: {json.dumps(data)}\n\n"
+
+
+async def _events(fit_id: int):
+    last = None
+    quiet = 0.0
+    while True:
+        job = await run_in_threadpool(_snapshot, fit_id)
+        if job is None:
+            yield _event("failed", {"id": fit_id, "state": "failed",
+                                    "message": "the fit was deleted"})
+            return
+        seen = (job["state"], job["progress"])
+        if seen != last:
+            last, quiet = seen, 0.0
+            yield _event("progress", {"id": fit_id, "state": job["state"],
+                                      "progress": job["progress"]})
+        if job["state"] in ("done", "failed"):
+            yield _event(job["state"], job)
+            return
+        await asyncio.sleep(EVENT_POLL_S)
+        quiet += EVENT_POLL_S
+        if quiet >= KEEP_ALIVE_S:
+            quiet = 0.0
+            yield ": keep-alive\n\n"
+
+
+@router.delete("/fits/{fit_id}", operation_id="deleteFit", status_code=status.HTTP_204_NO_CONTENT)
+def delete_fit(fit_id: int, session: SessionDep) -> Response:
+    """Delete a fit and its target; a fit still running stops at its next progress write."""
+    session.delete(get_fit_record(session, fit_id))
+    session.commit()
+    return Response(status_code=status.HTTP_204_NO_CONTENT)

@@ -1,0 +1,105 @@
+"""The bounded pool of worker processes that runs the fit jobs (``jobs.run_job``).
+
+One ``FitRunner`` per application, made in ``create_app`` and started and stopped by its
+lifespan. The pool (``settings.fit_workers`` processes, 1 by default) is a
+``ProcessPoolExecutor`` over spawned processes: a fork of the server would copy its event loop
+and threads. A worker is started at the first job and reads the assets once.
+
+The queue is the database: a job is a row in state ``queued`` and the executor is handed only
+its id. ``queue_full`` answers whether ``settings.fit_queue_limit`` jobs already wait (the API
+answers 503). At start, a job left ``running`` by a server that stopped (crashed or killed) is
+marked failed, and jobs left ``queued`` are handed to the pool again. At shutdown the waiting
+futures are cancelled (their rows stay ``queued`` for the next start) and a fit still running is
+stopped with its worker and marked failed.
+"""
+
+import logging
+import multiprocessing
+from concurrent.futures import Future, ProcessPoolExecutor
+
+from sqlalchemy import func, select, update
+from sqlalchemy.orm import Session
+
+from glasshead.fitting.jobs import run_job
+from glasshead.store.base import utc_now
+from glasshead.store.db import engine_for
+from glasshead.store.fit_jobs import FitJob
+
+log = logging.getLogger("glasshead.fits")
+
+STOPPED_MESSAGE = "the server stopped while this fit was running; upload it again"
+
+
+class FitRunner:
+    """Hands queued fit jobs to a pool of worker processes (see the module docstring)."""
+
+    def __init__(self, database_url: str, assets_dir, *, workers: int = 1, queue_limit: int = 8):
+        if workers < 1 or queue_limit < 1:
+            raise ValueError("a fit runner needs at least one worker and a queue of one")
+        self.database_url = database_url
+        self.assets_dir = str(assets_dir)
+        self.workers = workers
+        self.queue_limit = queue_limit
+        self._executor: ProcessPoolExecutor | None = None
+        self._futures: dict[int, Future] = {}
+        self._stopping = False
+
+    def start(self) -> None:
+        """Fail the jobs a stopped server left running; queue again those it left queued."""
+        with Session(engine_for(self.database_url)) as session:
+            session.execute(update(FitJob).where(FitJob.state == "running").values(
+                state="failed", message=STOPPED_MESSAGE, finished_at=utc_now(),
+                updated_at=utc_now()))
+            session.commit()
+            waiting = session.scalars(select(FitJob.id).where(FitJob.state == "queued")
+                                      .order_by(FitJob.id)).all()
+        for job_id in waiting:
+            self.submit(job_id)
+
+    def queue_full(self, session: Session) -> bool:
+        queued = session.scalar(select(func.count()).select_from(FitJob)
+                                .where(FitJob.state == "queued"))
+        return queued >= self.queue_limit
+
+    def submit(self, job_id: int) -> None:
+        if self._executor is None:
+            self._executor = ProcessPoolExecutor(
+                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn"))
+        future = self._executor.submit(run_job, self.database_url, self.assets_dir, job_id)
+        self._futures[job_id] = future
+        future.add_done_callback(lambda done, job_id=job_id: self._done(job_id, done))
+
+    def _done(self, job_id: int, future: Future) -> None:
+        self._futures.pop(job_id, None)
+        if future.cancelled():
+            return
+        error = future.exception()
+        if error is not None:  # the worker itself broke (killed, out of memory, ...)
+            log.error("fit job %s: worker failed: %r", job_id, error)
+            self._fail(job_id, STOPPED_MESSAGE if self._stopping
+                       else f"the worker process failed: {error.__class__.__name__}")
+
+    def _fail(self, job_id: int, message: str) -> None:
+        with Session(engine_for(self.database_url)) as session:
+            session.execute(update(FitJob).where(FitJob.id == job_id,
+                                                 FitJob.state.in_(("queued", "running")))
+                            .values(state="failed", message=message, finished_at=utc_now(),
+                                    updated_at=utc_now()))
+            session.commit()
+
+    def shutdown(self) -> None:
+        """Cancel what waits, stop what runs (its job is marked failed), end the workers."""
+        executor, self._executor = self._executor, None
+        if executor is None:
+            return
+        self._stopping = True
+        running = [job_id for job_id, future in list(self._futures.items())
+                   if not future.cancel()]
+        # A fit can run for minutes: its worker is stopped rather than waited for. The
+        # executor's process table is the only handle on its workers (Python < 3.14).
+        for process in list(getattr(executor, "_processes", {}).values()):
+            if process.is_alive():
+                process.terminate()
+        executor.shutdown(wait=True, cancel_futures=True)
+        for job_id in running:
+            self._fail(job_id, STOPPED_MESSAGE)
