@@ -23,6 +23,8 @@ MARGIN_MM = 6.0
 TITLE_PX, LEGEND_PX = 46, 30
 #: Length of the scale bar, mm.
 SCALE_BAR_MM = 10.0
+#: Narrowest picture, px: the legend's width.
+LEGEND_WIDTH_PX = 580
 COLOURS = {"observed": "#222222", "compared": "#1f5fbf", "fitted": "#c4452b",
            "start": "#888888", "error": "#2e8b57", "origin": "#8a4fb5"}
 
@@ -79,7 +81,7 @@ def svg_overlay(*, observed, compared, errors, origin, fitted, start=None, title
     every = np.vstack(drawn)
     low = every.min(axis=0) - MARGIN_MM
     high = every.max(axis=0) + MARGIN_MM
-    width = round(float(high[0] - low[0]) * PX_PER_MM)
+    width = max(round(float(high[0] - low[0]) * PX_PER_MM), LEGEND_WIDTH_PX)
     height = round(float(high[1] - low[1]) * PX_PER_MM) + TITLE_PX + LEGEND_PX
     # mm -> px: x' = (x - low_x) s, y' = TITLE_PX + (high_y - y) s.
     transform = (f"translate({-low[0] * PX_PER_MM:.3f} {TITLE_PX + high[1] * PX_PER_MM:.3f}) "
@@ -136,6 +138,6 @@ def svg_overlay(*, observed, compared, errors, origin, fitted, start=None, title
         out.append(f'<line x1="{x:.1f}" y1="{y - 4}" x2="{x + 18:.1f}" y2="{y - 4}" '
                    f'stroke="{COLOURS[key]}" stroke-width="2"{dash}/>')
         out.append(f'<text x="{x + 22:.1f}" y="{y}">{escape(text)}</text>')
-        x += 30 + 6.5 * len(text)
+        x += 30 + 6 * len(text)
     out.append("</svg>")
     return "\n".join(out) + "\n"

@@ -18,7 +18,7 @@ table { border-collapse: collapse; }
 th, td { border-bottom: 1px solid #ddd; padding: 4px 8px; text-align: left; vertical-align: top; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 tr.miss td.rms { color: #c4452b; font-weight: bold; }
-img { max-width: 560px; }
+img { width: 480px; height: auto; }
 """
 
 
