@@ -1,7 +1,9 @@
-"""The `glasshead` command: build the assets, serve the app."""
+"""The `glasshead` command: build the assets, fit the tongue to an observation, serve the app."""
 
 import argparse
+import json
 import sys
+import time
 from pathlib import Path
 
 from glasshead.geometry.meshio import MeshFormatError
@@ -30,6 +32,88 @@ def build(args):
     return 0
 
 
+class ProgressBar:
+    """A one-line text progress bar on a stream (stderr), redrawn at most every ``interval_s``:
+    the share of the evaluation budget spent, the evaluations and the best objective."""
+
+    def __init__(self, stream, width=30, interval_s=0.1):
+        self.stream, self.width, self.interval_s = stream, width, interval_s
+        self.last = 0.0
+        self.drawn = False
+        self.latest = None
+
+    def __call__(self, evaluations, best_error, fraction):
+        self.latest = (evaluations, best_error)
+        now = time.monotonic()
+        if now - self.last < self.interval_s and fraction < 1.0:
+            return
+        self.last = now
+        self.draw(evaluations, best_error, fraction)
+
+    def draw(self, evaluations, best_error, fraction):
+        filled = int(round(fraction * self.width))
+        bar = "#" * filled + "." * (self.width - filled)
+        self.stream.write(f"\rfitting [{bar}] {100 * fraction:5.1f} %  {evaluations:6d} "
+                          f"evaluations  best {best_error:.4g}")
+        self.stream.flush()
+        self.drawn = True
+
+    def close(self, finished=True):
+        """End the line; a finished fit is drawn full (it may stop before its budget)."""
+        if finished and self.latest is not None:
+            self.draw(*self.latest, 1.0)
+        if self.drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def fit(args):
+    from glasshead.fitting import jobs, uploads
+
+    settings = get_settings()
+    path = Path(args.file)
+    if not path.is_file():
+        print(f"glasshead fit: no such file: {path}", file=sys.stderr)
+        return 2
+    with path.open("rb") as handle:  # never more than the kind's limit and one byte
+        content = handle.read(uploads.MAX_BYTES[args.kind] + 1)
+    try:
+        observation = uploads.read_observation(args.kind, content, path.name, frame=args.frame)
+        inputs = jobs.load_inputs(settings.assets_dir)
+    except uploads.ObservationError as error:
+        print(f"glasshead fit: {path}: {error}", file=sys.stderr)
+        return 3
+    except FileNotFoundError as error:
+        print(f"glasshead fit: {error}", file=sys.stderr)
+        return 2
+    method = args.method or jobs.DEFAULT_METHOD[args.kind]
+    bar = ProgressBar(sys.stderr)
+    try:
+        result = jobs.fit_observation(inputs, args.kind, observation.points, method=method,
+                                      max_evals=args.max_evals, progress=bar, name=args.name or "")
+    except ValueError as error:
+        bar.close(finished=False)
+        print(f"glasshead fit: {path}: the fit failed: {error}", file=sys.stderr)
+        return 4
+    bar.close()
+    name = args.name or path.name
+    document = {"name": name, "kind": args.kind, "method": method, "source": observation.source,
+                **result}
+    if args.save:
+        document["id"] = jobs.save_fit(settings.database_url, observation, result, name=name,
+                                       method=method, max_evals=args.max_evals)
+        print(f"saved as fit {document['id']}", file=sys.stderr)
+    text = json.dumps(document, indent=1)
+    if args.out:
+        Path(args.out).write_text(text + "\n")
+    else:
+        print(text)
+    report = result["report"]
+    print(f"{args.kind} fit: RMS {report['rms_mm']:.3f} mm, {report['evaluations']} evaluations, "
+          f"{report['seconds']:.1f} s", file=sys.stderr)
+    return 0
+
+
 def serve(args):
     import uvicorn
 
@@ -48,6 +132,20 @@ def main(argv=None):
     build_parser.add_argument("--out", help="output directory (default: assets/build)")
     build_parser.add_argument("--force", action="store_true", help="rebuild everything")
     build_parser.set_defaults(handler=build)
+    fit_parser = commands.add_parser(
+        "fit", help="fit the tongue to a contour, a surface or EPG frames (docs/fits.md)")
+    fit_parser.add_argument("file", help="contour CSV, OBJ or PLY surface, or EPG recording")
+    fit_parser.add_argument("--kind", required=True, choices=("contour", "surface", "epg"))
+    fit_parser.add_argument("--method", choices=("bobyqa", "praxis", "sbplx"),
+                            help="the optimiser (default: bobyqa; sbplx for epg)")
+    fit_parser.add_argument("--name", help="the target's name (default: the file's)")
+    fit_parser.add_argument("--max-evals", type=int, help="cap on the fit's evaluations")
+    fit_parser.add_argument("--frame", type=int,
+                            help="epg: fit this frame (0-based) instead of the majority")
+    fit_parser.add_argument("--out", help="write the result JSON here (default: stdout)")
+    fit_parser.add_argument("--save", action="store_true",
+                            help="store the result in the database as a fitted target")
+    fit_parser.set_defaults(handler=fit)
     serve_parser = commands.add_parser("serve", help="serve the API and the web app")
     serve_parser.add_argument("--host", help="default: HOST or 127.0.0.1")
     serve_parser.add_argument("--port", type=int, help="default: PORT or 8000")

@@ -304,3 +304,26 @@ def _finish(session: Session, job_id: int, state: str, progress: dict, **values)
         .values(state=state, progress=progress, finished_at=now, updated_at=now, **values))
     session.commit()
     return state if changed.rowcount else "deleted"
+
+
+def save_fit(database_url: str, observation, result: dict, *, name: str, method: str,
+             max_evals: int | None = None) -> int:
+    """Store a fit made in this process (``glasshead fit --save``) as a finished job, so that it
+    lists with the API's fitted targets; returns its id. Brings the database up to date first."""
+    from glasshead.store.db import upgrade_to_head
+
+    engine = engine_for(database_url)
+    upgrade_to_head(engine)
+    now = utc_now()
+    report = result["report"]
+    job = FitJob(name=name, kind=observation.kind, method=method, state="done",
+                 progress={"evaluations": report["evaluations"], "best_error": None,
+                           "fraction": 1.0},
+                 source={**observation.source,
+                         "options": {} if max_evals is None else {"max_evals": max_evals}},
+                 params=result["params"], report=report, started_at=now, finished_at=now)
+    job.set_observation(observation.points)
+    with Session(engine, expire_on_commit=False) as session:
+        session.add(job)
+        session.commit()
+        return job.id
