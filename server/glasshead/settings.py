@@ -23,6 +23,8 @@ class Settings(BaseSettings):
     assets_dir: Path = REPO_ROOT / "assets" / "build"
     #: The built web app (`vite build web`).
     web_dist_dir: Path = REPO_ROOT / "web" / "dist"
+    #: Utterances made by POST /utterances (JSON and WAV, named by content hash); disposable.
+    speech_cache_dir: Path = REPO_ROOT / "assets" / "build" / "utterances"
     #: SQLAlchemy URL; SQLite by default, PostgreSQL in docker-compose.
     database_url: str = f"sqlite:///{REPO_ROOT / 'var' / 'glasshead.sqlite3'}"
     #: Worker processes that run fit jobs (POST /fits), and how many jobs may wait for them.

@@ -1,0 +1,158 @@
+"""POST /utterances: text, phonemes or timed phones -> timed phones, tracks, cues and audio.
+
+``POST /utterances/textgrid`` takes a Praat TextGrid upload as the file form of ``phones``;
+``GET /utterances/{id}/audio.wav`` serves an utterance's audio. The work is in
+``glasshead.speech.utterance`` (docs/speech.md); results are cached by a hash of the request and
+of the phoneme targets, and a cached answer is the stored JSON as it was written. The routes are
+plain functions, so the synthesis runs in the thread pool, off the event loop.
+"""
+
+from typing import Annotated, Literal
+
+from fastapi import APIRouter, File, Form, HTTPException, Response, UploadFile
+from fastapi.responses import FileResponse
+from pydantic import BaseModel, Field, model_validator
+
+from glasshead.api.deps import AssetsDep
+from glasshead.settings import get_settings
+from glasshead.speech import audio, utterance
+from glasshead.speech.espeak import EspeakUnavailableError
+from glasshead.speech.pronounce import MAX_TEXT_CHARS
+from glasshead.speech.textgrid import TextGridError, read_textgrid
+
+router = APIRouter(tags=["utterances"])
+
+#: Largest TextGrid accepted, bytes.
+MAX_TEXTGRID_BYTES = 1024 * 1024
+AudioKind = Literal["natural", "lowpass", "vocoded", "none", "articulatory"]
+Rate = Field(1.0, ge=0.5, le=2.0, description="speaking rate: 1 is espeak-ng's 175 words a "
+                                              "minute; timed phones are divided by it")
+
+
+class AudioOptions(BaseModel):
+    kind: AudioKind = Field("natural", description="natural (espeak-ng), lowpass (hearing "
+                            "loss), vocoded (cochlear implant), none, or articulatory "
+                            "(VocalTractLab)")
+    cutoff_hz: float = Field(audio.DEFAULT_CUTOFF_HZ, ge=audio.CUTOFF_RANGE_HZ[0],
+                             le=audio.CUTOFF_RANGE_HZ[1], description="lowpass: the cut-off")
+    channels: int = Field(audio.DEFAULT_CHANNELS, ge=audio.CHANNEL_RANGE[0],
+                          le=audio.CHANNEL_RANGE[1], description="vocoded: the channels")
+
+
+class PhoneIn(BaseModel):
+    symbol: str = Field(description="ARPAbet or IPA; sil (or empty) for silence")
+    start_s: float
+    end_s: float
+
+
+class UtteranceRequest(BaseModel):
+    """Exactly one of ``text``, ``phonemes`` and ``phones``."""
+
+    text: str | None = Field(None, min_length=1, max_length=MAX_TEXT_CHARS,
+                             description="English text")
+    phonemes: list[str] | str | None = Field(
+        None, description="IPA or ARPAbet symbols: a list, or one string separated by spaces")
+    phones: list[PhoneIn] | None = Field(None, description="phones with their own timings")
+    rate: float = Rate
+    audio: AudioOptions = Field(default_factory=AudioOptions)
+
+    @model_validator(mode="after")
+    def one_input(self):
+        given = [n for n in ("text", "phonemes", "phones") if getattr(self, n) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of text, phonemes and phones"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        if self.text is not None and not self.text.strip():
+            raise ValueError("text is empty")
+        return self
+
+
+class PhoneOut(BaseModel):
+    symbol: str = Field(description="ARPAbet without stress digit, or sil")
+    ipa: str | None
+    stress: int | None
+    word: str | None
+    start_s: float
+    end_s: float
+
+
+class WordOut(BaseModel):
+    text: str
+    source: str | None = Field(description="cmudict or espeak-ng")
+    start_s: float
+    end_s: float
+
+
+class Utterance(BaseModel):
+    id: str = Field(description="content hash of the request and the phoneme targets")
+    phones: list[PhoneOut]
+    words: list[WordOut]
+    duration_s: float
+    rate: float
+    rate_hz: float = Field(description="frames per second of the tracks and cues")
+    n_frames: int
+    tracks: dict[str, list[float]] = Field(description="every articulation parameter, "
+                                                       "frame i at t = i / rate_hz")
+    cues: dict[str, list[float]] = Field(description="voicing, nasal_airflow, frication; 0..1")
+    audio: dict
+    audio_url: str | None
+    voice: str | None = Field(description="what made the audio, e.g. espeak-ng en-us, "
+                                          "VocalTractLab JD3; null without audio")
+    warnings: list[str] = Field(description="e.g. the words that could not be pronounced")
+
+
+def _respond(request: dict, assets) -> Response:
+    entry = assets.entry("phoneme_targets")
+    try:
+        data = utterance.make(request, entry.value, entry.sha256, get_settings().speech_cache_dir)
+    except utterance.UtteranceInputError as exc:
+        raise HTTPException(status_code=422, detail=str(exc)) from None
+    except EspeakUnavailableError as exc:
+        raise HTTPException(status_code=503, detail=str(exc)) from None
+    return Response(content=data, media_type="application/json")
+
+
+@router.post("/utterances", operation_id="createUtterance", response_model=Utterance)
+def create_utterance(body: UtteranceRequest, assets: AssetsDep) -> Response:
+    """Speak text, phonemes (IPA or ARPAbet) or timed phones: the phones with their times, the
+    coarticulated tracks and cues, and the audio's URL."""
+    return _respond(body.model_dump(mode="json"), assets)
+
+
+@router.post("/utterances/textgrid", operation_id="createUtteranceFromTextGrid",
+             response_model=Utterance)
+def create_utterance_from_textgrid(
+    assets: AssetsDep,
+    file: Annotated[UploadFile, File(description="a Praat TextGrid; its first interval tier")],
+    rate: Annotated[float, Form(ge=0.5, le=2.0)] = 1.0,
+    audio_kind: Annotated[AudioKind, Form()] = "none",
+    cutoff_hz: Annotated[float, Form(ge=audio.CUTOFF_RANGE_HZ[0],
+                                     le=audio.CUTOFF_RANGE_HZ[1])] = audio.DEFAULT_CUTOFF_HZ,
+    channels: Annotated[int, Form(ge=audio.CHANNEL_RANGE[0],
+                                  le=audio.CHANNEL_RANGE[1])] = audio.DEFAULT_CHANNELS,
+) -> Response:
+    """The phones of a TextGrid's first interval tier (empty labels are silence), spoken as
+    ``POST /utterances`` speaks ``phones``."""
+    data = file.file.read(MAX_TEXTGRID_BYTES + 1)
+    if len(data) > MAX_TEXTGRID_BYTES:
+        raise HTTPException(status_code=413, detail=f"a TextGrid may be at most "
+                                                    f"{MAX_TEXTGRID_BYTES} bytes")
+    try:
+        phones = read_textgrid(data)
+    except TextGridError as exc:
+        raise HTTPException(status_code=422, detail=f"file: {exc}") from None
+    body = UtteranceRequest(phones=phones, rate=rate,
+                            audio={"kind": audio_kind, "cutoff_hz": cutoff_hz,
+                                   "channels": channels})
+    return _respond(body.model_dump(mode="json"), assets)
+
+
+@router.get("/utterances/{utterance_id}/audio.wav", operation_id="getUtteranceAudio",
+            response_class=FileResponse)
+def get_utterance_audio(utterance_id: str) -> FileResponse:
+    """The WAV of an utterance made before (16-bit mono)."""
+    path = utterance.wav_path(get_settings().speech_cache_dir, utterance_id)
+    if path is None:
+        raise HTTPException(status_code=404, detail=f"no audio for utterance {utterance_id!r}; "
+                                                    "POST /api/v1/utterances makes it")
+    return FileResponse(path, media_type="audio/wav")

@@ -1,0 +1,238 @@
+"""An utterance: text, phonemes or timed phones -> timed phones, audio and coarticulated tracks.
+
+The three inputs meet in one list of timed phones:
+
+- text: ``pronounce`` (CMUdict, espeak-ng), then one espeak-ng synthesis times the phones and
+  makes the audio;
+- phonemes (IPA or ARPAbet): the same synthesis of exactly those phones;
+- phones with ``start_s``/``end_s`` (a forced alignment, a TextGrid): taken as given, divided by
+  the rate; the espeak-ng voice, when asked for, is synthesised and stretched phone by phone onto
+  those times (``audio.retime``).
+
+The tracks and cues come from ``speech.coarticulation.coarticulate`` on the phones and the built
+phoneme targets. The result is cached in ``speech_cache_dir`` as ``<id>.json`` and ``<id>.wav``,
+where the id is a hash of the request's content, the targets' content hash and
+``FORMAT_VERSION``: the same request on the same targets is read back, not made again.
+"""
+
+import hashlib
+import json
+import os
+import re
+from pathlib import Path
+
+from glasshead.phonemes import UnknownPhonemeError, lookup
+from glasshead.speech import audio, espeak, vtl_voice
+from glasshead.speech.espeak_phones import PAUSE, VOWELS
+from glasshead.speech.pronounce import pronounce
+
+#: Bump when the response changes for the same request.
+FORMAT_VERSION = 1
+#: The tracks' frame rate, Hz.
+RATE_HZ = 100.0
+#: Phone times are compared with this tolerance, s (a TextGrid's boundaries are written rounded).
+TIME_TOLERANCE_S = 1e-6
+_PAUSE_SYMBOLS = {"sil", "sp", "spn", "_", ""}
+
+
+class UtteranceInputError(ValueError):
+    """The request cannot be spoken; the message names the problem (answered with 422)."""
+
+
+def request_id(request: dict, targets_sha256: str) -> str:
+    """The cache key: a hash of the request's content (keys sorted), the targets' hash and the
+    format version; 24 hex digits."""
+    canonical = json.dumps(request, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+    digest = hashlib.sha256(f"{FORMAT_VERSION}\0{targets_sha256}\0{canonical}".encode())
+    return digest.hexdigest()[:24]
+
+
+def cached(cache_dir: Path, utterance_id: str) -> bytes | None:
+    """The cached response's JSON bytes, or None."""
+    try:
+        return (cache_dir / f"{utterance_id}.json").read_bytes()
+    except FileNotFoundError:
+        return None
+
+
+def wav_path(cache_dir: Path, utterance_id: str) -> Path | None:
+    """The cached WAV of an utterance, or None (unknown id, or an utterance without audio)."""
+    if not re.fullmatch(r"[0-9a-f]{24}", utterance_id):
+        return None
+    path = cache_dir / f"{utterance_id}.wav"
+    return path if path.is_file() else None
+
+
+def _write_atomic(path: Path, data: bytes) -> None:
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    temporary.write_bytes(data)
+    os.replace(temporary, path)
+
+
+def parse_phonemes(phonemes: list[str] | str) -> list[tuple[str, int | None]]:
+    """Symbols (a list, or one string separated by spaces) in IPA or ARPAbet as (ARPAbet, stress);
+    an ARPAbet stress digit or an IPA stress mark (ˈ ˌ) is kept; "sil" is a pause."""
+    symbols = phonemes.split() if isinstance(phonemes, str) else list(phonemes)
+    if not symbols:
+        raise UtteranceInputError("phonemes: at least one phoneme is needed")
+    return [_parse_symbol(s, f"phonemes[{k}]") for k, s in enumerate(symbols)]
+
+
+def _parse_symbol(symbol, where: str) -> tuple[str, int | None]:
+    text = str(symbol).strip()
+    if text.lower() in _PAUSE_SYMBOLS:
+        return PAUSE, None
+    stress = None
+    if text[:1] in "ˈˌ":
+        stress, text = (1 if text[0] == "ˈ" else 2), text[1:]
+    text = text.replace("ː", "")
+    if text[-1:] in "012" and len(text) > 1:
+        stress = int(text[-1])
+    try:
+        phoneme = lookup(text)
+    except UnknownPhonemeError as exc:
+        raise UtteranceInputError(f"{where}: {exc}") from None
+    return phoneme.arpabet, (stress if phoneme.arpabet in VOWELS else None)
+
+
+def parse_phones(phones: list[dict], rate: float) -> list[dict]:
+    """Timed phones checked (known symbols; each starts before it ends, at or after 0 and after
+    the one before it ends) and their times divided by ``rate``."""
+    if not phones:
+        raise UtteranceInputError("phones: at least one phone is needed")
+    out, previous_end = [], 0.0
+    for k, phone in enumerate(phones):
+        symbol, stress = _parse_symbol(phone["symbol"], f"phones[{k}].symbol")
+        start, end = float(phone["start_s"]), float(phone["end_s"])
+        if start < -TIME_TOLERANCE_S:
+            raise UtteranceInputError(f"phones[{k}] ({phone['symbol']}) starts before 0 s")
+        if end <= start:
+            raise UtteranceInputError(f"phones[{k}] ({phone['symbol']}) runs backwards: it ends "
+                                      f"at {end} s, not after its start at {start} s")
+        if start < previous_end - TIME_TOLERANCE_S:
+            raise UtteranceInputError(f"phones[{k}] ({phone['symbol']}) starts at {start} s, "
+                                      f"overlapping the phone before, which ends at "
+                                      f"{previous_end} s")
+        previous_end = end
+        out.append({"symbol": symbol, "stress": phone.get("stress", stress),
+                    "start_s": max(start, 0.0) / rate, "end_s": end / rate, "word": None})
+    return out
+
+
+def _coarticulate(phones: list[dict], targets: dict) -> dict:
+    from glasshead.speech.coarticulation import coarticulate
+
+    return coarticulate(phones, targets, rate_hz=RATE_HZ)
+
+
+def _spoken(words, rate: float, word_names: list[str | None]) -> tuple[list[dict], object]:
+    """One espeak-ng synthesis of ``words``; the phones with stress and word attached."""
+    synthesis = espeak.get_engine().synthesize(words, rate)
+    flat = [(phone, w) for w, word in enumerate(words) for phone in word]
+    phones = []
+    for phone in synthesis.phones:
+        stress, w = (flat[phone["index"]][0][1], flat[phone["index"]][1]) if phone[
+            "index"] is not None else (None, None)
+        word = word_names[w] if w is not None else None
+        phones.append({"symbol": phone["symbol"], "stress": stress, "word": word,
+                       "word_index": w if word is not None else None,
+                       "start_s": phone["start_s"], "end_s": phone["end_s"]})
+    return phones, synthesis
+
+
+def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> bytes:
+    """The response's JSON bytes for a validated request (``text`` | ``phonemes`` | ``phones``,
+    ``rate``, ``audio``), from the cache or made and cached. UtteranceInputError for input
+    that cannot be spoken; espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
+    utterance_id = request_id(request, targets_sha256)
+    hit = cached(cache_dir, utterance_id)
+    if hit is not None:
+        return hit
+    rate, options = request["rate"], request["audio"]
+    kind = options["kind"]
+    warnings, word_names = [], []
+    synthesis = None
+    if request.get("text") is not None:
+        engine = espeak.get_engine()
+        said = pronounce(request["text"], engine)
+        warnings = [f"could not pronounce {w!r}: neither CMUdict nor espeak-ng knows it; "
+                    "the rest is spoken" for w in said.unpronounceable]
+        if not said.words:
+            raise UtteranceInputError("text: no word in it can be pronounced"
+                                      + (f" ({', '.join(said.unpronounceable)})"
+                                         if said.unpronounceable else ""))
+        word_names = [None if w.text == PAUSE else w.text for w in said.items]
+        phones, synthesis = _spoken([w.phones for w in said.items], rate, word_names)
+        sources = {w.text: w.source for w in said.words}
+    elif request.get("phonemes") is not None:
+        parsed = parse_phonemes(request["phonemes"])
+        phones, synthesis = _spoken([parsed], rate, [None])
+        sources = {}
+    else:
+        phones = parse_phones(request["phones"], rate)
+        sources = {}
+        if kind in ("natural", "lowpass", "vocoded"):
+            synthesis = espeak.get_engine().synthesize(
+                [[(p["symbol"], p["stress"])] for p in phones], 1.0)
+            inner = [p for p in synthesis.phones if p["index"] is not None]
+            bounds_from = [inner[0]["start_s"]] + [p["end_s"] for p in inner]
+            bounds_to = [phones[0]["start_s"]] + [p["end_s"] for p in phones]
+            synthesis.samples = audio.retime(synthesis.samples, synthesis.sample_rate,
+                                             bounds_from, bounds_to)
+
+    result = _coarticulate([{k: p[k] for k in ("symbol", "stress", "start_s", "end_s")}
+                            for p in phones], targets)
+    voice, audio_url = None, None
+    if kind == "articulatory":
+        samples, sample_rate = vtl_voice.synthesize(phones)
+        voice = vtl_voice.VOICE
+    elif kind != "none":
+        seed = int(utterance_id[:8], 16)
+        samples = audio.degrade(synthesis.samples, synthesis.sample_rate, kind,
+                                cutoff_hz=options.get("cutoff_hz"),
+                                channels=options.get("channels"), seed=seed)
+        sample_rate = synthesis.sample_rate
+        voice = f"espeak-ng {espeak.VOICE}"
+    cache_dir.mkdir(parents=True, exist_ok=True)
+    if voice is not None:
+        wav = cache_dir / f"{utterance_id}.wav"
+        audio.write_wav(wav.with_name(f".{wav.name}.{os.getpid()}.tmp"), samples, sample_rate)
+        os.replace(wav.with_name(f".{wav.name}.{os.getpid()}.tmp"), wav)
+        audio_url = f"/api/v1/utterances/{utterance_id}/audio.wav"
+
+    response = {
+        "id": utterance_id,
+        "phones": [{"symbol": p["symbol"],
+                    "ipa": None if p["symbol"] == PAUSE else lookup(p["symbol"]).ipa,
+                    "stress": p["stress"], "word": p["word"], "start_s": p["start_s"],
+                    "end_s": p["end_s"]} for p in phones],
+        "words": _words(phones, sources),
+        "duration_s": phones[-1]["end_s"],
+        "rate": rate,
+        "rate_hz": result["rate_hz"],
+        "n_frames": result["n_frames"],
+        "tracks": result["tracks"],
+        "cues": result["cues"],
+        "audio": {**options, "kind": kind},
+        "audio_url": audio_url,
+        "voice": voice,
+        "warnings": warnings,
+    }
+    data = json.dumps(response, separators=(",", ":")).encode()
+    _write_atomic(cache_dir / f"{utterance_id}.json", data)
+    return data
+
+
+def _words(phones: list[dict], sources: dict) -> list[dict]:
+    """The words in order with their time span and the source of their pronunciation."""
+    words: list[dict] = []
+    previous = None
+    for phone in phones:
+        index = phone.get("word_index")
+        if index is not None and index == previous:
+            words[-1]["end_s"] = phone["end_s"]
+        elif index is not None:
+            words.append({"text": phone["word"], "source": sources.get(phone["word"]),
+                          "start_s": phone["start_s"], "end_s": phone["end_s"]})
+        previous = index
+    return words
