@@ -33,6 +33,7 @@ const ROUTES = {
 	'GET poses?limit=1000': () => [ 200, { poses: [ { id: 3, name: 'alveolar stop' } ] } ],
 	'GET poses/3': () => [ 200, { id: 3, name: 'alveolar stop', params: { tip_height: 6 } } ],
 	'POST epg/contacts': () => [ 200, { rows: FRONT } ],
+	'GET fits?state=done&limit=1000': () => [ 200, { total: 1, fits: [ { id: 12, name: 'my /t/', kind: 'epg', state: 'done', report: { rms_mm: 1.2 } } ] } ],
 	'GET phonemes': () => [ 200, { format_version: 1, count: 1, phonemes: [ { arpabet: 'T', ipa: 't', kind: 'consonant', examples: [ 'tie', 'cat' ], source: { kind: 'fit', shapes: [ 'tt-alveolar-closure(a)' ], rms_mm: 0.9 } } ] } ],
 	'GET phonemes/T': () => [ 200, { arpabet: 'T', ipa: 't', kind: 'consonant', examples: [ 'tie', 'cat' ], params: { tip_height: 2, velum_opening: 0 }, epg: { rows: FRONT, indices: {} } } ],
 	'GET epg/recordings/7': () => [ 200, { id: 7, name: 'tata', n_frames: 2, frame_rate_hz: 100, t_s: [ 0.5, 0.51 ], frames: [ EMPTY, FRONT ] } ],
@@ -47,6 +48,7 @@ test( 'the choices list the recordings and each source\'s targets by name', asyn
 	assert.deepEqual( choices.groups, [
 		{ title: 'Saved poses', targets: [ { value: 'pose:3', label: 'alveolar stop' } ] },
 		{ title: 'Phoneme targets', targets: [ { value: 'phoneme:T', label: '/t/ T as in "tie"' } ] },
+		{ title: 'Fitted targets', targets: [ { value: 'fit:12', label: 'my /t/' } ] },
 	] );
 	assert.equal( choices.empty, false );
 	assert.equal( recordingLabel( { name: 'x', n_frames: 1 } ), 'x (1 frames)' );

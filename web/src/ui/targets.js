@@ -1,9 +1,9 @@
 // Where the clinician's targets come from. A target is what a client's EPG is compared with: today
-// a saved pose (a named parameter set from the workbench) or a phoneme's articulation target
-// (GET /phonemes), each shown as its synthetic EPG. The clinician view only ever talks to a
-// TargetSource:
+// a saved pose (a named parameter set from the workbench), a phoneme's articulation target
+// (GET /phonemes) or a target fitted to an author's own data (GET /fits), each shown as its
+// synthetic EPG. The clinician view only ever talks to a TargetSource:
 //
-//   kind                   short name used in ids ('pose', 'phoneme')
+//   kind                   short name used in ids ('pose', 'phoneme', 'fit')
 //   title                  what the chooser calls the group ('Saved poses', 'Phoneme targets')
 //   list()                 -> Promise<[{ id, label, description }]>, id unique within the source
 //   frames( id )           -> Promise<{ label, rows: string[][], t_s: number[] | null,
@@ -103,10 +103,60 @@ export class PhonemeTargets {
 
 }
 
+/** How a fitted target is described: what it was fitted to and how closely. */
+export function fitDescription( fit ) {
+
+	const report = fit.report ?? {};
+	const rms = Number.isFinite( report.rms_mm ) ? `, RMS ${ report.rms_mm.toFixed( 2 ) } mm` : '';
+	const agreement = Number.isFinite( report.agreement ) ? `, EPG agreement ${ Math.round( 100 * report.agreement ) } %` : '';
+	return `${ fit.kind } fit${ rms }${ agreement }`;
+
+}
+
+/**
+ * Targets authors fitted to their own measurements (POST /fits, docs/fits.md): the finished fits
+ * (GET /fits?state=done), each one static frame, its synthetic EPG from POST /epg/contacts with the
+ * fit's params, as a saved pose's. Ids are the fits' ids ('fit:12').
+ */
+export class FittedTargets {
+
+	/** @param {{ api?: object }} options the HTTP client the fits are read through */
+	constructor( { api = pageApi } = {} ) {
+
+		this.kind = 'fit';
+		this.title = 'Fitted targets';
+		this.api = api;
+
+	}
+
+	async list() {
+
+		const body = await this.api.get( 'fits?state=done&limit=1000' );
+		return body.fits.map( ( fit ) => ( { id: String( fit.id ), label: fit.name, description: fitDescription( fit ) } ) );
+
+	}
+
+	async frames( id ) {
+
+		const fit = await this.api.get( `fits/${ encodeURIComponent( id ) }` );
+		if ( fit.state !== 'done' ) throw new Error( `fit ${ fit.id } is ${ fit.state }: it has no target yet` );
+		const epg = await this.api.post( 'epg/contacts', { params: fit.params } );
+		return {
+			label: fit.name,
+			rows: [ epg.rows ],
+			t_s: null,
+			params: fit.params,
+			reference: { label: fit.name, frames: [ epg.rows ] },
+		};
+
+	}
+
+}
+
 /** Every source of targets, in the order the chooser lists them. */
 export function targetSources( options ) {
 
-	return [ new SavedPoseTargets( options ), new PhonemeTargets( options ) ];
+	return [ new SavedPoseTargets( options ), new PhonemeTargets( options ), new FittedTargets( options ) ];
 
 }
 
