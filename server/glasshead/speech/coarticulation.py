@@ -106,6 +106,13 @@ def parameter_names(targets: dict) -> list[str]:
     return [*groups["tongue"], *groups["lips"], *groups["velum"]]
 
 
+def parameter_groups(names: list[str], targets: dict) -> np.ndarray:
+    """(n_params,) int: each parameter's index in ``dominance.GROUPS``."""
+    velum = tuple(targets["parameters"]["velum"])
+    return np.array([dominance.GROUPS.index(dominance.parameter_group(n, velum))
+                     for n in names])
+
+
 def vowel_context(symbol: str) -> str:
     """The measured vowel context (/a i u/) a vowel stands nearest to: rounded vowels /u/;
     front vowels from close-mid up (IY IH EY) /i/; every other vowel /a/."""
@@ -167,7 +174,7 @@ def target_matrix(symbols: list[str], targets: dict, names: list[str]) -> np.nda
     return np.asarray(rows, dtype=np.float64)
 
 
-def _dominance_arrays(symbols: list[str], constants: dict):
+def dominance_arrays(symbols: list[str], constants: dict):
     """alpha (n_phones, n_groups), theta_anticipation and theta_carryover (n_phones,)."""
     classes = constants["classes"]
     alpha = np.empty((len(symbols), len(dominance.GROUPS)))
@@ -190,6 +197,23 @@ def decay(centres: np.ndarray, times: np.ndarray, before: np.ndarray, after: np.
     tau = times[None, :] - centres[:, None]
     theta = np.where(tau < 0, before[:, None], after[:, None])
     return theta * np.abs(tau) ** c
+
+
+def blend(values: np.ndarray, alpha: np.ndarray, groups: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """(n_params, n_frames): the dominance-weighted average of the targets ``values``
+    (n_phones, n_params), with ``alpha`` (n_phones, n_groups), each parameter's group ``groups``
+    (n_params,) and ``e`` = ``decay`` (n_phones, n_frames). The weights are taken relative to
+    each frame's least decayed segment (every factor <= 1, one of them 1), which leaves the
+    ratio unchanged and keeps frames far from every centre from underflowing to 0 / 0."""
+    shape = np.exp(-(e - e.min(axis=0)))
+    tracks = np.empty((values.shape[1], e.shape[1]))
+    for g in range(alpha.shape[1]):
+        members = np.flatnonzero(groups == g)
+        if not len(members):
+            continue
+        weights = alpha[:, g, None] * shape  # (n_phones, n_frames)
+        tracks[members] = (values[:, members].T @ weights) / weights.sum(axis=0)
+    return tracks
 
 
 def _cue_values(symbols: list[str]) -> np.ndarray:
@@ -272,20 +296,11 @@ def coarticulate_arrays(phones: list[dict], targets: dict, *, rate_hz: float = 1
 
     names = parameter_names(targets)
     values = target_matrix(symbols, targets, names)
-    alpha, before, after = _dominance_arrays(symbols, constants)
-    groups = np.array([dominance.GROUPS.index(dominance.parameter_group(
-        n, tuple(targets["parameters"]["velum"]))) for n in names])
+    alpha, before, after = dominance_arrays(symbols, constants)
+    groups = parameter_groups(names, targets)
 
     e = decay(0.5 * (starts + ends), times, before, after, float(constants["c"]))
-    # Relative to each frame's least decayed segment: every weight <= 1, one of them is 1.
-    shape = np.exp(-(e - e.min(axis=0)))
-    tracks = np.empty((len(names), n_frames))
-    for g in range(len(dominance.GROUPS)):
-        members = np.flatnonzero(groups == g)
-        if not len(members):
-            continue
-        weights = alpha[:, g, None] * shape  # (n_phones, n_frames)
-        tracks[members] = (values[:, members].T @ weights) / weights.sum(axis=0)
+    tracks = blend(values, alpha, groups, e)
     out = {"rate_hz": float(rate_hz), "n_frames": n_frames, "duration_s": duration,
            "names": names, "groups": groups, "tracks": tracks, "times": times,
            "cues": cue_tracks(starts, ends, _cue_values(symbols), times)}
