@@ -1,0 +1,68 @@
+"""One espeak-ng synthesis through libespeak-ng: real audio, and the phones timed by its events."""
+
+import numpy as np
+import pytest
+
+from glasshead.speech.espeak import align_events, get_engine
+
+#: How far the last phone's end may lie from the audio's end, s.
+COVER_TOLERANCE_S = 0.001
+
+STEW_KEY = [[("S", None), ("T", None), ("UW", 1)], [("sil", None)], [("K", None), ("IY", 1)]]
+
+
+@pytest.fixture(scope="module")
+def stew_key():
+    return get_engine().synthesize(STEW_KEY, 1.0)
+
+
+def test_the_phones_timed_are_exactly_the_phones_asked_for(stew_key):
+    assert [p["symbol"] for p in stew_key.phones] == ["S", "T", "UW", "sil", "K", "IY"]
+    assert [p["index"] for p in stew_key.phones] == [0, 1, 2, 3, 4, 5]
+    assert stew_key.samples.dtype == np.int16 and stew_key.sample_rate == 22050
+
+
+def test_phone_times_increase_and_cover_the_audio(stew_key):
+    phones = stew_key.phones
+    assert phones[0]["start_s"] == 0.0
+    for before, after in zip(phones, phones[1:], strict=False):
+        assert before["start_s"] < before["end_s"] == after["start_s"]
+    assert abs(phones[-1]["end_s"] - stew_key.duration_s) <= COVER_TOLERANCE_S
+    assert 0.4 < stew_key.duration_s < 1.5
+
+
+def _rms(synthesis, phone):
+    rate = synthesis.sample_rate
+    part = synthesis.samples[int(phone["start_s"] * rate):int(phone["end_s"] * rate)]
+    return float(np.sqrt(np.mean(part.astype(np.float64) ** 2)))
+
+
+def test_a_voiced_vowel_has_far_more_energy_than_the_pause(stew_key):
+    by_symbol = {p["symbol"]: p for p in stew_key.phones}
+    vowel, pause = _rms(stew_key, by_symbol["UW"]), _rms(stew_key, by_symbol["sil"])
+    assert vowel > 1000.0
+    assert vowel > 20 * pause
+
+
+def test_a_faster_rate_speaks_the_same_phones_in_less_time(stew_key):
+    fast = get_engine().synthesize(STEW_KEY, 2.0)
+    assert [p["symbol"] for p in fast.phones] == [p["symbol"] for p in stew_key.phones]
+    assert fast.duration_s < 0.75 * stew_key.duration_s
+
+
+def test_events_espeak_changed_are_aligned_back_to_the_request():
+    # A flap (t#) for /t/, a marker (;) espeak-ng inserted and a trailing pause it added.
+    events = [(0, "b"), (100, "V"), (300, "t#"), (350, ";"), (360, "3"), (500, "_:"),
+              (600, "_")]
+    phones = align_events(["B", "AH", "T", "ER"], events, 600, 1000)
+    assert [(p["symbol"], p["start_s"], p["end_s"]) for p in phones] == [
+        ("B", 0.0, 0.1), ("AH", 0.1, 0.3), ("T", 0.3, 0.36), ("ER", 0.36, 0.5),
+        ("sil", 0.5, 0.6)]
+    assert phones[-1]["index"] is None
+
+
+def test_a_phone_espeak_dropped_shares_the_time_of_the_one_before():
+    events = [(0, "s"), (100, "u:"), (300, "_")]
+    phones = align_events(["S", "T", "UW"], events, 300, 1000)
+    assert [(p["symbol"], p["start_s"], p["end_s"]) for p in phones] == [
+        ("S", 0.0, 0.05), ("T", 0.05, 0.1), ("UW", 0.1, 0.3)]
