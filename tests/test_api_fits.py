@@ -132,7 +132,7 @@ def test_real_epg_frames_fit_to_their_majority_with_the_agreement_reported(clien
     assert done["state"] == "done", done["message"]
     report = done["report"]
     assert len(report["wanted_rows"]) == 8 and len(report["rows"]) == 8
-    # Measured: 0.87 in 600 subplex evaluations; the rest tongue (no contact) agrees on 0.81.
+    # Measured: 0.87 in 600 subplex evaluations; the rest tongue (no contact) agrees on 0.74.
     assert report["agreement"] >= 0.84
     assert report["epg_error_mm"] < 0.5 and abs(report["volume_change_pct"]) < 5.0
 
