@@ -69,6 +69,10 @@ describe( 'the cutaway shows air and the velum', { timeout: 300_000 }, () => {
 			const brain = rgb( cranial.brainColor );
 			assert.ok( distance( inside, brain ) < 12, `pixel ${ inside } in the cranial cavity at ${ cranial.point } is not the brain colour ${ brain }` );
 			assert.ok( distance( inside, tissue ) > 40 && distance( inside, rgb( cranial.boneColor ) ) > 40, `pixel ${ inside } in the cranial cavity looks like tissue or bone` );
+			// The kept eye lies behind the section, in its socket: its centre shows the cut tissue.
+			const kept = state.eyes.centres.find( ( eye ) => eye.point[ 2 ] > 0 );
+			const atEye = await pixel( page, kept.x, kept.y );
+			assert.ok( distance( atEye, tissue ) < 25, `pixel ${ atEye } over the eyeball at ${ kept.point } is not the cut tissue ${ tissue }` );
 			await saveScreenshot( page, `cutaway-air-${ device }` );
 			assert.deepEqual( page.problems, [] );
 			await page.context().close();

@@ -7,18 +7,22 @@
 // look straight ahead and do not blink. Between blinks, with a still camera, the hook reports no
 // change, so a still head draws nothing.
 
-import { BufferAttribute, BufferGeometry, DoubleSide, Mesh, SphereGeometry, Vector3 } from 'three';
+import { Box3, BufferAttribute, BufferGeometry, DoubleSide, Mesh, MeshStandardMaterial, Quaternion, SphereGeometry, Vector3 } from 'three';
 import { domePatch } from '../core/openings.js';
 import { approachAngle, blinkClosure, EYE_MOTION, eyeballPlacement, gazeBasis, gazeToward, lidPositions, nextBlinkDelay, restClosure } from '../core/eyes.js';
-import { createEyeballMaterial, createLidMaterial } from './eyeMaterials.js';
+import { createEyeballMaterial, createLidMaterial, EYE_COLORS } from './eyeMaterials.js';
+import { addSectionShading, TISSUE_COLORS } from './materials.js';
 
 const Z = new Vector3( 0, 0, 1 );
+const Y = new Vector3( 0, 1, 0 );
+/** mm between the eyeball and the socket that holds it. */
+const SOCKET_GAP_MM = 0.4;
 const RAD = Math.PI / 180;
 
 /**
  * The eyeball and the upper lid of one eye opening (`loop` of `positions`, frame from loopFrame),
  * given the height `bulge` (mm) of the dome that closes the opening behind them. `materials`
- * caches the shared materials across both eyes. Returns [eyeball, lid].
+ * caches the shared materials across both eyes. Returns [eyeball, lid, socket].
  */
 export function buildEyeMeshes( positions, loop, frame, bulge, materials ) {
 
@@ -66,7 +70,51 @@ export function buildEyeMeshes( positions, loop, frame, bulge, materials ) {
 	lid.userData.eye = { role: 'lid', rest: restClosure( top, bottom ) };
 	materials.lid.userData.lid.rest.value = lid.userData.eye.rest;
 	materials.lid.side = DoubleSide;
-	return [ ball, lid ];
+	materials.socket ??= addSectionShading( new MeshStandardMaterial( { color: EYE_COLORS.sclera, roughness: 0.4, side: DoubleSide } ), { sectionColor: TISSUE_COLORS.skinCut } );
+	return [ ball, lid, socketMesh( eyeball, frame.normal, materials.socket ) ];
+
+}
+
+/**
+ * The orbit's soft tissue round the back of the eyeball: a sphere cap just outside the eyeball,
+ * from the back pole to the plane of the opening's rim (which lies on the eyeball). The head is
+ * hollow, so without it the eyeball would be seen from inside, through the cutaway's section,
+ * floating in the forehead. Its faces point at the eyeball, as the tissue's surface does, so that
+ * from inside the head it is drawn in the cut tissue's colour, like the skin's own inside; seen
+ * from outside, past the eyeball's rim, it is sclera, as the dome closing the opening is.
+ */
+function socketMesh( eyeball, normal, material ) {
+
+	const radius = eyeball.radius + SOCKET_GAP_MM;
+	// From the back pole (theta = 0, along -normal) to the rim plane, `depth` in front of the centre.
+	const rimTheta = Math.acos( Math.max( - 1, Math.min( 1, - eyeball.depth / radius ) ) );
+	const geometry = new SphereGeometry( radius, 40, 20, 0, 2 * Math.PI, 0, rimTheta );
+	flipFaces( geometry );
+	const back = new Vector3().fromArray( normal ).negate().normalize();
+	geometry.applyQuaternion( new Quaternion().setFromUnitVectors( Y, back ) );
+	const socket = new Mesh( geometry, material );
+	socket.name = 'eye-socket';
+	socket.position.fromArray( eyeball.centre );
+	socket.userData.opening = 'eye';
+	socket.userData.eye = { role: 'socket' };
+	return socket;
+
+}
+
+/** Turn a geometry inside out: reversed winding and normals. */
+function flipFaces( geometry ) {
+
+	const index = geometry.index.array;
+	for ( let t = 0; t < index.length; t += 3 ) {
+
+		const a = index[ t + 1 ];
+		index[ t + 1 ] = index[ t + 2 ];
+		index[ t + 2 ] = a;
+
+	}
+
+	const normals = geometry.getAttribute( 'normal' ).array;
+	for ( let i = 0; i < normals.length; i ++ ) normals[ i ] = - normals[ i ];
 
 }
 
@@ -207,6 +255,13 @@ export class EyeMotion {
 			count: this.balls.length,
 			gaze: [ Math.round( this.gaze[ 0 ] * 10 ) / 10, Math.round( this.gaze[ 1 ] * 10 ) / 10 ],
 			blinking: this.blinkAge >= 0,
+			// Where each eyeball's centre falls on the canvas (CSS pixels), for tests that look there.
+			centres: this.balls.map( ( ball ) => {
+
+				const rect = this.viewer.screenRect?.( new Box3().setFromCenterAndSize( ball.getWorldPosition( new Vector3() ), new Vector3() ) );
+				return { point: ball.userData.eye.centre.map( ( c ) => Math.round( c * 10 ) / 10 ), x: rect?.x ?? null, y: rect?.y ?? null };
+
+			} ),
 		};
 
 	}
