@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from glasshead.fitting import fit2d
+from glasshead.fitting import fit2d, fit_contact
 from glasshead.fitting.fit2d import (
     LIMIT_FRACTION,
     NEUTRAL_WEIGHT,
@@ -63,7 +63,7 @@ from glasshead.fitting.optimizer import minimize
 from glasshead.geometry.tongue_surface import TongueRig
 
 CORONAL_PREFIX = "tongue coronal"
-MAX_EVALS = 3000
+MAX_EVALS = 2500
 #: Fewest kept vertices a surface needs: fewer cannot determine 31 parameters.
 MIN_RAYS = 40
 #: Kept vertices beyond this are thinned to an evenly spread subset for the fit.
@@ -71,18 +71,27 @@ MAX_RAYS = 1000
 #: Stopping tests: 1e-5 mm^2 of objective (0.005 mm of RMS near 1 mm), 1e-3 mm of parameter.
 FTOL_ABS = 1e-5
 XTOL_ABS = 1e-3
+#: Restarts of the method from its best point, while one gains more than RESTART_GAIN of the
+#: objective.
+RESTARTS = 2
+#: The method's first step, as a fraction of each variable's range.
+STEP_FRACTION = 0.1
+RESTART_GAIN = 0.01
 #: VTL's tongue sheet: ribs from root to tip, points across each rib.
 VTL_RIBS, VTL_POINTS = 37, 11
 
 
 @dataclass
 class FitReport3D(FitReport):
-    """A 3D fit's report: fit2d's fields, plus the RMS at the start and the cost of the
-    mid-sagittal fit it started from (0 when it started elsewhere)."""
+    """A 3D fit's report: fit2d's fields (``seconds`` of wall time), the process CPU time of
+    the fit (the machine is shared: wall time varies with its load), the RMS at the start and
+    the cost of the mid-sagittal fit it started from (0 when it started elsewhere)."""
 
+    cpu_seconds: float = 0.0
     start_rms_mm: float = 0.0
     start_evaluations: int = 0
     start_seconds: float = 0.0
+    start_cpu_seconds: float = 0.0
 
 
 def coronal_parameters(rig: TongueRig) -> list[str]:
@@ -146,50 +155,64 @@ def spread_subset(count: int, limit: int = MAX_RAYS) -> np.ndarray:
 
 
 class Objective3D:
-    """The 3D objective over a subset of a rig's parameters (see the module docstring).
+    """The 3D objective over grouped free variables (see the module docstring).
 
-    observed (k, 3) mm with ``mask`` (k,) bool of the rays to compare; ``free`` the parameter
-    names the fit moves, every other one held at ``base`` (P,); ``__call__(x)`` (mm^2).
+    observed (k, 3) mm with ``mask`` (k,) bool of the rays to compare; ``groups`` (name, rig
+    parameters) of each free variable, the members of a group moved together; every other
+    parameter held at ``base`` (P,); ``__call__(x)`` (one value per group) in mm^2.
     """
 
-    def __init__(self, rig: TongueRig, observed, mask, free, *, base, origin,
+    def __init__(self, rig: TongueRig, observed, mask, groups, *, base, origin,
                  section: MidSagittalSection, volume_weight=VOLUME_WEIGHT,
                  neutral_weight=NEUTRAL_WEIGHT, volume_bound_pct=VOLUME_BOUND_PCT,
                  volume_bound_weight=VOLUME_BOUND_WEIGHT, max_rays=MAX_RAYS):
-        unknown = [name for name in free if name not in rig.parameters]
-        if unknown or not free:
-            raise ValueError(f"free parameters must be known rig parameters; got {list(free)}")
+        members = [m for _, ms in groups for m in ms]
+        unknown = [name for name in members if name not in rig.parameters]
+        if unknown or not groups:
+            raise ValueError(f"free parameters must be known rig parameters; got {unknown}")
         if volume_weight < 0 or neutral_weight < 0 or volume_bound_weight < 0:
             raise ValueError("the volume and neutral weights cannot be negative")
         self.rig = rig
         self.section = section
-        self.free = list(free)
-        self.index = np.array([rig.parameter_names.index(name) for name in self.free])
+        self.groups = [(name, list(ms)) for name, ms in groups]
+        self.names = [name for name, _ in self.groups]
+        self.members = np.array([rig.parameter_names.index(m) for m in members])
+        # x (one value per group) -> the members' values.
+        self.expand = np.zeros((len(members), len(groups)))
+        row = 0
+        for k, (_, ms) in enumerate(self.groups):
+            self.expand[row:row + len(ms), k] = 1.0
+            row += len(ms)
+        first = np.array([rig.parameter_names.index(ms[0]) for _, ms in self.groups])
+        # a group's range: where every member is within its own
+        inside = [self.members[self.expand[:, k] > 0] for k in range(len(self.groups))]
+        self.lower = np.array([rig.minimum[ks].max() for ks in inside])
+        self.upper = np.array([rig.maximum[ks].min() for ks in inside])
+        self.neutral = rig.neutral[first]
         self.base = np.array(base, dtype=np.float64)
-        self.lower, self.upper = rig.minimum[self.index], rig.maximum[self.index]
-        self.neutral = rig.neutral[self.index]
+        self.x0 = np.clip(self.base[first], self.lower, self.upper)
         kept = np.asarray(observed, dtype=np.float64)[mask]
-        self.kept = kept
         self.origin = np.asarray(origin, dtype=np.float64)
         rest = rig.vertices(self.base)
-        self.error = RayError3D(rig.triangles, rest, kept[spread_subset(len(kept), max_rays)],
-                                self.origin)
-        self.full_error = RayError3D(rig.triangles, rest, kept, self.origin)
+        self.rays = kept[spread_subset(len(kept), max_rays)]
+        self.error = RayError3D(rig.triangles, rest, self.rays, self.origin)
         self.volume_weight = float(volume_weight)
         self.neutral_weight = float(neutral_weight)
         self.volume_bound_pct = float(volume_bound_pct)
         self.volume_bound_weight = float(volume_bound_weight)
 
     def values(self, x) -> np.ndarray:
+        """All rig values (P,) for free values x (one per group)."""
         values = self.base.copy()
-        values[self.index] = x
+        values[self.members] = self.expand @ np.asarray(x, dtype=np.float64)
         return values
 
     def residuals(self, x) -> np.ndarray:
-        """(kept,) residuals, mm, over every kept ray."""
-        return self.full_error.residuals(self.rig.vertices(self.values(x)))
+        """(rays,) residuals, mm, of the rays compared (every kept vertex, or the subset)."""
+        return self.error.residuals(self.rig.vertices(self.values(x)))
 
     def volume_change(self, x, exact=True) -> float:
+        """Volume change from the rest volume, percent (``exact=False``: the coarse surface)."""
         rig, rest = (self.rig, self.section.rest_volume) if exact \
             else (self.section.volume_rig, self.section.coarse_rest_volume)
         return 100.0 * (rig.volume(self.values(x)) / rest - 1.0)
@@ -209,21 +232,33 @@ class Objective3D:
         return value
 
 
+def free_groups(rig: TongueRig, symmetric=False) -> list[tuple[str, list[str]]]:
+    """(name, rig parameters) of each free variable: the sagittal and coronal parameters one by
+    one, or with ``symmetric`` the coronal ones left and right alike (``fit_contact``'s groups:
+    width, groove depth and width, edge heights together, side bulge per section), the
+    asymmetries left at the base values."""
+    if symmetric:
+        return fit_contact.free_groups(rig, jaw=False)
+    return [(name, [name]) for name in surface_parameters(rig)]
+
+
 def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=None,
                 max_evals=MAX_EVALS, progress: Callable[[int, float], None] | None = None,
-                name="", free=None, section: MidSagittalSection | None = None,
-                volume_weight=VOLUME_WEIGHT, neutral_weight=NEUTRAL_WEIGHT,
-                volume_bound_pct=VOLUME_BOUND_PCT, volume_bound_weight=VOLUME_BOUND_WEIGHT,
-                max_rays=MAX_RAYS, ftol_abs=FTOL_ABS, xtol_abs=XTOL_ABS,
-                **options) -> FitReport3D:
+                name="", symmetric=False, groups=None,
+                section: MidSagittalSection | None = None, volume_weight=VOLUME_WEIGHT,
+                neutral_weight=NEUTRAL_WEIGHT, volume_bound_pct=VOLUME_BOUND_PCT,
+                volume_bound_weight=VOLUME_BOUND_WEIGHT, max_rays=MAX_RAYS,
+                restarts=RESTARTS, step_fraction=STEP_FRACTION, ftol_abs=FTOL_ABS,
+                xtol_abs=XTOL_ABS, **options) -> FitReport3D:
     """Fit the rig's surface to observed vertices (k, 3) float mm in the project frame.
 
     ``base`` (P,) values to start from, which also hold the parameters not fitted (default
-    neutral); ``free`` the names fitted (default: sagittal and coronal); ``mask`` (k,) bool of
-    the vertices to compare (default ``visible_mask``'s root cut); ``progress(evaluations,
-    best_error)`` after every evaluation; other keyword options go to ``optimizer.minimize``.
-    Raises ValueError for a malformed surface, a mask of the wrong shape, or fewer than MIN_RAYS
-    vertices left to compare.
+    neutral); the free variables are ``groups`` (name, parameters), default ``free_groups(rig,
+    symmetric)``; ``mask`` (k,) bool of the vertices to compare (default ``visible_mask``'s root
+    cut); ``progress(evaluations, best_error)`` after every evaluation (counted over the
+    restarts); other keyword options go to ``optimizer.minimize``. Raises ValueError for a
+    malformed surface or base, a mask of the wrong shape, or fewer than MIN_RAYS vertices left
+    to compare.
     """
     points = check_observed(observed)
     start = rig.neutral.copy() if base is None else np.array(base, dtype=np.float64)
@@ -241,26 +276,49 @@ def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=No
     if int(keep.sum()) < MIN_RAYS:
         raise ValueError(f"the mask leaves {int(keep.sum())} vertices to compare; at least "
                          f"{MIN_RAYS} are needed")
-    free = list(free) if free is not None else surface_parameters(rig)
-    objective = Objective3D(rig, points, keep, free, base=start, origin=origin,
-                            section=section or MidSagittalSection(rig),
+    objective = Objective3D(rig, points, keep, groups or free_groups(rig, symmetric),
+                            base=start, origin=origin, section=section or MidSagittalSection(rig),
                             volume_weight=volume_weight, neutral_weight=neutral_weight,
                             volume_bound_pct=volume_bound_pct,
                             volume_bound_weight=volume_bound_weight, max_rays=max_rays)
-    x0 = start[objective.index]
-    before = objective.residuals(x0)
-    result = minimize(objective, x0, objective.lower, objective.upper, method=method,
-                      max_evals=max_evals, progress=progress, ftol_abs=ftol_abs,
+    before = objective.residuals(objective.x0)
+    done = {"n": 0}
+
+    def counted(evaluations, best):
+        if progress is not None:
+            progress(done["n"] + evaluations, best)
+
+    options.setdefault("initial_step", step_fraction * (objective.upper - objective.lower))
+    started, cpu = time.perf_counter(), time.process_time()
+    result = minimize(objective, objective.x0, objective.lower, objective.upper, method=method,
+                      max_evals=max_evals, progress=counted, ftol_abs=ftol_abs,
                       xtol_abs=xtol_abs, **options)
+    done["n"] = result.evaluations
+    # BOBYQA's models go stale where rays slip from one triangle to the next: restart from
+    # the best point, with fresh models, while that still gains.
+    for _ in range(restarts):
+        left = max_evals - done["n"]
+        if left < 4 * len(result.x):
+            break
+        again = minimize(objective, result.x, objective.lower, objective.upper, method=method,
+                         max_evals=left, progress=counted, ftol_abs=ftol_abs,
+                         xtol_abs=xtol_abs, **options)
+        done["n"] += again.evaluations
+        gained = result.error - again.error
+        if again.error < result.error:
+            result = again
+        if gained <= RESTART_GAIN * abs(result.error):
+            break
+    seconds, cpu = time.perf_counter() - started, time.process_time() - cpu
     errors = objective.residuals(result.x)
     margin = LIMIT_FRACTION * (objective.upper - objective.lower)
     near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
     values = objective.values(result.x)
     return FitReport3D(
-        shape=name, method=method, evaluations=result.evaluations, seconds=result.seconds,
+        shape=name, method=method, evaluations=done["n"], seconds=seconds, cpu_seconds=cpu,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         volume_change_pct=objective.volume_change(result.x),
-        at_limit=[n for n, hit in zip(free, near, strict=True) if hit],
+        at_limit=[n for n, hit in zip(objective.names, near, strict=True) if hit],
         rays=len(errors), stop=result.stop,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)},
         start_rms_mm=float(np.sqrt(np.mean(before**2))))
@@ -271,29 +329,32 @@ def shape_vertices(shape) -> np.ndarray:
     return np.asarray(shape["tongue_surface_vertices"], dtype=np.float64)
 
 
-def fit_shape3d(rig: TongueRig, shape, *, method="bobyqa", from_2d=True,
+def fit_shape3d(rig: TongueRig, shape, *, method="bobyqa", from_2d=True, symmetric=True,
                 section: MidSagittalSection | None = None, **options) -> FitReport3D:
     """Fit one VTL shape record by its tongue sheet: jaw from VTL, from the mid-sagittal fit of
-    its outline when ``from_2d`` (else from neutral), rib-grid mask."""
+    its outline when ``from_2d`` (else from neutral), rib-grid mask; ``symmetric`` coronal
+    groups, since VTL builds its sheet from a half surface and its mirror."""
     section = section or MidSagittalSection(rig)
     base = rig.neutral.copy()
     base[rig.jaw_parameter] = jaw_opening_from_vtl(shape, rig)
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.process_time()
     start_evaluations = 0
     if from_2d:
         outline = fit2d.fit_outline(rig, shape["tongue_outline"], base=base, section=section,
                                     name=shape["name"])
         base = np.array([outline.params[n] for n in rig.parameter_names])
         start_evaluations = outline.evaluations
-    start_seconds = time.perf_counter() - started
+    start_seconds, start_cpu = time.perf_counter() - started, time.process_time() - cpu
     vertices = shape_vertices(shape)
     origin = np.append(rig.control_points(base)[1], 0.0)
     mask = visible_mask(vertices, origin, grid=(VTL_RIBS, VTL_POINTS)) \
         if len(vertices) == VTL_RIBS * VTL_POINTS else None
     report = fit_surface(rig, vertices, method=method, base=base, mask=mask,
-                         name=shape["name"], section=section, **options)
+                         name=shape["name"], section=section, symmetric=symmetric,
+                         **options)
     report.start_evaluations = start_evaluations
     report.start_seconds = start_seconds
+    report.start_cpu_seconds = start_cpu
     return report
 
 
