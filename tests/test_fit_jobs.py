@@ -1,14 +1,17 @@
-"""Fit jobs without the API: uploads read into observations, fits of each kind, and the worker's
-job (its row's states and progress) run in this process."""
+"""Fit jobs without the API: uploads read into observations, fits of each kind, the worker's job
+(its row's states and progress) run in this process, and the pool of workers stopped and
+started again."""
 
 import io
 import json
+import time
 
 import numpy as np
 import pytest
 from sqlalchemy.orm import Session
 
 from glasshead.fitting import fit3d, jobs, uploads
+from glasshead.fitting.job_runner import FitRunner
 from glasshead.store.db import engine_for, upgrade_to_head
 from glasshead.store.fit_jobs import FitJob
 
@@ -157,3 +160,49 @@ def test_progress_is_written_a_few_times_a_second_and_a_deleted_row_stops_the_fi
         writer.last = 0.0
         with pytest.raises(jobs.JobDeletedError):
             writer(2001, 0.5, 1.0)
+
+
+def _state(engine, job_id):
+    with Session(engine) as session:
+        job = session.get(FitJob, job_id)
+        return None if job is None else (job.state, job.progress, job.message)
+
+
+def _wait_running(engine, job_id, timeout_s=60.0):
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        state = _state(engine, job_id)
+        if state[0] == "running" and state[1].get("evaluations", 0) > 0:
+            return
+        time.sleep(0.1)
+    pytest.fail(f"job {job_id} did not start within {timeout_s} s: {_state(engine, job_id)}")
+
+
+def test_a_stop_fails_the_running_fit_keeps_the_queued_one_and_a_restart_runs_it(
+        engine, built_assets):
+    url, eng = engine
+    goal = np.stack([np.eye(8), np.ones((8, 8))])  # a diagonal: never met, the fit runs on
+    first, second = (_queue(eng, goal, kind="epg", max_evals=20000) for _ in range(2))
+    runner = FitRunner(url, built_assets)
+    runner.start()
+    try:
+        _wait_running(eng, first)
+    finally:
+        started = time.monotonic()
+        runner.shutdown()
+    assert time.monotonic() - started < 5.0  # the worker is stopped, not waited for
+    assert _state(eng, first)[0] == "failed" and "stopped" in _state(eng, first)[2]
+    assert _state(eng, second)[0] == "queued"
+    again = FitRunner(url, built_assets)
+    again.start()
+    try:
+        _wait_running(eng, second)
+        with Session(eng) as session:  # deleted while it runs: the fit stops
+            session.delete(session.get(FitJob, second))
+            session.commit()
+        deadline = time.monotonic() + 10.0
+        while again._futures and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not again._futures, "the deleted job's fit did not stop"
+    finally:
+        again.shutdown()

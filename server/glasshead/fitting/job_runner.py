@@ -15,7 +15,9 @@ stopped with its worker and marked failed.
 
 import logging
 import multiprocessing
+import threading
 from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 
 from sqlalchemy import func, select, update
 from sqlalchemy.orm import Session
@@ -27,6 +29,8 @@ from glasshead.store.fit_jobs import FitJob
 
 log = logging.getLogger("glasshead.fits")
 
+#: Times a job that never started is handed to a new pool after its pool broke.
+RESUBMITS = 2
 STOPPED_MESSAGE = "the server stopped while this fit was running; upload it again"
 
 
@@ -43,6 +47,8 @@ class FitRunner:
         self._executor: ProcessPoolExecutor | None = None
         self._futures: dict[int, Future] = {}
         self._stopping = False
+        self._lock = threading.RLock()
+        self._retries: dict[int, int] = {}
 
     def start(self) -> None:
         """Fail the jobs a stopped server left running; queue again those it left queued."""
@@ -62,11 +68,22 @@ class FitRunner:
         return queued >= self.queue_limit
 
     def submit(self, job_id: int) -> None:
-        if self._executor is None:
-            self._executor = ProcessPoolExecutor(
-                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn"))
-        future = self._executor.submit(run_job, self.database_url, self.assets_dir, job_id)
-        self._futures[job_id] = future
+        with self._lock:
+            if self._stopping:
+                return  # left queued for the next start
+            for _attempt in range(2):
+                if self._executor is None:
+                    self._executor = ProcessPoolExecutor(
+                        max_workers=self.workers,
+                        mp_context=multiprocessing.get_context("spawn"))
+                try:
+                    future = self._executor.submit(run_job, self.database_url, self.assets_dir,
+                                                   job_id)
+                    break
+                except BrokenProcessPool:  # a worker died: the pool takes no more work
+                    self._executor.shutdown(wait=False, cancel_futures=True)
+                    self._executor = None
+            self._futures[job_id] = future
         future.add_done_callback(lambda done, job_id=job_id: self._done(job_id, done))
 
     def _done(self, job_id: int, future: Future) -> None:
@@ -74,25 +91,36 @@ class FitRunner:
         if future.cancelled():
             return
         error = future.exception()
-        if error is not None:  # the worker itself broke (killed, out of memory, ...)
-            log.error("fit job %s: worker failed: %r", job_id, error)
-            self._fail(job_id, STOPPED_MESSAGE if self._stopping
-                       else f"the worker process failed: {error.__class__.__name__}")
-
-    def _fail(self, job_id: int, message: str) -> None:
+        if error is None:
+            return
+        # The worker itself broke (killed, out of memory, ...): the job it ran fails, and jobs
+        # the broken pool held that never started are handed to a new pool.
+        if self._stopping:
+            self._fail(job_id, STOPPED_MESSAGE, states=("running",))
+            return
         with Session(engine_for(self.database_url)) as session:
-            session.execute(update(FitJob).where(FitJob.id == job_id,
-                                                 FitJob.state.in_(("queued", "running")))
+            state = session.scalar(select(FitJob.state).where(FitJob.id == job_id))
+        self._retries[job_id] = self._retries.get(job_id, 0) + 1
+        if state == "queued" and self._retries[job_id] <= RESUBMITS:
+            self.submit(job_id)
+            return
+        log.error("fit job %s: worker failed: %r", job_id, error)
+        self._fail(job_id, f"the worker process failed: {error.__class__.__name__}")
+
+    def _fail(self, job_id: int, message: str, states=("queued", "running")) -> None:
+        with Session(engine_for(self.database_url)) as session:
+            session.execute(update(FitJob).where(FitJob.id == job_id, FitJob.state.in_(states))
                             .values(state="failed", message=message, finished_at=utc_now(),
                                     updated_at=utc_now()))
             session.commit()
 
     def shutdown(self) -> None:
         """Cancel what waits, stop what runs (its job is marked failed), end the workers."""
-        executor, self._executor = self._executor, None
+        with self._lock:
+            executor, self._executor = self._executor, None
+            self._stopping = True
         if executor is None:
             return
-        self._stopping = True
         running = [job_id for job_id, future in list(self._futures.items())
                    if not future.cancel()]
         # A fit can run for minutes: its worker is stopped rather than waited for. The
@@ -101,5 +129,5 @@ class FitRunner:
             if process.is_alive():
                 process.terminate()
         executor.shutdown(wait=True, cancel_futures=True)
-        for job_id in running:
-            self._fail(job_id, STOPPED_MESSAGE)
+        for job_id in running:  # those the pool had taken but not started stay queued
+            self._fail(job_id, STOPPED_MESSAGE, states=("running",))
