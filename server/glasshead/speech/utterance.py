@@ -11,8 +11,9 @@ The three inputs meet in one list of timed phones:
 
 The tracks and cues come from ``speech.coarticulation.coarticulate`` on the phones and the built
 phoneme targets. The result is cached in ``speech_cache_dir`` as ``<id>.json`` and ``<id>.wav``,
-where the id is a hash of the request's content, the targets' content hash and
-``FORMAT_VERSION``: the same request on the same targets is read back, not made again.
+where the id is a hash of the request's content, the targets' content hash, the coarticulation
+constants and ``FORMAT_VERSION``: the same request on the same targets and constants is read
+back, not made again.
 """
 
 import hashlib
@@ -40,10 +41,14 @@ class UtteranceInputError(ValueError):
 
 
 def request_id(request: dict, targets_sha256: str) -> str:
-    """The cache key: a hash of the request's content (keys sorted), the targets' hash and the
-    format version; 24 hex digits."""
+    """The cache key: a hash of the request's content (keys sorted), the targets' hash, the
+    coarticulation constants in use and the format version; 24 hex digits."""
+    from glasshead.speech.dominance import load_constants
+
     canonical = json.dumps(request, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
-    digest = hashlib.sha256(f"{FORMAT_VERSION}\0{targets_sha256}\0{canonical}".encode())
+    constants = json.dumps(load_constants(), sort_keys=True)
+    digest = hashlib.sha256(
+        f"{FORMAT_VERSION}\0{targets_sha256}\0{constants}\0{canonical}".encode())
     return digest.hexdigest()[:24]
 
 

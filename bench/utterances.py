@@ -1,0 +1,106 @@
+"""Benchmark: POST /api/v1/utterances for a ten-word sentence, cached against uncached, in the
+same run (the uncached request is the cached one's baseline).
+
+The requests go through the whole application in-process (FastAPI's test client, the built
+phoneme targets, a temporary cache directory). Uncached: the cache directory is emptied before
+each request, so each one pronounces, synthesises (espeak-ng), coarticulates and writes the JSON
+and WAV. Cached: the same request again, answered with the stored JSON. The first request of the
+process (CMUdict loaded, espeak-ng initialised) is printed apart. Also printed: the uncached
+request's parts, timed alone.
+
+    .venv/bin/python bench/utterances.py [uncached_runs] [cached_runs]
+"""
+
+import os
+import shutil
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+SENTENCE = "The quick brown fox jumps over the lazy dog today."
+CACHED_GOAL_MS = 50.0
+UNCACHED_GOAL_MS = 1000.0
+
+
+def timed(fn):
+    start = time.perf_counter()
+    out = fn()
+    return (time.perf_counter() - start) * 1e3, out
+
+
+def median_ms(fn, runs, before=None):
+    times = []
+    for _ in range(runs):
+        if before:
+            before()
+        times.append(timed(fn)[0])
+    return statistics.median(times)
+
+
+def main():
+    uncached_runs = int(sys.argv[1]) if len(sys.argv) > 1 else 15
+    cached_runs = int(sys.argv[2]) if len(sys.argv) > 2 else 200
+    if not (REPO / "assets" / "build" / "phoneme-targets.json").is_file():
+        sys.exit("assets/build/phoneme-targets.json is missing: run `glasshead build` first")
+    cache = Path(tempfile.mkdtemp(prefix="glasshead-bench-utterances-"))
+    os.environ["GLASSHEAD_SPEECH_CACHE_DIR"] = str(cache)
+    os.environ["GLASSHEAD_DATABASE_URL"] = f"sqlite:///{cache / 'bench.sqlite3'}"
+    from fastapi.testclient import TestClient
+
+    from glasshead.api.app import create_app
+    from glasshead.speech import coarticulation, espeak, pronounce
+    from glasshead.speech.utterance import RATE_HZ
+
+    body = {"text": SENTENCE}
+
+    def clear():
+        for path in cache.glob("*.json"):
+            path.unlink()
+        for path in cache.glob("*.wav"):
+            path.unlink()
+
+    try:
+        with TestClient(create_app()) as client:
+            def post():
+                response = client.post("/api/v1/utterances", json=body)
+                assert response.status_code == 200, response.text
+                return response
+
+            cold_ms, first = timed(post)
+            n_words = len(first.json()["words"])
+            uncached = median_ms(post, uncached_runs, before=clear)
+            post()
+            cached = median_ms(post, cached_runs)
+
+            engine = espeak.get_engine()
+            said = pronounce.pronounce(SENTENCE, engine)
+            pronounce_ms = median_ms(lambda: pronounce.pronounce(SENTENCE, engine),
+                                     uncached_runs)
+            words = [w.phones for w in said.items]
+            synth_ms = median_ms(lambda: engine.synthesize(words, 1.0), uncached_runs)
+            phones = [{k: p[k] for k in ("symbol", "stress", "start_s", "end_s")}
+                      for p in first.json()["phones"]]
+            targets = client.app.state.assets.get("phoneme_targets")
+            coart_ms = median_ms(lambda: coarticulation.coarticulate(phones, targets,
+                                                                     rate_hz=RATE_HZ),
+                                 uncached_runs)
+    finally:
+        shutil.rmtree(cache, ignore_errors=True)
+
+    print(f"POST /utterances, a {n_words}-word sentence ({len(first.content)} bytes of JSON, "
+          f"{first.json()['duration_s']:.2f} s of speech), medians:")
+    print(f"  cached   {cached:8.2f} ms   goal < {CACHED_GOAL_MS:.0f} ms: "
+          f"{'met' if cached < CACHED_GOAL_MS else 'MISSED'}   uncached / cached "
+          f"{uncached / cached:.1f}x")
+    print(f"  uncached {uncached:8.2f} ms   goal < {UNCACHED_GOAL_MS:.0f} ms: "
+          f"{'met' if uncached < UNCACHED_GOAL_MS else 'MISSED'}")
+    print(f"    pronounce {pronounce_ms:.2f} ms, espeak-ng synthesis {synth_ms:.2f} ms, "
+          f"coarticulation {coart_ms:.2f} ms")
+    print(f"  first request of the process (CMUdict loaded, espeak-ng started) {cold_ms:.0f} ms")
+
+
+if __name__ == "__main__":
+    main()
