@@ -180,12 +180,10 @@ def dominance_arrays(symbols: list[str], constants: dict):
     alpha = np.empty((len(symbols), len(dominance.GROUPS)))
     before = np.empty(len(symbols))
     after = np.empty(len(symbols))
-    velum = dominance.GROUPS.index("velum")
     for k, symbol in enumerate(symbols):
         entry = classes[dominance.phone_class(symbol)]
-        alpha[k] = [entry["alpha"][g] for g in dominance.GROUPS]
-        if symbol != dominance.SILENCE and phonemes.lookup(symbol).nasal:
-            alpha[k, velum] = constants["nasal_velum_alpha"]
+        alpha[k, :-1] = [entry["alpha"][g] for g in dominance.CLASS_GROUPS]
+        alpha[k, -1] = constants["velum_alpha"][dominance.velum_class(symbol)]
         before[k], after[k] = entry["theta_anticipation"], entry["theta_carryover"]
     return alpha, before, after
 

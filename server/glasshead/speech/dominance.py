@@ -1,7 +1,8 @@
 """The constants of Cohen and Massaro's (1993) coarticulation model: which dominance class each
 phone belongs to, which parameter group each articulation parameter belongs to, and per class
 and group the dominance magnitude alpha, the anticipation and carry-over rates theta, and the
-shared exponent c.
+shared exponent c. The velum's magnitude goes by a class of its own (``velum_class``: nasal,
+oral obstruent, sonorant, silence), since what the velum must do depends on manner, not place.
 
     D_sp(tau) = alpha_sp * exp(-theta_s * |tau|^c),   tau = t - centre of s, in seconds,
 
@@ -39,16 +40,22 @@ GROUPS = ("tongue_tip", "tongue_body", "jaw", "lip_rounding", "lip_closure", "ve
 CLASSES = ("silence", "vowel", "rounded_vowel", "bilabial", "labiodental", "coronal", "velar",
            "palatal", "labial_velar", "rhotic", "glottal")
 
+#: The groups whose magnitude goes by the phone's class (the velum's by ``VELUM_CLASSES``).
+CLASS_GROUPS = GROUPS[:-1]
+#: Velum classes (``velum_class``): nasals must lower the velum, oral obstruents must close it to
+#: build up pressure, vowels and approximants may be nasalised by a neighbour.
+VELUM_CLASSES = ("silence", "nasal", "obstruent", "sonorant")
+
 #: The tongue tip group: the sagittal tip and blade and the front coronal section; every other
 #: tongue parameter is the body's (dorsum, back dorsum, root, body, middle and back sections).
 _TIP_PREFIXES = ("tip_", "blade_", "front_")
 _LIP_ROUNDING = ("lip_rounding", "lip_protrusion")
 
 
-def _class(theta_anticipation, theta_carryover, tip, body, jaw, rounding, closure, velum):
+def _class(theta_anticipation, theta_carryover, tip, body, jaw, rounding, closure):
     return {"theta_anticipation": theta_anticipation, "theta_carryover": theta_carryover,
             "alpha": {"tongue_tip": tip, "tongue_body": body, "jaw": jaw,
-                      "lip_rounding": rounding, "lip_closure": closure, "velum": velum}}
+                      "lip_rounding": rounding, "lip_closure": closure}}
 
 
 #: Hand-set constants (the reasons are in docs/coarticulation.md). theta in 1/s^c.
@@ -57,21 +64,21 @@ DEFAULTS = {
     "header": "hand-set defaults of glasshead.speech.dominance (docs/coarticulation.md)",
     "c": 1.0,
     "classes": {
-        #                     theta: ant. carry  tip  body  jaw  round close velum
-        "silence": _class(15.0, 15.0, 0.05, 0.05, 0.05, 0.05, 0.05, 0.05),
-        "vowel": _class(12.0, 15.0, 0.3, 1.0, 0.8, 0.6, 0.5, 0.5),
-        "rounded_vowel": _class(8.0, 15.0, 0.3, 1.0, 0.8, 1.0, 0.6, 0.5),
-        "bilabial": _class(20.0, 25.0, 0.1, 0.1, 0.5, 0.1, 1.0, 0.8),
-        "labiodental": _class(20.0, 25.0, 0.1, 0.1, 0.6, 0.2, 1.0, 0.8),
-        "coronal": _class(20.0, 25.0, 1.0, 0.3, 0.6, 0.1, 0.2, 0.8),
-        "velar": _class(20.0, 25.0, 0.2, 1.0, 0.5, 0.1, 0.2, 0.8),
-        "palatal": _class(20.0, 25.0, 0.5, 1.0, 0.5, 0.2, 0.2, 0.5),
-        "labial_velar": _class(15.0, 20.0, 0.2, 0.6, 0.5, 1.0, 0.8, 0.5),
-        "rhotic": _class(15.0, 20.0, 0.8, 0.8, 0.5, 0.5, 0.2, 0.5),
-        "glottal": _class(20.0, 25.0, 0.02, 0.02, 0.02, 0.02, 0.02, 0.1),
+        #                 theta: ant. carry  tip  body  jaw  round close
+        "silence": _class(15.0, 15.0, 0.05, 0.05, 0.05, 0.05, 0.05),
+        "vowel": _class(12.0, 15.0, 0.3, 1.0, 0.8, 0.6, 0.5),
+        "rounded_vowel": _class(8.0, 15.0, 0.3, 1.0, 0.8, 1.0, 0.6),
+        "bilabial": _class(20.0, 25.0, 0.1, 0.1, 0.5, 0.1, 1.0),
+        "labiodental": _class(20.0, 25.0, 0.1, 0.1, 0.6, 0.2, 1.0),
+        "coronal": _class(20.0, 25.0, 1.0, 0.3, 0.6, 0.1, 0.2),
+        "velar": _class(20.0, 25.0, 0.2, 1.0, 0.5, 0.1, 0.2),
+        "palatal": _class(20.0, 25.0, 0.5, 1.0, 0.5, 0.2, 0.2),
+        "labial_velar": _class(15.0, 20.0, 0.2, 0.6, 0.5, 1.0, 0.8),
+        "rhotic": _class(15.0, 20.0, 0.8, 0.8, 0.5, 0.5, 0.2),
+        "glottal": _class(20.0, 25.0, 0.02, 0.02, 0.02, 0.02, 0.02),
     },
-    #: The velum's dominance of a nasal, whatever its class: it must lower the velum.
-    "nasal_velum_alpha": 1.0,
+    #: The velum's magnitude by ``velum_class`` (its time constants are the phone's class's).
+    "velum_alpha": {"silence": 0.05, "nasal": 1.0, "obstruent": 2.0, "sonorant": 0.4},
 }
 
 
@@ -107,6 +114,18 @@ def phone_class(symbol: str) -> str:
     return _PLACE_CLASS[p.place]
 
 
+def velum_class(symbol: str) -> str:
+    """The velum class (``VELUM_CLASSES``) of an ARPAbet symbol or ``SILENCE``."""
+    if symbol == SILENCE:
+        return "silence"
+    p = phonemes.lookup(symbol)
+    if p.nasal:
+        return "nasal"
+    if p.kind == "consonant" and p.manner in ("stop", "fricative", "affricate"):
+        return "obstruent"
+    return "sonorant"
+
+
 def validate_constants(constants: dict) -> dict:
     """The constants checked: every class with both rates > 0 and every group's alpha > 0, and
     c > 0. ValueError naming what is missing or wrong."""
@@ -121,11 +140,12 @@ def validate_constants(constants: dict) -> dict:
         for key in ("theta_anticipation", "theta_carryover"):
             if not entry.get(key, 0) > 0:
                 raise ValueError(f"coarticulation constants: {name}.{key} must be > 0")
-        for group in GROUPS:
+        for group in CLASS_GROUPS:
             if not entry.get("alpha", {}).get(group, 0) > 0:
                 raise ValueError(f"coarticulation constants: {name}.alpha.{group} must be > 0")
-    if not constants.get("nasal_velum_alpha", 0) > 0:
-        raise ValueError("coarticulation constants: nasal_velum_alpha must be > 0")
+    for name in VELUM_CLASSES:
+        if not constants.get("velum_alpha", {}).get(name, 0) > 0:
+            raise ValueError(f"coarticulation constants: velum_alpha.{name} must be > 0")
     return constants
 
 
