@@ -104,6 +104,15 @@ def test_given_phones_keep_their_times_divided_by_the_rate(client):
         assert abs(audio.getnframes() / audio.getframerate() - 0.3) < 0.001
 
 
+def test_a_gap_between_given_phones_is_silence(client):
+    phones = [{"symbol": "K", "start_s": 0.05, "end_s": 0.2},
+              {"symbol": "IY", "start_s": 0.25, "end_s": 0.4}]
+    body = client.post(f"{API}/utterances", json={"phones": phones,
+                                                  "audio": {"kind": "none"}}).json()
+    assert [(p["symbol"], p["start_s"], p["end_s"]) for p in body["phones"]] == [
+        ("sil", 0.0, 0.05), ("K", 0.05, 0.2), ("sil", 0.2, 0.25), ("IY", 0.25, 0.4)]
+
+
 def test_a_textgrid_upload_is_the_file_form_of_phones(client):
     response = client.post(f"{API}/utterances/textgrid",
                            files={"file": ("key.TextGrid", TEXTGRID.encode(), "text/plain")})

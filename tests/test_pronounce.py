@@ -29,6 +29,8 @@ def test_a_number_is_read_out_by_espeak_ng():
     assert word.source == "espeak-ng"
     symbols = [s for s, _ in word.phones]
     assert symbols[:3] == ["F", "AO", "R"] and symbols[-2:] == ["T", "UW"]  # forty-two
+    year = _only_word("1998")  # espeak-ng writes a palatalisation mark (;) in "ninety"
+    assert [s for s, _ in year.phones][-2:] == ["EY", "T"]
 
 
 def test_case_is_ignored_and_punctuation_becomes_pauses():

@@ -126,6 +126,8 @@ def retime(samples: np.ndarray, sample_rate: int, source_bounds: list[float],
     to ``target_bounds[-1]``. Each phone's pitch moves with its stretch."""
     x = _as_float(samples)
     n_out = int(round(target_bounds[-1] * sample_rate))
+    if len(x) == 0:
+        return np.zeros(n_out)
     t_out = np.arange(n_out) / sample_rate
     t_source = np.interp(t_out, target_bounds, source_bounds)
     return np.interp(t_source * sample_rate, np.arange(len(x)), x)

@@ -36,6 +36,8 @@ _BACKWARD.update({
     "hw": ("W",), "_": (PAUSE,), "_:": (PAUSE,), "_!": (PAUSE,), "_;_": (PAUSE,),
 })
 _STRESS_MARKS = {"'": 1, ",": 2, "%": 0, "=": 0}
+#: Marks espeak-ng writes between phones that are not phones (";" palatalises the one before).
+_MARKS = frozenset({";", "-", "#"})
 
 
 def arpabet_to_espeak(word: list[tuple[str, int | None]]) -> str:
@@ -74,7 +76,7 @@ def parse_espeak_phonemes(text: str) -> list[tuple[str, int | None]]:
     ARPAbet; ValueError naming the first mnemonic we cannot map."""
     phones = []
     for token in text.replace(" ", "|").split("|"):
-        if not token:
+        if not token or token in _MARKS:
             continue
         mapped = espeak_to_arpabet(token)
         if not mapped:

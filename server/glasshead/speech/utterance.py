@@ -102,7 +102,8 @@ def _parse_symbol(symbol, where: str) -> tuple[str, int | None]:
 
 def parse_phones(phones: list[dict], rate: float) -> list[dict]:
     """Timed phones checked (known symbols; each starts before it ends, at or after 0 and after
-    the one before it ends) and their times divided by ``rate``."""
+    the one before it ends) and their times divided by ``rate``; a gap before or between phones
+    becomes a silence, so that the phones cover the utterance from 0."""
     if not phones:
         raise UtteranceInputError("phones: at least one phone is needed")
     out, previous_end = [], 0.0
@@ -118,6 +119,9 @@ def parse_phones(phones: list[dict], rate: float) -> list[dict]:
             raise UtteranceInputError(f"phones[{k}] ({phone['symbol']}) starts at {start} s, "
                                       f"overlapping the phone before, which ends at "
                                       f"{previous_end} s")
+        if start > previous_end + TIME_TOLERANCE_S:  # a gap is silence
+            out.append({"symbol": PAUSE, "stress": None, "start_s": previous_end / rate,
+                        "end_s": start / rate, "word": None})
         previous_end = end
         out.append({"symbol": symbol, "stress": phone.get("stress", stress),
                     "start_s": max(start, 0.0) / rate, "end_s": end / rate, "word": None})
