@@ -165,6 +165,15 @@ def test_a_repeated_request_is_answered_from_the_cache_without_synthesis(client,
     assert other["id"] != first["id"] and len(synth_calls) == 2
 
 
+def test_a_cached_utterance_whose_audio_was_deleted_is_made_again(client, synth_calls,
+                                                                   tmp_path):
+    first = client.post(f"{API}/utterances", json={"text": "hello"}).json()
+    (tmp_path / "utterances" / f"{first['id']}.wav").unlink()
+    again = client.post(f"{API}/utterances", json={"text": "hello"}).json()
+    assert again["id"] == first["id"] and len(synth_calls) == 2
+    assert client.get(again["audio_url"]).status_code == 200
+
+
 def test_without_espeak_ng_the_route_answers_503_saying_what_to_install(client, monkeypatch):
     def missing():
         raise OSError("libespeak-ng.so.1: cannot open shared object file")

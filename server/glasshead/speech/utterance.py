@@ -155,7 +155,8 @@ def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> 
     that cannot be spoken; espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
     utterance_id = request_id(request, targets_sha256)
     hit = cached(cache_dir, utterance_id)
-    if hit is not None:
+    if hit is not None and (request["audio"]["kind"] == "none"
+                            or wav_path(cache_dir, utterance_id) is not None):
         return hit
     rate, options = request["rate"], request["audio"]
     kind = options["kind"]
