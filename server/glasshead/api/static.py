@@ -25,6 +25,8 @@ def _etag(path: Path) -> str:
 def _safe_child(root: Path, relative: str) -> Path:
     """The file ``relative`` under ``root``; 404 for anything outside it or missing."""
     root = root.resolve()
+    if "\0" in relative:  # no file name holds one; the OS refuses it
+        raise HTTPException(status_code=404, detail=f"no asset named {relative!r}")
     candidate = (root / relative).resolve()
     if root not in candidate.parents or not candidate.is_file():
         raise HTTPException(status_code=404, detail=f"no asset named {relative!r}")
@@ -47,6 +49,8 @@ def mount_static(app: FastAPI, settings) -> None:
     async def web_app(name: str):
         dist = settings.web_dist_dir
         index = dist / "index.html"
+        if "\0" in name:
+            raise HTTPException(status_code=404, detail=f"no file named {name!r}")
         if name:
             candidate = (dist / name).resolve()
             if dist.resolve() in candidate.parents and candidate.is_file():

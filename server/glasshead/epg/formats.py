@@ -105,6 +105,9 @@ def parse_emur_json(content: bytes) -> list[EpgSequence]:
         document = json.loads(content)
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
         raise EpgFormatError(f"not valid JSON ({error})", field="body") from None
+    except RecursionError:
+        raise EpgFormatError("JSON nested too deeply for an emuR EPG document",
+                             field="body") from None
     if isinstance(document, dict) and "segments" in document:
         segments = document["segments"]
     elif isinstance(document, dict) and "frames" in document:
@@ -114,7 +117,8 @@ def parse_emur_json(content: bytes) -> list[EpgSequence]:
     if not isinstance(segments, list) or not segments:
         raise EpgFormatError("expected a non-empty list of segments with frames",
                              field="segments")
-    total = sum(len(s.get("frames", [])) for s in segments if isinstance(s, dict))
+    total = sum(len(s["frames"]) for s in segments
+                if isinstance(s, dict) and isinstance(s.get("frames"), list))
     if total > MAX_FRAMES:
         raise EpgFormatError(f"{total} frames is more than the limit of {MAX_FRAMES}",
                              field="frames")

@@ -61,7 +61,9 @@ def parse_ssff(content: bytes) -> list[EpgSequence]:
         elif key == "Start_Time":
             start = _ssff_number(fields, "Start_Time")
         elif key == "Column":
-            if len(fields) != 4 or fields[2] not in SSFF_TYPE_SIZES or not fields[3].isdigit():
+            # isdigit() alone accepts digits int() cannot read, such as a superscript two
+            count = fields[3] if len(fields) == 4 else ""
+            if not (count.isascii() and count.isdigit()) or fields[2] not in SSFF_TYPE_SIZES:
                 raise EpgFormatError(f"{line.strip()!r} is not 'Column name TYPE count'",
                                      field="Column")
             columns.append((fields[1], fields[2], int(fields[3])))

@@ -13,7 +13,7 @@ from fastapi import APIRouter, HTTPException, Query, Response
 from pydantic import BaseModel, Field
 from sqlalchemy.orm import Session
 
-from glasshead.api.lookups import get_pose_record, get_record
+from glasshead.api.lookups import MAX_ID, RecordId, get_pose_record, get_record
 from glasshead.epg import compare as epg_compare
 from glasshead.epg.formats import rows_to_frame
 from glasshead.epg.indices import epg_indices
@@ -37,14 +37,15 @@ CODE_LEGEND = {
 
 
 class RecordingReference(BaseModel):
-    recording_id: int
+    recording_id: int = Field(ge=1, le=MAX_ID)
 
 
 class FramesReference(BaseModel):
     label: str = Field("target", max_length=200,
                        description="what the frames show; defaults to the pose's name")
-    pose_id: int | None = Field(None, description="the saved pose these frames are the "
-                                                  "synthetic EPG of, if any")
+    pose_id: int | None = Field(None, ge=1, le=MAX_ID,
+                                description="the saved pose these frames are the "
+                                "synthetic EPG of, if any")
     frames: list[list[str]] = Field(
         min_length=1, max_length=MAX_REFERENCE_FRAMES,
         description="per frame 8 strings of '0'/'1', R1 first")
@@ -108,7 +109,7 @@ def run_comparison(session: Session, recording_id: int, request: CompareRequest)
 
 @router.post("/epg/recordings/{recording_id}/compare", operation_id="compareRecording",
              response_model=ComparisonReport)
-def compare_recording(recording_id: int, request: CompareRequest,
+def compare_recording(recording_id: RecordId, request: CompareRequest,
                       session: SessionDep) -> ComparisonReport:
     """Electrode-by-electrode agreement per frame and the differences of the indices."""
     sequence, label, _, result = run_comparison(session, recording_id, request)
@@ -127,7 +128,7 @@ def compare_recording(recording_id: int, request: CompareRequest,
 @router.post("/epg/recordings/{recording_id}/compare/plot", operation_id="plotComparison",
              response_class=Response,
              responses={200: {"content": {"image/svg+xml": {}}}})
-def plot_comparison(recording_id: int, request: CompareRequest, session: SessionDep,
+def plot_comparison(recording_id: RecordId, request: CompareRequest, session: SessionDep,
                     panels: PanelsQuery = None) -> Response:
     """SVG: the recording's indices over time (solid) against the reference's (dashed)."""
     panels = _check_panels(panels)
@@ -141,7 +142,7 @@ def plot_comparison(recording_id: int, request: CompareRequest, session: Session
 
 @router.get("/epg/recordings/{recording_id}/plot", operation_id="plotRecording",
             response_class=Response, responses={200: {"content": {"image/svg+xml": {}}}})
-def plot_recording(recording_id: int, session: SessionDep,
+def plot_recording(recording_id: RecordId, session: SessionDep,
                    panels: PanelsQuery = None) -> Response:
     """SVG: the recording's indices over time."""
     panels = _check_panels(panels)

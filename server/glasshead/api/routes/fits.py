@@ -32,6 +32,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from glasshead.api.lookups import Offset, RecordId
 from glasshead.fitting import uploads
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.fitting.jobs import DEFAULT_METHOD
@@ -170,7 +171,7 @@ def _store(session: Session, runner: FitRunner, observation: uploads.Observation
 
 @router.get("/fits", operation_id="listFits", response_model=FitList)
 def list_fits(session: SessionDep, state: State | None = None,
-              offset: Annotated[int, Query(ge=0)] = 0,
+              offset: Offset = 0,
               limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> FitList:
     """Fits, newest first; ``state=done`` lists the fitted targets."""
     query = select(FitJob)
@@ -182,7 +183,7 @@ def list_fits(session: SessionDep, state: State | None = None,
 
 
 @router.get("/fits/{fit_id}", operation_id="getFit", response_model=FitOut)
-def get_fit(fit_id: int, session: SessionDep) -> FitJob:
+def get_fit(fit_id: RecordId, session: SessionDep) -> FitJob:
     """One fit: its state and progress, and once done its target (``params``) and report."""
     return get_fit_record(session, fit_id)
 
@@ -191,7 +192,7 @@ def get_fit(fit_id: int, session: SessionDep) -> FitJob:
             response_class=StreamingResponse,
             responses={200: {"content": {"text/event-stream": {}},
                              "description": "progress events, then one done or failed event"}})
-def stream_fit_events(fit_id: int, session: SessionDep) -> StreamingResponse:
+def stream_fit_events(fit_id: RecordId, session: SessionDep) -> StreamingResponse:
     """Server-sent events: ``progress`` (the job's state and progress) whenever its row
     changes, then one ``done`` or ``failed`` event with the whole job, then the stream ends."""
     get_fit_record(session, fit_id)
@@ -234,7 +235,7 @@ async def _events(fit_id: int):
 
 
 @router.delete("/fits/{fit_id}", operation_id="deleteFit", status_code=status.HTTP_204_NO_CONTENT)
-def delete_fit(fit_id: int, session: SessionDep) -> Response:
+def delete_fit(fit_id: RecordId, session: SessionDep) -> Response:
     """Delete a fit and its target; a fit still running stops at its next progress write."""
     session.delete(get_fit_record(session, fit_id))
     session.commit()

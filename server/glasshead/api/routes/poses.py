@@ -18,7 +18,7 @@ from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from glasshead.api.deps import AssetsDep
-from glasshead.api.lookups import get_pose_record
+from glasshead.api.lookups import Offset, RecordId, get_pose_record
 from glasshead.api.params import check_known_params
 from glasshead.store.models import SavedPose
 from glasshead.store.session import SessionDep
@@ -102,7 +102,7 @@ def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep) -> SavedPo
 
 @router.get("/poses", operation_id="listPoses", response_model=PoseList)
 def list_poses(session: SessionDep, name: str | None = None,
-               offset: Annotated[int, Query(ge=0)] = 0,
+               offset: Offset = 0,
                limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> PoseList:
     """Poses in name order; ``name`` selects the one pose of that name."""
     query = select(SavedPose)
@@ -114,12 +114,12 @@ def list_poses(session: SessionDep, name: str | None = None,
 
 
 @router.get("/poses/{pose_id}", operation_id="getPose", response_model=PoseOut)
-def get_pose(pose_id: int, session: SessionDep) -> SavedPose:
+def get_pose(pose_id: RecordId, session: SessionDep) -> SavedPose:
     return get_pose_record(session, pose_id)
 
 
 @router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut)
-def replace_pose(pose_id: int, pose: PoseIn, session: SessionDep,
+def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep,
                  assets: AssetsDep) -> SavedPose:
     record = get_pose_record(session, pose_id)
     check_known_params(assets, pose.params)
@@ -129,7 +129,7 @@ def replace_pose(pose_id: int, pose: PoseIn, session: SessionDep,
 
 
 @router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut)
-def update_pose(pose_id: int, patch: PosePatch, session: SessionDep,
+def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep,
                 assets: AssetsDep) -> SavedPose:
     record = get_pose_record(session, pose_id)
     if patch.params is not None:
@@ -144,7 +144,7 @@ def update_pose(pose_id: int, patch: PosePatch, session: SessionDep,
 
 @router.delete("/poses/{pose_id}", operation_id="deletePose",
                status_code=status.HTTP_204_NO_CONTENT)
-def delete_pose(pose_id: int, session: SessionDep) -> Response:
+def delete_pose(pose_id: RecordId, session: SessionDep) -> Response:
     session.delete(get_pose_record(session, pose_id))
     session.commit()
     return Response(status_code=status.HTTP_204_NO_CONTENT)

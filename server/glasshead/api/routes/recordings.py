@@ -28,7 +28,7 @@ from pydantic import BaseModel, Field, ValidationError
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
-from glasshead.api.lookups import get_record
+from glasshead.api.lookups import Offset, RecordId, get_record
 from glasshead.epg import formats
 from glasshead.epg.indices import epg_indices
 from glasshead.epg.sequence import EpgFormatError, rows_to_strings
@@ -186,7 +186,7 @@ def _too_large() -> HTTPException:
 
 
 @router.get("/epg/recordings", operation_id="listRecordings", response_model=RecordingList)
-def list_recordings(session: SessionDep, offset: Annotated[int, Query(ge=0)] = 0,
+def list_recordings(session: SessionDep, offset: Offset = 0,
                     limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> RecordingList:
     """Recordings, newest first, without their frames."""
     total = session.scalar(select(func.count()).select_from(EpgRecording))
@@ -197,7 +197,7 @@ def list_recordings(session: SessionDep, offset: Annotated[int, Query(ge=0)] = 0
 
 @router.get("/epg/recordings/{recording_id}", operation_id="getRecording",
             response_model=RecordingDetail)
-def get_recording(recording_id: int, session: SessionDep) -> RecordingDetail:
+def get_recording(recording_id: RecordId, session: SessionDep) -> RecordingDetail:
     """One recording with every frame and its time, for playback at its own frame rate."""
     record = get_record(session, recording_id)
     sequence = record.to_sequence()
@@ -207,7 +207,7 @@ def get_recording(recording_id: int, session: SessionDep) -> RecordingDetail:
 
 @router.get("/epg/recordings/{recording_id}/indices", operation_id="getRecordingIndices",
             response_model=IndexTracks)
-def get_recording_indices(recording_id: int, session: SessionDep) -> IndexTracks:
+def get_recording_indices(recording_id: RecordId, session: SessionDep) -> IndexTracks:
     """The emuR indices of every frame (see POST /epg/indices for their names)."""
     sequence = get_record(session, recording_id).to_sequence()
     return IndexTracks(recording_id=recording_id, t_s=sequence.t_s.tolist(),
@@ -217,7 +217,7 @@ def get_recording_indices(recording_id: int, session: SessionDep) -> IndexTracks
 @router.get("/epg/recordings/{recording_id}/export", operation_id="exportRecording",
             response_class=Response,
             responses={200: {"content": {t: {} for t in set(formats.MEDIA_TYPES.values())}}})
-def export_recording(recording_id: int, session: SessionDep,
+def export_recording(recording_id: RecordId, session: SessionDep,
                      format: Annotated[FormatName, Query()] = "csv") -> Response:
     """The recording as a file in ``format``; ssff needs evenly spaced frames (else 409)."""
     record = get_record(session, recording_id)
@@ -233,7 +233,7 @@ def export_recording(recording_id: int, session: SessionDep,
 
 @router.delete("/epg/recordings/{recording_id}", operation_id="deleteRecording",
                status_code=status.HTTP_204_NO_CONTENT)
-def delete_recording(recording_id: int, session: SessionDep) -> Response:
+def delete_recording(recording_id: RecordId, session: SessionDep) -> Response:
     session.delete(get_record(session, recording_id))
     session.commit()
     return Response(status_code=status.HTTP_204_NO_CONTENT)
