@@ -266,6 +266,10 @@ def test_a_bad_rate_or_constants_raise_value_error(targets):
         coarticulate(phones, targets, rate_hz=0)
     with pytest.raises(ValueError, match="c must be"):
         coarticulate(phones, targets, constants={"c": -1})
+    with pytest.raises(ValueError, match="format version 2"):
+        coarticulate(phones, targets, constants={"format_version": 2})
+    with pytest.raises(ValueError, match="velum_alpha.nasal"):
+        coarticulate(phones, targets, constants={"velum_alpha": {"silence": 1.0}})
 
 
 def test_the_shipped_constants_are_trained_and_say_how_they_were_made():

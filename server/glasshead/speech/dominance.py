@@ -127,8 +127,13 @@ def velum_class(symbol: str) -> str:
 
 
 def validate_constants(constants: dict) -> dict:
-    """The constants checked: every class with both rates > 0 and every group's alpha > 0, and
-    c > 0. ValueError naming what is missing or wrong."""
+    """The constants checked: the known format version, every class with both rates > 0 and
+    every group's alpha > 0, every velum class's alpha > 0, and c > 0. ValueError naming what is
+    missing or wrong."""
+    version = constants.get("format_version", CONSTANTS_FORMAT_VERSION)
+    if version != CONSTANTS_FORMAT_VERSION:
+        raise ValueError(f"coarticulation constants: format version {version!r} is not the "
+                         f"known {CONSTANTS_FORMAT_VERSION}")
     c = constants.get("c")
     if not isinstance(c, int | float) or not c > 0:
         raise ValueError(f"coarticulation constants: c must be a number > 0, not {c!r}")
