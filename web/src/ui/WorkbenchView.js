@@ -17,11 +17,13 @@ import { PoseBox } from './PoseBox.js';
 import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from './SagittalPanel.js';
 import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, sectionStations } from './SectionsPanel.js';
 import './workbench.css';
+import './observation.css';
 import { createHeadStage } from './headStage.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
 import { DiagramSection } from '../scene/DiagramSection.js';
 import { drawDiagram } from './DiagramPanel.js';
 import { WorkbenchCues } from './WorkbenchCues.js';
+import { mountObservationPanels } from './ObservationOverlay.js';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
 const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
@@ -257,6 +259,7 @@ export class WorkbenchView {
 		this.cues = new WorkbenchCues( { viewer: this.viewer, articulation, diagram: this.diagram, landmarks: this.landmarks } );
 		this.unregister.push( () => this.cues.dispose() );
 		this.side.querySelector( '[aria-label="View"]' ).after( this.cues.element );
+		this.unregister.push( mountObservationPanels( this ) ); // its hook after the panels': it draws over them
 
 	}
 

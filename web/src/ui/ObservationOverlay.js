@@ -1,0 +1,422 @@
+// The workbench's "Observation" group: a measured tongue shape (GET /observations, VocalTractLab's
+// JD3 shapes in the project frame) on the tongue with its error vectors, before and after the 2D
+// fit, as in Cohen, Beskow and Massaro (1998), Figures 5 and 6.
+//
+// - The chooser lists the observations; choosing one fetches it (GET /observations/{name}) and
+//   shows the fitted pose.
+// - Before and After set every parameter to the fit's start or its result, through the state the
+//   sliders and the pasted JSON go through (ParamState.assign), so the sliders move too.
+// - Overlay shows the observed points, the error vector of each from P to where its ray from the
+//   origin first crosses the tongue as posed now (Q), and a sphere at P sized by |PQ|, in 3D
+//   (scene/ObservationLayer.js) and on the sagittal panel. The errors are recomputed whenever the
+//   tongue changes (the articulation's hook), never in a frame where nothing moved.
+// - The panel reads out the RMS and the largest error of the outline (the 2D fit's own measure)
+//   and of the surface; window.glasshead.observation reports them.
+//
+// ObservationControl holds the logic and no DOM, so it is tested in Node with a fake API;
+// ObservationPanel is its view.
+
+import { api as pageApi } from '../api.js';
+import { PART_OUTLINE, PART_SURFACE, STAT_MAX, STAT_MISSES, STAT_RMS, createRayError, rayError } from '../core/rayError.js';
+import { registerDebug } from '../debug.js';
+import { OBSERVATION_COLORS, ObservationLayer, sphereRadius } from '../scene/ObservationLayer.js';
+import { h } from './Controls.js';
+import { PhonemeChooser } from './PhonemeChooser.js';
+import { fitTransform, SAGITTAL_BOX } from './SagittalPanel.js';
+
+/**
+ * Set every parameter of `state` to `params` (names it does not have are left out, the others
+ * go back to neutral), as a paste does; returns the names left out. Throws a RangeError naming
+ * a value outside its range, and then changes nothing.
+ */
+export function assignParams( state, params ) {
+
+	const known = {};
+	const unknown = [];
+	for ( const [ name, value ] of Object.entries( params ?? {} ) ) {
+
+		if ( state.index.has( name ) ) known[ name ] = value;
+		else unknown.push( name );
+
+	}
+
+	state.assign( known );
+	return unknown;
+
+}
+
+/** An error for display: "1.23 mm". */
+export function formatMm( value ) {
+
+	return Number.isFinite( value ) ? `${ value.toFixed( 2 ) } mm` : '–';
+
+}
+
+export class ObservationControl {
+
+	/**
+	 * @param {{ api?: object, articulation: object, onUpdate?: Function }} options the HTTP
+	 *   client, the workbench's Articulation (its state, tongue and hook) and what to call after
+	 *   every change of the errors or of the choice
+	 */
+	constructor( { api = pageApi, articulation, onUpdate = () => {} } ) {
+
+		this.api = api;
+		this.articulation = articulation;
+		this.state = articulation.state;
+		this.onUpdate = onUpdate;
+		this.entries = [];
+		this.current = null;
+		this.model = null;
+		this.which = null;
+		this.appliedVersion = - 1;
+		this.updates = 0;
+		this.overlay = true;
+		this.request = 0;
+		this.unhook = articulation.onCorrected( () => this.recompute() );
+
+	}
+
+	/** GET /observations: [{ name, label, source, has_surface, rms_mm }]. */
+	async list() {
+
+		const body = await this.api.get( 'observations' );
+		this.entries = body?.observations ?? [];
+		return this.entries;
+
+	}
+
+	/** Fetch observation `name` and show its fitted pose ('' or null: none). Resolves to it (null when a later choice won). */
+	async choose( name ) {
+
+		const request = ++ this.request;
+		if ( ! name ) {
+
+			this.current = this.model = this.which = null;
+			this.onUpdate();
+			return null;
+
+		}
+
+		const observation = await this.api.get( `observations/${ encodeURIComponent( name ) }` );
+		if ( request !== this.request ) return null;
+		this.model = createRayError( observation.origin, observation.outline ?? [], observation.surface ?? [] );
+		this.current = observation;
+		this.show( 'after' );
+		return observation;
+
+	}
+
+	/** Set every parameter to the observation's 'before' (the fit's start) or 'after' (its result). */
+	show( which ) {
+
+		const params = this.current?.[ which ]?.params;
+		if ( ! params ) throw new Error( `The observation has no "${ which }" parameters.` );
+		assignParams( this.state, params );
+		this.which = which;
+		this.appliedVersion = this.state.version;
+		// Pose the tongue now (its hook recomputes the errors); the frame then finds nothing to do.
+		if ( ! this.articulation.update() ) this.recompute();
+
+	}
+
+	/** 'before' or 'after' while the parameters are as the switch set them, 'edited' once anything moved; null with no observation. */
+	get stateName() {
+
+		if ( ! this.current ) return null;
+		return this.which && this.state.version === this.appliedVersion ? this.which : 'edited';
+
+	}
+
+	setOverlay( on ) {
+
+		this.overlay = Boolean( on );
+		this.onUpdate();
+
+	}
+
+	/** The errors against the tongue as posed now. */
+	recompute() {
+
+		if ( ! this.model ) return;
+		const a = this.articulation;
+		rayError( this.model, a.positions, a.triangles, a.triangles.length / 3 );
+		this.updates ++;
+		this.onUpdate();
+
+	}
+
+	/** What window.glasshead.observation reports. */
+	report() {
+
+		const base = { listed: this.entries.length, overlay: this.overlay, updates: this.updates };
+		if ( ! this.current || ! this.model ) return { ...base, name: null, state: null };
+		const { stats, outlineCount, count } = this.model;
+		const part = ( offset, rays ) => ( { rays, rmsMm: stats[ offset + STAT_RMS ], maxMm: stats[ offset + STAT_MAX ], misses: stats[ offset + STAT_MISSES ] } );
+		return {
+			...base, name: this.current.name, label: this.current.label ?? this.current.name, state: this.stateName,
+			...part( PART_OUTLINE, outlineCount ),
+			surface: count > outlineCount ? part( PART_SURFACE, count - outlineCount ) : null,
+			fitRmsMm: this.current.after?.rms_mm ?? null,
+		};
+
+	}
+
+	dispose() {
+
+		this.unhook();
+
+	}
+
+}
+
+/**
+ * Draw the outline's observed points, error vectors and spheres over the sagittal panel (the
+ * panel's own transform; anterior to the left). Only z = 0 rays: the panel is the mid-sagittal plane.
+ */
+export function drawObservationSagittal( ctx, model, { width, height, box = SAGITTAL_BOX } ) {
+
+	const view = fitTransform( box, width, height );
+	const { points: p, q, signed, outlineCount } = model;
+	ctx.save();
+	ctx.lineWidth = 1.2;
+	for ( let k = 0; k < outlineCount; k ++ ) {
+
+		ctx.strokeStyle = signed[ k ] > 0 ? OBSERVATION_COLORS.beyond : OBSERVATION_COLORS.short;
+		ctx.beginPath();
+		ctx.moveTo( view.x( p[ 3 * k ] ), view.y( p[ 3 * k + 1 ] ) );
+		ctx.lineTo( view.x( q[ 3 * k ] ), view.y( q[ 3 * k + 1 ] ) );
+		ctx.stroke();
+
+	}
+
+	for ( let k = 0; k < outlineCount; k ++ ) {
+
+		ctx.fillStyle = signed[ k ] > 0 ? OBSERVATION_COLORS.beyond : OBSERVATION_COLORS.short;
+		ctx.beginPath();
+		ctx.arc( view.x( p[ 3 * k ] ), view.y( p[ 3 * k + 1 ] ), Math.max( 1.5, sphereRadius( signed[ k ] ) * view.scale ), 0, 2 * Math.PI );
+		ctx.fill();
+
+	}
+
+	ctx.strokeStyle = OBSERVATION_COLORS.observed;
+	ctx.lineWidth = 1.4;
+	ctx.setLineDash( [ 4, 3 ] );
+	ctx.beginPath();
+	for ( let k = 0; k < outlineCount; k ++ ) ctx[ k === 0 ? 'moveTo' : 'lineTo' ]( view.x( p[ 3 * k ] ), view.y( p[ 3 * k + 1 ] ) );
+	ctx.stroke();
+	ctx.restore();
+
+}
+
+/** The state shown beside the switch. */
+const STATE_TEXT = Object.freeze( { before: 'the fit\u2019s starting pose', after: 'the fitted pose', edited: 'a pose edited since: the errors follow the sliders' } );
+
+export class ObservationPanel {
+
+	/**
+	 * @param {{ api?: object, articulation: object, viewer: object, head?: object|null,
+	 *   sagittal?: { ctx, width, height }|null, redrawSagittal?: Function }} options the
+	 *   workbench's client, articulation, viewer and head (its cutaway), and its sagittal canvas
+	 *   with the function that redraws it (the overlay is drawn over it)
+	 */
+	constructor( { api = pageApi, articulation, viewer, head = null, sagittal = null, redrawSagittal = () => {} } ) {
+
+		this.viewer = viewer;
+		this.sagittal = sagittal;
+		this.redrawSagittal = redrawSagittal;
+		this.layer = new ObservationLayer( { clipPlane: head?.clipPlane ?? null, isCut: () => Boolean( head?.cutaway ) } );
+		viewer.scene.add( this.layer.group );
+		this.control = new ObservationControl( { api, articulation, onUpdate: () => this.sync() } );
+		this.error = null;
+
+		this.select = h( 'select', { className: 'wb-select', 'aria-label': 'Observation', onChange: () => this.choose( this.select.value ) },
+			h( 'option', { value: '' }, 'Loading the measured shapes…' ) );
+		this.buttons = new Map( [ [ 'before', 'Before fit' ], [ 'after', 'After fit' ] ].map( ( [ key, label ] ) => [ key, h( 'button', {
+			type: 'button', className: 'wb-toggle', 'aria-pressed': 'false', disabled: '', onClick: () => this.show( key ),
+		}, label ) ] ) );
+		this.overlayButton = h( 'button', { type: 'button', className: 'toggle wb-toggle', 'aria-pressed': 'true', disabled: '', onClick: () => this.toggleOverlay() }, 'Overlay' );
+		this.readout = h( 'div', { className: 'wb-readout', role: 'status', 'aria-live': 'polite' } );
+		this.legend = h( 'p', { className: 'wb-legend', hidden: '' },
+			h( 'span', {}, swatch( OBSERVATION_COLORS.beyond ), ' tongue beyond the shape' ), h( 'span', {}, swatch( OBSERVATION_COLORS.short ), ' tongue short of it' ) );
+		this.plotLink = h( 'a', { className: 'wb-note', target: '_blank', rel: 'noopener', hidden: '' }, 'The fit\u2019s plot (SVG)' );
+		this.errorText = h( 'p', { className: 'error wb-inline', role: 'alert', hidden: '' } );
+		this.element = h( 'fieldset', { className: 'wb-box wb-observation', 'aria-label': 'Observation' },
+			h( 'legend', {}, 'Observation' ),
+			this.select,
+			h( 'div', { className: 'wb-buttons', role: 'group', 'aria-label': 'Fit' }, ...this.buttons.values(), this.overlayButton ),
+			this.readout,
+			this.legend,
+			this.plotLink,
+			this.errorText,
+		);
+		this.unregister = registerDebug( 'observation', () => this.control.report() );
+		this.load();
+
+	}
+
+	async load() {
+
+		try {
+
+			const entries = await this.control.list();
+			this.select.replaceChildren(
+				h( 'option', { value: '' }, entries.length ? 'Choose a measured shape…' : 'No measured shapes on this server' ),
+				...entries.map( ( entry ) => h( 'option', { value: entry.name }, entry.label ?? entry.name ) ),
+			);
+
+		} catch ( error ) {
+
+			this.select.replaceChildren( h( 'option', { value: '' }, 'No measured shapes' ) );
+			this.showError( error.message );
+
+		}
+
+	}
+
+	async choose( name ) {
+
+		this.showError( null );
+		try {
+
+			await this.control.choose( name );
+
+		} catch ( error ) {
+
+			this.showError( error.message );
+
+		}
+
+		this.refresh();
+
+	}
+
+	show( which ) {
+
+		this.showError( null );
+		try {
+
+			this.control.show( which );
+
+		} catch ( error ) {
+
+			this.showError( error.message );
+
+		}
+
+		this.refresh();
+
+	}
+
+	toggleOverlay() {
+
+		this.control.setOverlay( ! this.control.overlay );
+		this.refresh();
+
+	}
+
+	/** Redraw the sagittal panel under the overlay, then everything of the overlay. */
+	refresh() {
+
+		this.redrawSagittal();
+		this.sync();
+
+	}
+
+	/** The buttons, the readout, the 3D layer and the sagittal overlay after any change. */
+	sync() {
+
+		const control = this.control;
+		const report = control.report();
+		const chosen = report.name !== null;
+		for ( const [ key, button ] of this.buttons ) {
+
+			button.disabled = ! chosen;
+			button.setAttribute( 'aria-pressed', String( report.state === key ) );
+
+		}
+
+		this.overlayButton.disabled = ! chosen;
+		this.overlayButton.setAttribute( 'aria-pressed', String( control.overlay ) );
+		this.legend.hidden = ! chosen || ! control.overlay;
+		const plot = chosen ? control.current.plot_url : null;
+		if ( plot ) this.plotLink.setAttribute( 'href', plot );
+		this.plotLink.hidden = ! plot;
+		this.readout.replaceChildren( ...( chosen ? readoutLines( report ) : [] ) );
+		if ( this.layer.model !== control.model ) {
+
+			if ( control.model ) this.layer.setModel( control.model );
+			else this.layer.clearParts();
+
+		} else this.layer.update();
+
+		this.layer.group.visible = chosen && control.overlay;
+		if ( chosen && control.overlay && this.sagittal ) drawObservationSagittal( this.sagittal.ctx, control.model, this.sagittal );
+		this.viewer.requestRender();
+
+	}
+
+	showError( message ) {
+
+		this.error = message;
+		this.errorText.textContent = message ?? '';
+		this.errorText.hidden = ! message;
+
+	}
+
+	dispose() {
+
+		this.unregister();
+		this.control.dispose();
+		this.layer.dispose();
+		this.element.remove();
+
+	}
+
+}
+
+function swatch( color ) {
+
+	return h( 'span', { className: 'wb-swatch', style: `background: ${ color }`, 'aria-hidden': 'true' } );
+
+}
+
+/** The readout: what is shown, a small table of the outline's and the surface's errors, and the fit's own figure. */
+function readoutLines( report ) {
+
+	const row = ( name, part ) => h( 'tr', {}, h( 'th', { scope: 'row' }, name ), h( 'td', {}, formatMm( part.rmsMm ) ), h( 'td', {}, formatMm( part.maxMm ) ), h( 'td', {}, String( part.rays ) ) );
+	const rows = [ row( 'Outline', report ) ];
+	if ( report.surface ) rows.push( row( 'Surface', report.surface ) );
+	const lines = [
+		h( 'p', {}, `Showing ${ STATE_TEXT[ report.state ] }.` ),
+		h( 'table', { className: 'wb-errors' },
+			h( 'thead', {}, h( 'tr', {}, h( 'th', {}, 'Error' ), h( 'th', {}, 'RMS' ), h( 'th', {}, 'largest' ), h( 'th', {}, 'rays' ) ) ),
+			h( 'tbody', {}, ...rows ) ),
+	];
+	if ( Number.isFinite( report.fitRmsMm ) ) lines.push( h( 'p', { className: 'wb-note' }, `The 2D fit reached ${ formatMm( report.fitRmsMm ) } RMS on the outline.` ) );
+	const misses = report.misses + ( report.surface?.misses ?? 0 );
+	if ( misses > 0 ) lines.push( h( 'p', { className: 'wb-note' }, `${ misses } rays miss the tongue (their vectors end at the origin).` ) );
+	return lines;
+
+}
+
+/**
+ * Put the "Phoneme target" and "Observation" groups at the top of the workbench's left column,
+ * above the sliders they set. Returns a function that removes them.
+ */
+export function mountObservationPanels( view ) {
+
+	const { api, articulation, viewer, head } = view;
+	const phonemes = new PhonemeChooser( { api, state: articulation.state } );
+	const observation = new ObservationPanel( {
+		api, articulation, viewer, head, sagittal: view.sagittalCanvas, redrawSagittal: () => view.drawPanels(),
+	} );
+	view.parameters.element.before( phonemes.element, observation.element );
+	return () => {
+
+		phonemes.dispose();
+		observation.dispose();
+
+	};
+
+}
