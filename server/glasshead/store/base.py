@@ -2,8 +2,8 @@
 
 from datetime import UTC, datetime
 
-from sqlalchemy import DateTime, MetaData, TypeDecorator
-from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
+from sqlalchemy import DateTime, Integer, MetaData, TypeDecorator, text
+from sqlalchemy.orm import DeclarativeBase, Mapped, declared_attr, mapped_column
 
 #: Constraint names that Alembic can find again on every backend (SQLite batch migrations need
 #: named constraints to alter them).
@@ -47,3 +47,24 @@ class Timestamped:
     created_at: Mapped[datetime] = mapped_column(UtcDateTime(), default=utc_now)
     updated_at: Mapped[datetime] = mapped_column(UtcDateTime(), default=utc_now,
                                                  onupdate=utc_now)
+
+
+class Versioned:
+    """A ``version`` counted up by every update, for optimistic concurrency.
+
+    SQLAlchemy's version counter writes ``UPDATE ... WHERE id = ? AND version = ?``, so of two
+    writers that read the same version only the first changes the row; the second gets
+    ``StaleDataError``. The routes give it as the ETag, and ``If-Match`` names the version a
+    client last read. Tables that have one also never reuse an id (``sqlite_autoincrement``;
+    PostgreSQL's sequences never do), so a stale link cannot open a newer record.
+    """
+
+    version: Mapped[int] = mapped_column(Integer, nullable=False, server_default=text("1"))
+
+    @declared_attr.directive
+    def __mapper_args__(cls):
+        return {"version_id_col": cls.__table__.c.version}
+
+    @declared_attr.directive
+    def __table_args__(cls):
+        return {"sqlite_autoincrement": True}

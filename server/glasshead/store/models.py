@@ -17,7 +17,7 @@ from sqlalchemy import JSON, Float, Integer, LargeBinary, String, Text
 from sqlalchemy.orm import Mapped, mapped_column
 
 from glasshead.epg.sequence import EpgSequence, frames_to_raw, raw_to_frames
-from glasshead.store.base import Base, Timestamped
+from glasshead.store.base import Base, Timestamped, Versioned
 
 #: Layout of ``EpgRecording.contacts``: 8 bytes per frame in emuR's compressed EPG layout
 #: (byte 0 = R8 ... byte 7 = R1; bit c = electrode column c + 1).
@@ -26,7 +26,7 @@ CONTACT_BYTES_PER_FRAME = 8
 TIME_DTYPE = np.dtype("<f8")
 
 
-class EpgRecording(Timestamped, Base):
+class EpgRecording(Versioned, Timestamped, Base):
     """A real EPG recording: frames with their own times and frame rate, and where it came from."""
 
     __tablename__ = "epg_recordings"
@@ -67,7 +67,7 @@ class EpgRecording(Timestamped, Base):
                            dict(self.meta or {}))
 
 
-class SavedPose(Timestamped, Base):
+class SavedPose(Versioned, Timestamped, Base):
     """A target: a named set of articulation parameters saved from the workbench.
 
     ``params`` maps parameter names (as in the tongue rig definition) to values in the rig's

@@ -11,19 +11,25 @@ import re
 from datetime import datetime
 from typing import Annotated
 
-from fastapi import APIRouter, HTTPException, Query, Response, status
+from fastapi import APIRouter, Header, HTTPException, Query, Response, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
 from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from glasshead.api.deps import AssetsDep
+from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId, get_pose_record
 from glasshead.api.params import check_known_params
 from glasshead.store.models import SavedPose
 from glasshead.store.session import SessionDep
 
 router = APIRouter(tags=["poses"])
+
+KIND = "pose"
+IfMatch = Annotated[str | None, Header(description="the ETag last read: the write goes ahead "
+                                                  "only while the pose is still at it (412 "
+                                                  "otherwise); leave out to overwrite")]
 
 PARAM_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_.]{0,63}$")
 MAX_PARAMS = 256
@@ -81,9 +87,12 @@ class PoseList(BaseModel):
     total: int
 
 
-def _commit(session: Session, name: str) -> None:
+def _commit(session: Session, name: str, record: SavedPose | None = None) -> None:
     try:
-        session.commit()
+        if record is None:
+            session.commit()
+        else:
+            commit_versioned(session, KIND, record, f"pose {record.id}")
     except IntegrityError:
         session.rollback()
         raise HTTPException(status_code=409, detail=f"field name: a pose named {name!r} "
@@ -92,11 +101,13 @@ def _commit(session: Session, name: str) -> None:
 
 @router.post("/poses", operation_id="createPose", status_code=status.HTTP_201_CREATED,
              response_model=PoseOut)
-def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep) -> SavedPose:
+def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep,
+                response: Response) -> SavedPose:
     check_known_params(assets, pose.params)
     record = SavedPose(name=pose.name, description=pose.description, params=pose.params)
     session.add(record)
     _commit(session, pose.name)
+    set_etag(response, KIND, record)
     return record
 
 
@@ -114,37 +125,47 @@ def list_poses(session: SessionDep, name: str | None = None,
 
 
 @router.get("/poses/{pose_id}", operation_id="getPose", response_model=PoseOut)
-def get_pose(pose_id: RecordId, session: SessionDep) -> SavedPose:
-    return get_pose_record(session, pose_id)
-
-
-@router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut)
-def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep,
-                 assets: AssetsDep) -> SavedPose:
+def get_pose(pose_id: RecordId, session: SessionDep, response: Response) -> SavedPose:
     record = get_pose_record(session, pose_id)
-    check_known_params(assets, pose.params)
-    record.name, record.description, record.params = pose.name, pose.description, pose.params
-    _commit(session, pose.name)
+    set_etag(response, KIND, record)
     return record
 
 
-@router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut)
-def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep,
-                assets: AssetsDep) -> SavedPose:
+@router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut,
+            responses=PRECONDITION)
+def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep, assets: AssetsDep,
+                 response: Response, if_match: IfMatch = None) -> SavedPose:
     record = get_pose_record(session, pose_id)
+    check_if_match(if_match, KIND, record, f"pose {pose_id}")
+    check_known_params(assets, pose.params)
+    record.name, record.description, record.params = pose.name, pose.description, pose.params
+    _commit(session, pose.name, record)
+    set_etag(response, KIND, record)
+    return record
+
+
+@router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut,
+              responses=PRECONDITION)
+def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep, assets: AssetsDep,
+                response: Response, if_match: IfMatch = None) -> SavedPose:
+    record = get_pose_record(session, pose_id)
+    check_if_match(if_match, KIND, record, f"pose {pose_id}")
     if patch.params is not None:
         check_known_params(assets, patch.params)
     for field, value in patch.model_dump(exclude_unset=True).items():
         if value is None:
             raise HTTPException(status_code=422, detail=f"field {field}: may not be null")
         setattr(record, field, value)
-    _commit(session, record.name)
+    _commit(session, record.name, record)
+    set_etag(response, KIND, record)
     return record
 
 
 @router.delete("/poses/{pose_id}", operation_id="deletePose",
-               status_code=status.HTTP_204_NO_CONTENT)
-def delete_pose(pose_id: RecordId, session: SessionDep) -> Response:
-    session.delete(get_pose_record(session, pose_id))
-    session.commit()
+               status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
+def delete_pose(pose_id: RecordId, session: SessionDep, if_match: IfMatch = None) -> Response:
+    record = get_pose_record(session, pose_id)
+    check_if_match(if_match, KIND, record, f"pose {pose_id}")
+    session.delete(record)
+    commit_versioned(session, KIND, record, f"pose {pose_id}")
     return Response(status_code=status.HTTP_204_NO_CONTENT)

@@ -16,6 +16,7 @@ from fastapi import (
     APIRouter,
     File,
     Form,
+    Header,
     HTTPException,
     Query,
     Request,
@@ -28,6 +29,7 @@ from pydantic import BaseModel, Field, ValidationError
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId, get_record
 from glasshead.epg import formats
 from glasshead.epg.indices import epg_indices
@@ -36,6 +38,9 @@ from glasshead.store.models import EpgRecording
 from glasshead.store.session import SessionDep
 
 router = APIRouter(tags=["epg recordings"])
+
+#: The kind in a recording's ETag (api/etags.py).
+KIND = "recording"
 
 #: Largest upload accepted, bytes (about 110,000 frames of CSV).
 MAX_UPLOAD_BYTES = 16 * 1024 * 1024
@@ -197,9 +202,11 @@ def list_recordings(session: SessionDep, offset: Offset = 0,
 
 @router.get("/epg/recordings/{recording_id}", operation_id="getRecording",
             response_model=RecordingDetail)
-def get_recording(recording_id: RecordId, session: SessionDep) -> RecordingDetail:
+def get_recording(recording_id: RecordId, session: SessionDep,
+                  response: Response) -> RecordingDetail:
     """One recording with every frame and its time, for playback at its own frame rate."""
     record = get_record(session, recording_id)
+    set_etag(response, KIND, record)
     sequence = record.to_sequence()
     return RecordingDetail(**summary(record).model_dump(), t_s=sequence.t_s.tolist(),
                            frames=[rows_to_strings(f) for f in sequence.frames])
@@ -232,8 +239,14 @@ def export_recording(recording_id: RecordId, session: SessionDep,
 
 
 @router.delete("/epg/recordings/{recording_id}", operation_id="deleteRecording",
-               status_code=status.HTTP_204_NO_CONTENT)
-def delete_recording(recording_id: RecordId, session: SessionDep) -> Response:
-    session.delete(get_record(session, recording_id))
-    session.commit()
+               status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
+def delete_recording(
+    recording_id: RecordId, session: SessionDep,
+    if_match: Annotated[str | None, Header(description="the ETag last read: delete only while "
+                                                       "the recording is still at it")] = None,
+) -> Response:
+    record = get_record(session, recording_id)
+    check_if_match(if_match, KIND, record, f"recording {recording_id}")
+    session.delete(record)
+    commit_versioned(session, KIND, record, f"recording {recording_id}")
     return Response(status_code=status.HTTP_204_NO_CONTENT)
