@@ -170,6 +170,9 @@ export class ObservationControl {
 
 }
 
+/** The sagittal panel's discs, as a share of the 3D spheres' radius. */
+const PANEL_DISC = 0.5;
+
 /**
  * Draw the outline's observed points, error vectors and spheres over the sagittal panel (the
  * panel's own transform; anterior to the left). Only z = 0 rays: the panel is the mid-sagittal plane.
@@ -194,7 +197,8 @@ export function drawObservationSagittal( ctx, model, { width, height, box = SAGI
 
 		ctx.fillStyle = signed[ k ] > 0 ? OBSERVATION_COLORS.beyond : OBSERVATION_COLORS.short;
 		ctx.beginPath();
-		ctx.arc( view.x( p[ 3 * k ] ), view.y( p[ 3 * k + 1 ] ), Math.max( 1.5, sphereRadius( signed[ k ] ) * view.scale ), 0, 2 * Math.PI );
+		// Smaller than the 3D spheres (the panel is at about 2.5 px a mm), so the vectors still show between them.
+		ctx.arc( view.x( p[ 3 * k ] ), view.y( p[ 3 * k + 1 ] ), Math.max( 1.2, PANEL_DISC * sphereRadius( signed[ k ] ) * view.scale ), 0, 2 * Math.PI );
 		ctx.fill();
 
 	}
