@@ -74,6 +74,9 @@ C_BOUNDS = (0.6, 2.0)
 T_BOUNDS_S = (0.01, 0.5)
 SCALE_BOUNDS = (0.1, 10.0)
 MAX_EVALS = 4000
+#: A restart of BOBYQA from its best point is kept going while it lowers the error by more than
+#: this share.
+RESTART_GAIN = 0.005
 #: Classes kept as set by hand. Silence: its frames are not compared (VTL's silences are its
 #: own rest, not ours), so only its reach into the speech would be trained, toward nothing.
 #: /h/: its magnitudes are negligible by design (it takes its neighbours' articulation), so its
@@ -246,9 +249,23 @@ def train(assets_dir: Path, sequences=SEQUENCES, *, held_out=None, max_evals: in
                      key=dominance.CLASSES.index)
     packing = Packing(present, base, scales)
     lower, upper = packing.bounds()
-    result = optimizer.minimize(lambda x: rms(train_cases, packing.constants(x)), packing.x0(),
-                                lower, upper, method="bobyqa", max_evals=max_evals,
-                                progress=progress)
+    objective = lambda x: rms(train_cases, packing.constants(x))  # noqa: E731
+    result = optimizer.minimize(objective, packing.x0(), lower, upper, method="bobyqa",
+                                max_evals=max_evals, progress=progress)
+    evaluations, restarts, seconds = result.evaluations, 0, result.seconds
+    # BOBYQA's quadratic models stall on the bounds; restart from the best point while that
+    # gains more than RESTART_GAIN and evaluations remain.
+    while evaluations < max_evals:
+        again = optimizer.minimize(objective, result.x, lower, upper, method="bobyqa",
+                                   max_evals=max_evals - evaluations, progress=progress)
+        evaluations += again.evaluations
+        seconds += again.seconds
+        gain = (result.error - again.error) / result.error
+        if again.error < result.error:
+            result = again
+        restarts += 1
+        if gain <= RESTART_GAIN:
+            break
     trained = _rounded(packing.constants(result.x))
     report = {
         "training_sequences": [n for n, _ in training_set],
@@ -264,8 +281,8 @@ def train(assets_dir: Path, sequences=SEQUENCES, *, held_out=None, max_evals: in
         "held_out_by_parameter": {
             "before": rms_by_parameter(held_cases, base) if held_cases else {},
             "after": rms_by_parameter(held_cases, trained) if held_cases else {}},
-        "evaluations": result.evaluations, "stop": result.stop,
-        "optimizer_seconds": round(result.seconds, 2),
+        "evaluations": evaluations, "restarts": restarts, "stop": result.stop,
+        "optimizer_seconds": round(seconds, 2),
         "seconds": round(time.perf_counter() - started, 2),
         "tongue_map": {"shapes": mapping.tongue.shapes, "ridge": mapping.tongue.ridge,
                        "leave_one_out_rms": mapping.tongue.loo_rms},
@@ -296,7 +313,8 @@ def print_report(report: dict) -> None:
         before, after = (report["held_out_by_parameter"][k] for k in ("before", "after"))
         for name in report["compared"]:
             print(f"  {name:20s} {before[name]:7.3f} -> {after[name]:7.3f}")
-    print(f"{report['evaluations']} evaluations ({report['stop']}), "
+    print(f"{report['evaluations']} evaluations, {report['restarts']} restarts "
+          f"({report['stop']}), "
           f"{report['optimizer_seconds']:.1f} s; all {report['seconds']:.1f} s")
     m = report["tongue_map"]
     print(f"tongue map: ridge {m['ridge']} over {m['shapes']} shapes; leave-one-out RMS "
