@@ -123,6 +123,6 @@ def test_upgrading_a_database_with_poses_keeps_them_at_version_1_and_stops_id_re
     with sqlite3.connect(path) as db:
         assert db.execute("SELECT id, name, version FROM saved_poses").fetchall() == [
             (7, "old", 1)]
-        for table in ("saved_poses", "epg_recordings"):
+        for table in ("saved_poses", "epg_recordings", "fit_jobs"):
             sql = db.execute("SELECT sql FROM sqlite_master WHERE name = ?", (table,)).fetchone()
             assert "AUTOINCREMENT" in sql[0], sql

@@ -32,6 +32,8 @@ class FitJob(Timestamped, Base):
     """One fit of the tongue to an uploaded observation, and the target it made."""
 
     __tablename__ = "fit_jobs"
+    #: A deleted fit's id is never given to a new one (a stale link must not open another's).
+    __table_args__ = {"sqlite_autoincrement": True}
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     name: Mapped[str] = mapped_column(String(200))

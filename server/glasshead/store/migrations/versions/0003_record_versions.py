@@ -3,7 +3,8 @@
 Saved poses and EPG recordings gain ``version`` (1 for what is stored already), counted up by
 every update and given to clients as the ETag. On SQLite the two tables are rebuilt with
 AUTOINCREMENT, so the id of a deleted record is never given to a new one (without it SQLite
-reuses the largest id after a delete); PostgreSQL's sequences never reuse an id.
+reuses the largest id after a delete); so is ``fit_jobs``. PostgreSQL's sequences never reuse
+an id.
 
 Revision ID: 0003
 Revises: 0002
@@ -29,7 +30,7 @@ def upgrade() -> None:
                                        server_default=sa.text("1")))
     if op.get_bind().dialect.name == "sqlite":
         # add_column alone does not copy the table; AUTOINCREMENT needs the table made anew
-        for table in TABLES:
+        for table in (*TABLES, "fit_jobs"):
             with op.batch_alter_table(table, recreate="always",
                                       table_kwargs={"sqlite_autoincrement": True}):
                 pass
