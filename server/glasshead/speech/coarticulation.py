@@ -266,12 +266,14 @@ def coarticulate(phones: list[dict], targets: dict, *, rate_hz: float = 100.0,
 
 
 def _constants(constants: dict | None) -> tuple[dict, bool]:
+    """The constants in use (the shipped ones with ``constants``' keys over them, checked) and
+    whether the dominance is wanted. The shipped ones, checked when loaded, are read in place."""
+    extra = dict(constants or {})
+    wanted = bool(extra.pop("return_dominance", False))
+    if not extra:
+        return dominance.shipped_constants(), wanted
     merged = dominance.load_constants()
-    wanted = False
-    if constants:
-        extra = dict(constants)
-        wanted = bool(extra.pop("return_dominance", False))
-        merged.update(extra)
+    merged.update(extra)
     return dominance.validate_constants(merged), wanted
 
 

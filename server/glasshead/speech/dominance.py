@@ -161,6 +161,11 @@ def _stored() -> dict | None:
     return validate_constants(json.loads(CONSTANTS_FILE.read_text()))
 
 
+def shipped_constants() -> dict:
+    """The trained constants, or ``DEFAULTS``, checked, shared: read them, never change them."""
+    return _stored() or DEFAULTS
+
+
 def load_constants() -> dict:
     """A copy of the trained constants (``constants.json``), or of ``DEFAULTS`` when there are
     none."""
