@@ -11,7 +11,7 @@ from glasshead.fitting import vtl
 from glasshead.speech import dominance, training
 from glasshead.speech.vtl_reference import (
     STATE_S,
-    ReferenceError,
+    NoGestureError,
     ReferenceMapping,
     segment_file_text,
     vtl_states,
@@ -62,7 +62,7 @@ def test_every_training_sequence_has_a_vtl_gesture_for_each_phone_and_held_out_o
 
 
 def test_phones_vtl_has_no_gesture_for_are_refused_by_name():
-    with pytest.raises(ReferenceError, match="'W'"):
+    with pytest.raises(NoGestureError, match="'W'"):
         segment_file_text(training.timed("W IY"))
 
 

@@ -65,7 +65,7 @@ TONGUE_INPUTS = ("TCX", "TCY", "TTX", "TTY", "TBX", "TBY", "TRX", "TRY", "TS1", 
 RIDGE_CHOICES = (1e-3, 1e-2, 0.1, 0.3, 1.0, 3.0, 10.0)
 
 
-class ReferenceError(ValueError):
+class NoGestureError(ValueError):
     """A phone sequence VTL cannot make a reference for (a symbol it has no gesture for)."""
 
 
@@ -76,7 +76,7 @@ def segment_file_text(phones: list[dict]) -> str:
     for phone in phones:
         symbol = phone["symbol"]
         if symbol not in VTL_SYMBOLS:
-            raise ReferenceError(f"VocalTractLab has no gesture for {symbol!r} (W, R and the "
+            raise NoGestureError(f"VocalTractLab has no gesture for {symbol!r} (W, R and the "
                                  "diphthongs are not referenced)")
         if phone["start_s"] > clock + 1e-6:
             lines.append(f"name = ; duration_s = {phone['start_s'] - clock:.6f};")
