@@ -39,7 +39,7 @@ from glasshead.epg.sequence import (
     raw_to_frames,
     rows_to_strings,
 )
-from glasshead.epg.ssff import SSFF_MAGIC, parse_ssff, write_ssff
+from glasshead.epg.ssff import SSFF_MAGIC, check_frame_rate, parse_ssff, write_ssff
 
 FORMATS = ("emur-json", "csv", "ssff")
 MEDIA_TYPES = {"emur-json": "application/json", "csv": "text/csv",
@@ -285,18 +285,25 @@ def parse_csv(content: bytes) -> list[EpgSequence]:
                                      field=name, frame=i)
             frames[i, cell] = value == "1"
     if "frame_rate_hz" in meta:
-        try:
-            frame_rate = float(meta.pop("frame_rate_hz"))
-        except ValueError:
-            raise EpgFormatError("not a number", field="frame_rate_hz") from None
+        frame_rate = _csv_number(meta.pop("frame_rate_hz"), "frame_rate_hz")
+        check_frame_rate(frame_rate, "frame_rate_hz")
     for key in ("start_s", "end_s"):
         if key in meta:
-            try:
-                meta[key] = float(meta[key])
-            except ValueError:
-                raise EpgFormatError(f"{meta[key]!r} is not a number", field=key) from None
+            meta[key] = _csv_number(meta[key], key)
     name = str(meta.pop("name", "") or "CSV recording")
     return [make_sequence(frames.reshape(-1, 8, 8), t_s, name, frame_rate, meta)]
+
+
+def _csv_number(text, field: str) -> float:
+    """A finite number from a ``# key: value`` line: nan and inf would be stored and then
+    written as JSON that no parser reads."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise EpgFormatError(f"{text!r} is not a number", field=field) from None
+    if not math.isfinite(value):
+        raise EpgFormatError(f"{text!r} is not a finite number", field=field)
+    return value
 
 
 def write_csv(seq: EpgSequence) -> bytes:

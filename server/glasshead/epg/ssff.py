@@ -36,6 +36,9 @@ from glasshead.epg.sequence import (
 SSFF_MAGIC = "SSFF -- (c) SHLRC"
 SSFF_END = "-----------------"
 SSFF_TYPE_SIZES = {"CHAR": 1, "BYTE": 1, "SHORT": 2, "LONG": 4, "FLOAT": 4, "DOUBLE": 8}
+#: Declared frame rates accepted on import, Hz. EPG systems sample at 100-200 Hz; outside this
+#: range a rate is a mistake (``Record_Freq 1e-300`` would spread 8 frames over 1e300 seconds).
+FRAME_RATE_RANGE_HZ = (1.0, 100_000.0)
 #: Metadata written to SSFF as ``key CHAR text`` and ``key DOUBLE number`` lines and read back.
 SSFF_META_KEYS = ("name", "label", "utterance", "word")
 SSFF_META_NUMBERS = ("start_s", "end_s")
@@ -71,8 +74,9 @@ def parse_ssff(content: bytes) -> list[EpgSequence]:
             meta[key] = line.split(None, 2)[2].strip()
         elif len(fields) == 3 and fields[1] == "DOUBLE" and key in SSFF_META_NUMBERS:
             meta[key] = _ssff_number(fields[1:], key)
-    if rate is None or not rate > 0:
-        raise EpgFormatError("a positive Record_Freq line is required", field="Record_Freq")
+    if rate is None:
+        raise EpgFormatError("a Record_Freq line is required", field="Record_Freq")
+    check_frame_rate(rate, "Record_Freq")
     if start is None or start < 0:
         raise EpgFormatError("a Start_Time line of 0 or more seconds is required",
                              field="Start_Time")
@@ -102,6 +106,14 @@ def parse_ssff(content: bytes) -> list[EpgSequence]:
     t_s = start + np.arange(len(raw)) / rate
     name = str(meta.pop("name", "") or "SSFF recording")
     return [make_sequence(raw_to_frames(raw), t_s, name, rate, meta)]
+
+
+def check_frame_rate(rate: float, field: str) -> None:
+    """A declared frame rate must lie in FRAME_RATE_RANGE_HZ; raises EpgFormatError."""
+    low, high = FRAME_RATE_RANGE_HZ
+    if not low <= rate <= high:
+        raise EpgFormatError(f"{rate:g} Hz is not a frame rate between {low:g} and {high:g} Hz",
+                             field=field)
 
 
 def _ssff_number(fields: list[str], key: str) -> float:
