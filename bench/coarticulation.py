@@ -19,7 +19,12 @@ from pathlib import Path
 import numpy as np
 
 from glasshead.speech import dominance
-from glasshead.speech.coarticulation import coarticulate, parameter_names, target_matrix
+from glasshead.speech.coarticulation import (
+    coarticulate,
+    parameter_names,
+    segments,
+    target_matrix,
+)
 from glasshead.speech.training import timed
 
 REPO = Path(__file__).resolve().parents[1]
@@ -29,17 +34,18 @@ RATE_HZ = 100.0
 
 
 def naive_tracks(phones, targets, constants, rate_hz=RATE_HZ):
-    """Per frame, per phone: the dominance of each group, then each parameter's weighted sum."""
+    """Per frame, per phone (segment: a diphthong is two): the dominance of each group, then
+    each parameter's weighted sum."""
     names = parameter_names(targets)
-    symbols = [p["symbol"] for p in phones]
+    symbols, starts, ends, _ = segments(phones)
     values = target_matrix(symbols, targets, names).tolist()
     groups = [dominance.parameter_group(n) for n in names]
     specs = []
-    for phone in phones:
-        entry = constants["classes"][dominance.phone_class(phone["symbol"])]
+    for symbol, start, end in zip(symbols, starts.tolist(), ends.tolist(), strict=True):
+        entry = constants["classes"][dominance.phone_class(symbol)]
         alpha = dict(entry["alpha"])
-        alpha["velum"] = constants["velum_alpha"][dominance.velum_class(phone["symbol"])]
-        specs.append((0.5 * (phone["start_s"] + phone["end_s"]), entry["theta_anticipation"],
+        alpha["velum"] = constants["velum_alpha"][dominance.velum_class(symbol)]
+        specs.append((0.5 * (start + end), entry["theta_anticipation"],
                       entry["theta_carryover"], alpha))
     c = constants["c"]
     n_frames = math.ceil(phones[-1]["end_s"] * rate_hz - 1e-9)

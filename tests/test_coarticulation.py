@@ -13,9 +13,11 @@ import pytest
 from glasshead.phonemes import INVENTORY
 from glasshead.speech import dominance
 from glasshead.speech.coarticulation import (
+    GLIDE_SHARE,
     coarticulate,
     phone_contexts,
     sample,
+    segments,
     target_matrix,
 )
 from glasshead.speech.training import timed
@@ -166,10 +168,10 @@ def test_the_cues_follow_the_phones_features(targets):
 
 
 def brute_force_tracks(phones, targets, constants):
-    """The model written out per frame, per phone and per parameter."""
+    """The model written out per frame, per segment and per parameter."""
     names = [*targets["parameters"]["tongue"], *targets["parameters"]["lips"],
              *targets["parameters"]["velum"]]
-    symbols = [p["symbol"] for p in phones]
+    symbols, starts, ends, _ = segments(phones)
     values = target_matrix(symbols, targets, names)
     n = math.ceil(phones[-1]["end_s"] * 100.0 - 1e-9)
     out = {name: [] for name in names}
@@ -178,11 +180,11 @@ def brute_force_tracks(phones, targets, constants):
         for k, name in enumerate(names):
             group = dominance.parameter_group(name)
             numerator = denominator = 0.0
-            for j, phone in enumerate(phones):
-                entry = constants["classes"][dominance.phone_class(phone["symbol"])]
-                alpha = (constants["velum_alpha"][dominance.velum_class(phone["symbol"])]
+            for j, symbol in enumerate(symbols):
+                entry = constants["classes"][dominance.phone_class(symbol)]
+                alpha = (constants["velum_alpha"][dominance.velum_class(symbol)]
                          if group == "velum" else entry["alpha"][group])
-                tau = t - 0.5 * (phone["start_s"] + phone["end_s"])
+                tau = t - 0.5 * (starts[j] + ends[j])
                 theta = entry["theta_anticipation"] if tau < 0 else entry["theta_carryover"]
                 d = alpha * math.exp(-theta * abs(tau) ** constants["c"])
                 numerator += d * values[j, k]
@@ -194,12 +196,30 @@ def brute_force_tracks(phones, targets, constants):
 @pytest.mark.parametrize("which", CONSTANT_SETS)
 def test_tracks_equal_the_dominance_weighted_average_computed_frame_by_frame(targets, which):
     constants = CONSTANT_SETS[which] or dominance.load_constants()
-    phones = timed("K AH0 T DH AH0 CH IY Z")
+    phones = timed("K AH0 T DH AH0 CH IY Z AY W OW")
     fast = coarticulate(phones, targets, constants=constants)
     slow = brute_force_tracks(phones, targets, constants)
     for name, track in slow.items():
         np.testing.assert_allclose(fast["tracks"][name], track, rtol=1e-9, atol=1e-9,
                                    err_msg=name)
+
+
+def test_a_diphthong_glides_from_its_first_element_to_its_second(targets):
+    """/aɪ/ in "buy": tip_advancement (AA -0.2 mm, IH 13.9 mm) rises across the phone."""
+    phones = timed("B AY")
+    assert segments(phones)[0] == ["sil", "B", "AY", "IH", "sil"]
+    ay = phones[2]
+    glide_start = ay["end_s"] - GLIDE_SHARE * (ay["end_s"] - ay["start_s"])
+    assert segments(phones)[1][3] == pytest.approx(glide_start)
+    track = coarticulate(phones, targets)["tracks"]["tip_advancement"]
+    early = track[round((ay["start_s"] + 0.3 * (ay["end_s"] - ay["start_s"])) * 100)]
+    late = track[round((ay["end_s"] - 0.01) * 100)]
+    aa, ih = (target_of(targets, s)["params"]["tip_advancement"] for s in ("AA", "IH"))
+    assert late - early > 0.3 * (ih - aa)
+    # A consonant after a diphthong takes the context of its second element.
+    assert phone_contexts(["B", "AY", "IH", "T"])[3] == "i"
+    dominance_rows = coarticulate(phones, targets, constants={"return_dominance": True})
+    assert len(dominance_rows["dominance"]["jaw_opening"]) == len(phones)
 
 
 def test_dominance_is_returned_per_parameter_and_phone_only_when_asked(targets):

@@ -14,7 +14,8 @@ every segment's centre (a long phone's middle) do not underflow to 0 / 0.
 Targets come from the built phoneme targets (``pipeline.phoneme_targets``, docs/targets.md): a
 measured consonant takes its variant fitted in the vowel context nearest after it (else before
 it, within the same stretch of speech between silences), so /k/ before /i/ is fronted; silence
-takes the rig's rest pose (the /h/ target) with a low dominance, so speech reaches into it.
+takes the rig's rest pose (the /h/ target) with a low dominance, so speech reaches into it; a
+diphthong is two segments, its first element and the glide to its second (``GLIDES``).
 
 Cue tracks (voicing, nasal airflow, frication, 0..1) come from the phones' features, a box of
 ``CUE_SMOOTHING_S`` seconds moved over the phones' steps, integrated exactly.
@@ -41,6 +42,11 @@ TIME_TOLERANCE_S = 1e-9
 CUES = ("voicing", "nasal_airflow", "frication")
 #: The symbol whose target stands for silence: /h/'s target is the rig's rest pose.
 REST_TARGET = "HH"
+#: Diphthongs glide: a diphthong's target is its first element (docs/targets.md), so its last
+#: ``GLIDE_SHARE`` is a segment of its own with the target (and class) of its second element,
+#: the share VocalTractLab's segment rules give the second vowel gesture of /aɪ aʊ ɔɪ/.
+GLIDES = {"AY": "IH", "EY": "IH", "OY": "IH", "AW": "UH", "OW": "UH"}
+GLIDE_SHARE = 1.0 / 3.0
 
 
 def _phone_label(k: int, phone) -> str:
@@ -91,6 +97,27 @@ def validate_phones(phones: list[dict]) -> list[dict]:
         out.append({"symbol": name, "stress": phone.get("stress"), "start_s": start,
                     "end_s": end})
     return out
+
+
+def segments(phones: list[dict]) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
+    """The dominance segments of validated phones: every phone is one, a diphthong two (its
+    first element, then the glide to its second, ``GLIDES``). Returns (symbols, starts (s),
+    ends (s), owners: the index of each segment's phone)."""
+    symbols, starts, ends, owners = [], [], [], []
+    for k, phone in enumerate(phones):
+        start, end, symbol = phone["start_s"], phone["end_s"], phone["symbol"]
+        if symbol in GLIDES:
+            middle = end - GLIDE_SHARE * (end - start)
+            symbols += [symbol, GLIDES[symbol]]
+            starts += [start, middle]
+            ends += [middle, end]
+            owners += [k, k]
+        else:
+            symbols.append(symbol)
+            starts.append(start)
+            ends.append(end)
+            owners.append(k)
+    return symbols, np.array(starts), np.array(ends), np.array(owners)
 
 
 def frame_count(duration_s: float, rate_hz: float) -> int:
@@ -281,7 +308,8 @@ def coarticulate_arrays(phones: list[dict], targets: dict, *, rate_hz: float = 1
                         constants: dict | None = None) -> dict:
     """``coarticulate`` as arrays: ``names`` (n_params), ``groups`` (n_params, index into
     ``dominance.GROUPS``), ``tracks`` (n_params, n_frames), ``cues`` (3, n_frames), ``times``
-    (n_frames,) and, when asked, ``dominance`` (n_groups, n_phones, n_frames)."""
+    (n_frames,) and, when asked, ``dominance`` (n_groups, n_phones, n_frames: a diphthong's is
+    the sum of its two segments')."""
     if isinstance(rate_hz, bool) or not isinstance(rate_hz, int | float) \
             or not math.isfinite(rate_hz) or rate_hz <= 0:
         raise ValueError(f"rate_hz must be a positive number, not {rate_hz!r}")
@@ -295,17 +323,23 @@ def coarticulate_arrays(phones: list[dict], targets: dict, *, rate_hz: float = 1
     times = np.arange(n_frames) / float(rate_hz)
 
     names = parameter_names(targets)
-    values = target_matrix(symbols, targets, names)
-    alpha, before, after = dominance_arrays(symbols, constants)
+    parts, part_starts, part_ends, owners = segments(phones)
+    values = target_matrix(parts, targets, names)
+    alpha, before, after = dominance_arrays(parts, constants)
     groups = parameter_groups(names, targets)
 
-    e = decay(0.5 * (starts + ends), times, before, after, float(constants["c"]))
+    e = decay(0.5 * (part_starts + part_ends), times, before, after, float(constants["c"]))
     tracks = blend(values, alpha, groups, e)
     out = {"rate_hz": float(rate_hz), "n_frames": n_frames, "duration_s": duration,
            "names": names, "groups": groups, "tracks": tracks, "times": times,
            "cues": cue_tracks(starts, ends, _cue_values(symbols), times)}
     if want_dominance:
-        out["dominance"] = alpha.T[:, :, None] * np.exp(-e)[None]
+        d = alpha.T[:, :, None] * np.exp(-e)[None]  # (n_groups, n_segments, n_frames)
+        if len(parts) != len(phones):
+            combine = np.zeros((len(phones), len(parts)))
+            combine[owners, np.arange(len(parts))] = 1.0
+            d = np.einsum("ps,gsf->gpf", combine, d)
+        out["dominance"] = d
     return out
 
 

@@ -119,13 +119,11 @@ class Case:
         self.phones = timed(text)
         targets = mapping.targets
         self.names = coarticulation.parameter_names(targets)
-        symbols = [p["symbol"] for p in self.phones]
+        symbols, starts, ends, _ = coarticulation.segments(self.phones)
         self.values = coarticulation.target_matrix(symbols, targets, self.names)
         self.groups = coarticulation.parameter_groups(self.names, targets)
         self.classes = [dominance.phone_class(s) for s in symbols]
         self.velum_classes = [dominance.velum_class(s) for s in symbols]
-        starts = np.array([p["start_s"] for p in self.phones])
-        ends = np.array([p["end_s"] for p in self.phones])
         self.centres = 0.5 * (starts + ends)
         n = coarticulation.frame_count(float(ends[-1]), RATE_HZ)
         times = np.arange(n) / RATE_HZ
