@@ -22,8 +22,9 @@ rigs' parameters the way the phoneme targets carry VTL's stored shapes
   error is reported.
 
 The VTL speaker is German (JD3): /w/ and American /ɹ/ have no gesture of their own, and its
-diphthongs glide where our targets hold the first element, so ``VTL_SYMBOLS`` leaves W, R and
-the diphthongs out and sequences with them cannot be referenced.
+diphthongs glide to /e/ and /o/ (aI: a then e) where ours glide to /ɪ/ and /ʊ/, so
+``VTL_SYMBOLS`` leaves W, R and the diphthongs out and sequences with them cannot be
+referenced.
 """
 
 import json
