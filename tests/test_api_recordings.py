@@ -282,3 +282,20 @@ def test_the_openapi_document_lists_the_epg_operations(client):
             "plotRecording", "computeEpgIndices"} <= ids
     body = document["paths"][f"{API}/epg/recordings"]["post"]["requestBody"]["content"]
     assert {"multipart/form-data", "application/json"} <= set(body)
+
+
+def test_the_comparison_reports_kappa_that_an_empty_target_cannot_win(client, emur_bytes):
+    segment = one_segment(emur_bytes, 0)
+    rid = client.post(f"{API}/epg/recordings", json={"format": "emur-json", "content": segment}
+                      ).json()["recordings"][0]["id"]
+    empty = ["0" * 8] * 8
+    report = client.post(f"{API}/epg/recordings/{rid}/compare",
+                         json={"reference": {"frames": [empty]}}).json()
+    n = len(segment["frames"])
+    assert len(report["kappa"]) == n and len(report["contact_agreement"]) == n
+    assert report["summary"]["mean_agreement"] > 0.5
+    assert report["summary"]["mean_kappa"] == pytest.approx(0.0, abs=1e-12)
+    assert report["summary"]["mean_contact_agreement"] == pytest.approx(0.0, abs=1e-12)
+    same = client.post(f"{API}/epg/recordings/{rid}/compare",
+                       json={"reference": {"recording_id": rid}}).json()
+    assert same["kappa"] == pytest.approx([1.0] * n, abs=1e-12)

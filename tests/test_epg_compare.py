@@ -117,3 +117,50 @@ def test_an_unknown_panel_is_refused():
     track = Track("x", np.array([0.0]), {"percent": np.array([1.0])})
     with pytest.raises(ValueError, match="no panel for"):
         index_tracks_svg([track], ("loudness",))
+
+
+def _fullest_velar_frame(seq):
+    """The frame of ``seq`` with the most contacts in rows 6 to 8 (its /k/ closure)."""
+    return seq.frames[int(np.argmax(seq.frames[:, 5:].sum(axis=(1, 2))))]
+
+
+def test_an_empty_target_against_a_real_k_closure_scores_zero_kappa(sequences):
+    seq = sequences[0]
+    assert seq.name.startswith("sp1bescan")
+    k = _fullest_velar_frame(seq)
+    assert k[5:].sum() >= 12, "the take has a velar closure"
+    result = cmp.compare(k[None], [0.0], np.zeros((1, 8, 8), dtype=np.uint8))
+    # The raw share is won by the electrodes off on both sides; kappa and contact agreement not.
+    assert result.agreement[0] > 0.5
+    np.testing.assert_allclose(result.kappa, [0.0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(result.contact_agreement, [0.0], rtol=0, atol=1e-12)
+    whole = cmp.compare(seq.frames, seq.t_s, np.zeros((1, 8, 8), dtype=np.uint8)).summary()
+    assert whole["mean_agreement"] > 0.5
+    np.testing.assert_allclose(whole["mean_kappa"], 0.0, rtol=0, atol=1e-12)
+
+
+def test_identical_frames_score_kappa_one_even_when_empty_or_full(sequences):
+    seq = sequences[0]
+    result = cmp.compare(seq.frames, seq.t_s, seq.frames, seq.t_s)
+    np.testing.assert_allclose(result.kappa, 1.0, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(result.contact_agreement, 1.0, rtol=0, atol=1e-12)
+    full = np.ones((1, 8, 8), dtype=np.uint8)
+    full[0, 0, [0, 7]] = 0
+    for frame in (np.zeros((1, 8, 8), dtype=np.uint8), full):
+        same = cmp.compare(frame, [0.0], frame)
+        np.testing.assert_allclose(same.kappa, [1.0], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(same.contact_agreement, [1.0], rtol=0, atol=1e-12)
+
+
+def test_kappa_is_cohens_formula_on_a_small_exact_case():
+    # recording: 4 contacts; reference: 2 of those and 2 others. Of 62: observed 58/62 agree.
+    mine = frame_with([(7, 0), (7, 1), (7, 2), (7, 3)])
+    theirs = frame_with([(7, 0), (7, 1), (6, 0), (6, 1)])
+    result = cmp.compare(mine[None], [0.0], theirs[None])
+    p_o, p_a, p_b = 58 / 62, 4 / 62, 4 / 62
+    p_e = p_a * p_b + (1 - p_a) * (1 - p_b)
+    np.testing.assert_allclose(result.kappa, [(p_o - p_e) / (1 - p_e)], rtol=1e-12)
+    np.testing.assert_allclose(result.contact_agreement, [2 / 6], rtol=1e-12)
+    # A target with every contact on the other side: kappa below zero.
+    other = frame_with([(0, 3), (0, 4), (1, 3), (1, 4)])
+    assert cmp.compare(mine[None], [0.0], other[None]).kappa[0] < 0

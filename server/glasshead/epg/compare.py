@@ -6,6 +6,17 @@ The first sequence (the "recording") sets the frames and times of the report. Th
 - otherwise reference frames are held from their own time until the next (sample and hold), on
   times measured from each sequence's first frame, so a take and a target line up at their
   starts whatever their absolute clocks or frame rates.
+
+The raw agreement (the share of the 62 electrodes on or off in both) is mostly won by electrodes
+that are off on both sides: a target with no contact at all agrees on 59 % of the electrodes of
+the real s->k take sp1bescan (mean over its frames), 53 % at its fullest /k/ closure.
+So two figures that an empty palatogram cannot win stand beside it, per frame:
+- Cohen's kappa (Cohen 1960): (p_o - p_e) / (1 - p_e), the agreement beyond what the two
+  contact shares would give by chance, p_e = p_a p_b + (1 - p_a)(1 - p_b). An empty side scores 0
+  against anything but another empty frame; identical frames score 1 (also where kappa is 0/0:
+  both empty or both full).
+- contact agreement: electrodes on in both over electrodes on in either (Jaccard); 1 when
+  neither has a contact.
 """
 
 from dataclasses import dataclass
@@ -44,7 +55,9 @@ class Comparison:
 
     ``codes`` (n, 8, 8) uint8: per electrode BOTH_OFF, BOTH_ON, ONLY_RECORDING or ONLY_REFERENCE
     (NO_ELECTRODE at the R1 corners). ``agreement`` (n,): fraction of the 62 electrodes that
-    agree. ``electrode_agreement`` (8, 8): fraction of frames in which each electrode agrees (NaN
+    agree. ``kappa`` (n,): Cohen's kappa of the two frames over the 62 electrodes.
+    ``contact_agreement`` (n,): electrodes on in both over electrodes on in either.
+    ``electrode_agreement`` (8, 8): fraction of frames in which each electrode agrees (NaN
     at the R1 corners). ``recording_indices`` / ``reference_indices`` / ``index_difference``:
     name -> (n,) (recording minus reference). ``reference_frame`` (n,) int: which reference frame
     was used for each recording frame.
@@ -58,12 +71,17 @@ class Comparison:
     reference_indices: dict
     index_difference: dict
     reference_frame: np.ndarray
+    kappa: np.ndarray
+    contact_agreement: np.ndarray
 
     def summary(self) -> dict:
-        """Whole-recording figures: mean agreement and mean/max absolute index differences."""
+        """Whole-recording figures: mean agreement, kappa and contact agreement, and mean/max
+        absolute index differences."""
         return {
             "mean_agreement": float(self.agreement.mean()),
             "min_agreement": float(self.agreement.min()),
+            "mean_kappa": float(self.kappa.mean()),
+            "mean_contact_agreement": float(self.contact_agreement.mean()),
             "identical_frames": int((self.agreement == 1.0).sum()),
             "mean_abs_difference": {k: float(np.abs(v).mean())
                                     for k, v in self.index_difference.items()},
@@ -98,6 +116,23 @@ def align_reference(t_s: np.ndarray, ref_t_s: np.ndarray | None, n_ref: int) -> 
     return np.clip(held, 0, n_ref - 1)
 
 
+def agreement_beyond_chance(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(kappa (n,), contact agreement (n,)) of contact frames ``a`` and ``b`` (n, k) bool, over
+    their k electrodes; see the module docstring."""
+    k = a.shape[1]
+    on_a = a.sum(axis=1) / k
+    on_b = b.sum(axis=1) / k
+    observed = (a == b).sum(axis=1) / k
+    chance = on_a * on_b + (1 - on_a) * (1 - on_b)
+    # chance == 1 only when both frames are empty or both full, and then they are identical
+    undefined = chance >= 1.0
+    kappa = np.where(undefined, 1.0, (observed - chance) / np.where(undefined, 1.0, 1 - chance))
+    both = (a & b).sum(axis=1)
+    either = (a | b).sum(axis=1)
+    contact = np.where(either == 0, 1.0, both / np.maximum(either, 1))
+    return kappa, contact
+
+
 def compare(frames, t_s, ref_frames, ref_t_s=None) -> Comparison:
     """Compare a recording ``frames`` (n, 8, 8) at ``t_s`` (n,) with ``ref_frames`` (m, 8, 8).
 
@@ -119,6 +154,7 @@ def compare(frames, t_s, ref_frames, ref_t_s=None) -> Comparison:
     codes[:, ~_HAS_ELECTRODE] = NO_ELECTRODE
     agree = (a == b) & _HAS_ELECTRODE
     agreement = agree.sum(axis=1) / EPG_ELECTRODES
+    kappa, contact = agreement_beyond_chance(a[:, _HAS_ELECTRODE], b[:, _HAS_ELECTRODE])
     per_electrode = agree.mean(axis=0)
     per_electrode[~_HAS_ELECTRODE] = np.nan
 
@@ -137,4 +173,6 @@ def compare(frames, t_s, ref_frames, ref_t_s=None) -> Comparison:
         index_difference={k: recording_indices[k] - reference_indices[k]
                           for k in COMPARED_INDICES},
         reference_frame=which,
+        kappa=kappa,
+        contact_agreement=contact,
     )

@@ -64,6 +64,10 @@ class ComparisonReport(BaseModel):
     t_s: list[float]
     reference_frame: list[int] = Field(description="reference frame used for each frame")
     agreement: list[float] = Field(description="fraction of the 62 electrodes that agree")
+    kappa: list[float] = Field(description="Cohen's kappa of each frame over the 62 electrodes: "
+                               "agreement beyond chance, 0 for an empty side, 1 when identical")
+    contact_agreement: list[float] = Field(
+        description="electrodes on in both over electrodes on in either (1 when neither has one)")
     codes: list[list[str]] = Field(description="per frame 8 strings of codes, see code_legend")
     code_legend: dict[str, str]
     electrode_agreement: list[list[float | None]] = Field(
@@ -118,6 +122,7 @@ def compare_recording(recording_id: RecordId, request: CompareRequest,
     return ComparisonReport(
         recording_id=recording_id, reference_label=label, t_s=sequence.t_s.tolist(),
         reference_frame=result.reference_frame.tolist(), agreement=result.agreement.tolist(),
+        kappa=result.kappa.tolist(), contact_agreement=result.contact_agreement.tolist(),
         codes=[["".join(str(int(v)) for v in row) for row in frame] for frame in result.codes],
         code_legend=CODE_LEGEND, electrode_agreement=per_electrode,
         recording_indices=_lists(result.recording_indices),
