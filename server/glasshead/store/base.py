@@ -62,9 +62,9 @@ class Versioned:
     version: Mapped[int] = mapped_column(Integer, nullable=False, server_default=text("1"))
 
     @declared_attr.directive
-    def __mapper_args__(cls):
+    def __mapper_args__(cls):  # noqa: N805 (a class-level directive)
         return {"version_id_col": cls.__table__.c.version}
 
     @declared_attr.directive
-    def __table_args__(cls):
+    def __table_args__(cls):  # noqa: N805
         return {"sqlite_autoincrement": True}
