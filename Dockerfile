@@ -16,7 +16,14 @@ COPY pyproject.toml README.md ./
 COPY server ./server
 RUN pip install --no-cache-dir '.[postgres]'
 COPY --from=web /app/web/dist ./web/dist
+# The server runs as an unprivileged user that owns only what it writes: the built assets (and
+# the utterance cache inside them) and var/ for a SQLite database when no PostgreSQL is given.
+RUN useradd --system --uid 10001 --home-dir /app --shell /usr/sbin/nologin glasshead \
+    && mkdir -p /app/assets/build /app/var \
+    && chown glasshead:glasshead /app/assets/build /app/var
+USER glasshead
 ENV GLASSHEAD_DATA_DIR=/data \
+    GLASSHEAD_DATABASE_URL=sqlite:////app/var/glasshead.sqlite3 \
     GLASSHEAD_ASSETS_DIR=/app/assets/build \
     GLASSHEAD_WEB_DIST_DIR=/app/web/dist \
     HOST=0.0.0.0 \

@@ -75,6 +75,12 @@ function ensureEspeak() {
 	ensureDebianPackage( { file: '/usr/bin/espeak-ng', pkg: 'espeak-ng', why: 'Speech (POST /utterances)' } );
 }
 
+function ensurePostgres() {
+	// The tests that run the API as several workers against a real PostgreSQL server.
+	ensureDebianPackage( { file: '/usr/lib/postgresql/15/bin/initdb', pkg: 'postgresql',
+		why: 'The PostgreSQL tests (tests/postgres_support.py)' } );
+}
+
 function buildAssets() {
 	// `glasshead build` hashes its own inputs and returns at once when nothing changed.
 	run( join( REPO, '.venv', 'bin', 'glasshead' ), [ 'build' ] );
@@ -92,5 +98,6 @@ ensurePython();
 ensureNodeModules();
 ensureEspeak();
 if ( mode === 'test' ) ensureChromium();
+if ( mode === 'test' ) ensurePostgres();
 buildAssets();
 buildWeb();

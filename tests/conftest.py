@@ -1,11 +1,16 @@
 """Shared fixtures: the reference data (required, never skipped) and the built assets."""
 
 import json
+import os
 from pathlib import Path
 
 import pytest
 
 from glasshead.settings import get_settings
+
+# Starlette's TestClient sends "Host: testserver"; the host allow-list (api/security.py) must let
+# it through. Tests of the allow-list itself set GLASSHEAD_ALLOWED_HOSTS or delete it.
+os.environ.setdefault("GLASSHEAD_ALLOWED_HOSTS", "testserver,localhost,127.0.0.1,::1")
 
 
 @pytest.fixture(scope="session")

@@ -1,5 +1,6 @@
 """The application shell: health, JSON errors, OpenAPI, the anatomy manifest and cached assets."""
 
+import hashlib
 import json
 
 import pytest
@@ -8,17 +9,21 @@ from fastapi.testclient import TestClient
 from glasshead.api.app import create_app
 from glasshead.settings import get_settings
 
+#: A small GLB-like file; an asset URL is immutable only when its v is the file's hash.
+GLB = b"glTF" + bytes(60)
+GLB_SHA256 = hashlib.sha256(GLB).hexdigest()
+
 
 @pytest.fixture
 def client_with_assets(tmp_path, monkeypatch):
     """An app whose assets directory holds one small GLB-like file and its manifest."""
     assets = tmp_path / "assets"
     assets.mkdir()
-    (assets / "maxilla.glb").write_bytes(b"glTF" + bytes(60))
+    (assets / "maxilla.glb").write_bytes(GLB)
     manifest = {
         "format_version": 1,
         "frame": {"units": "mm"},
-        "meshes": [{"name": "maxilla", "file": "maxilla.glb", "sha256": "ab" * 32,
+        "meshes": [{"name": "maxilla", "file": "maxilla.glb", "sha256": GLB_SHA256,
                     "triangles": 12, "vertices": 8, "lod": "full", "scene": True, "role": "bone"}],
     }
     (assets / "manifest.json").write_text(json.dumps(manifest))
@@ -58,7 +63,7 @@ def test_anatomy_lists_meshes_with_versioned_urls(client_with_assets):
     meshes = client_with_assets.get("/api/v1/anatomy").json()["meshes"]
     assert meshes[0]["name"] == "maxilla"
     assert meshes[0]["triangles"] == 12
-    assert meshes[0]["url"] == "/assets/build/maxilla.glb?v=" + "ab" * 8
+    assert meshes[0]["url"] == "/assets/build/maxilla.glb?v=" + GLB_SHA256[:16]
 
 
 def test_versioned_assets_are_cached_for_good_and_revalidate_by_etag(client_with_assets):

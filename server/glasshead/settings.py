@@ -17,6 +17,9 @@ class Settings(BaseSettings):
 
     host: str = Field("127.0.0.1", validation_alias=AliasChoices("HOST", "GLASSHEAD_HOST"))
     port: int = Field(8000, ge=1, le=65535, validation_alias=AliasChoices("PORT", "GLASSHEAD_PORT"))
+    #: Host names the server answers to, comma-separated (DNS rebinding guard); empty: the
+    #: loopback names and ``host``. Behind a load balancer: the name users type.
+    allowed_hosts: str = ""
     #: Reference data (meshes, EPG, ultrasound); read-only.
     data_dir: Path = REPO_ROOT.parent / "shared" / "data"
     #: Output of `glasshead build`.

@@ -9,6 +9,7 @@ from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
+from glasshead.api.security import install_safe_defaults
 from glasshead.api.static import mount_static
 from glasshead.asset_store import AssetStore, AssetUnavailableError
 from glasshead.fitting.job_runner import FitRunner
@@ -45,8 +46,8 @@ def create_app() -> FastAPI:
         version=__version__,
         summary="A talking head with transparent skin, a parametric tongue and synthetic EPG.",
         openapi_url=f"{API_PREFIX}/openapi.json",
-        docs_url=f"{API_PREFIX}/docs",
-        redoc_url=f"{API_PREFIX}/redoc",
+        docs_url=None,  # served by glasshead.api.docs_pages, without a CDN
+        redoc_url=None,
         lifespan=lifespan,
     )
     app.state.assets = AssetStore(settings.assets_dir)
@@ -55,6 +56,7 @@ def create_app() -> FastAPI:
     for name in ROUTE_MODULES:
         module = importlib.import_module(f"glasshead.api.routes.{name}")
         app.include_router(module.router, prefix=API_PREFIX)
+    install_safe_defaults(app, settings, API_PREFIX)
 
     @app.api_route(
         API_PREFIX + "/{rest:path}",

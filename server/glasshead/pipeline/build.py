@@ -20,6 +20,7 @@ from pathlib import Path
 from glasshead.constants import MANIFEST_FILE, MANIFEST_FORMAT_VERSION
 from glasshead.pipeline import sources
 from glasshead.pipeline.outputs import read_json, write_json
+from glasshead.pipeline.report_paths import portable
 
 MANIFEST = MANIFEST_FILE
 REPORT = "build-report.json"
@@ -164,12 +165,21 @@ def is_up_to_date(assets_dir, digest):
         (Path(assets_dir) / m["file"]).is_file() for m in manifest.get("meshes", []))
 
 
+def _make_report_portable(assets_dir, data_dir):
+    report = read_json(assets_dir / REPORT)
+    if report:
+        fixed = portable(report, assets_dir=assets_dir, data_dir=data_dir)
+        if fixed != report:
+            write_json(assets_dir / REPORT, fixed)
+
+
 def run(data_dir, assets_dir, force=False, log=print):
     """Build what is stale. Returns the report dict (``{"up_to_date": True}`` when nothing was)."""
     data_dir, assets_dir = Path(data_dir), Path(assets_dir)
     sources.check_data_dir(data_dir)
     digest = inputs_digest(data_dir)
     if not force and is_up_to_date(assets_dir, digest):
+        _make_report_portable(assets_dir, data_dir)  # one written before reports were
         log(f"assets up to date in {assets_dir}")
         return {"up_to_date": True}
     ctx = BuildContext(data_dir=data_dir, assets_dir=assets_dir, log=log)
@@ -180,7 +190,8 @@ def run(data_dir, assets_dir, force=False, log=print):
         ctx.reports[name] = step(ctx)
         log(f"    {name} done in {time.perf_counter() - step_started:.1f} s")
     ctx.reports["total_s"] = round(time.perf_counter() - started, 3)
-    write_json(assets_dir / REPORT, ctx.reports)
+    write_json(assets_dir / REPORT, portable(ctx.reports, assets_dir=assets_dir,
+                                             data_dir=data_dir))
     manifest = json.loads((assets_dir / MANIFEST).read_text())
     manifest["inputs_sha256"] = digest
     write_json(assets_dir / MANIFEST, manifest)

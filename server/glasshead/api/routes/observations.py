@@ -15,6 +15,7 @@ from fastapi import APIRouter, HTTPException
 from pydantic import BaseModel, Field
 
 from glasshead.api.deps import AssetsDep
+from glasshead.api.static import hashed_url
 from glasshead.asset_store import AssetUnavailableError
 from glasshead.constants import FIT_REPORT_FILE
 
@@ -122,7 +123,6 @@ def get_observation(name: str, assets: AssetsDep) -> dict:
         reason = fit.get("error") if fit else "it lists no such shape"
         raise AssetUnavailableError("fit_report", FIT_REPORT_FILE, "stale",
                                     f"no fit of {name!r}: {reason}")
-    version = assets.entry("fit_report").sha256[:16]
     return {
         "name": name, "source": fit["source"], "label": fit["label"],
         "origin": fit["origin"], "outline": fit["outline"],
@@ -131,5 +131,5 @@ def get_observation(name: str, assets: AssetsDep) -> dict:
         "after": {key: fit[key] for key in ("params", "rms_mm", "max_error_mm", "evaluations",
                                             "seconds", "method", "volume_change_pct",
                                             "at_limit")},
-        "plot_url": f"/assets/build/{quote(fit['plot'])}?v={version}",
+        "plot_url": hashed_url(assets.assets_dir, fit["plot"]),
     }
