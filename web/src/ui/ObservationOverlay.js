@@ -381,7 +381,9 @@ export class ObservationPanel {
 
 function swatch( color ) {
 
-	return h( 'span', { className: 'wb-swatch', style: `background: ${ color }`, 'aria-hidden': 'true' } );
+	const element = h( 'span', { className: 'wb-swatch', 'aria-hidden': 'true' } );
+	element.style.background = color; // through the CSSOM: the page's policy refuses style attributes
+	return element;
 
 }
 
