@@ -134,6 +134,29 @@ def _coarticulate(phones: list[dict], targets: dict) -> dict:
     return coarticulate(phones, targets, rate_hz=RATE_HZ)
 
 
+#: Decimals of the dominance curves sent (far below what a plot shows; keeps the answer small).
+DOMINANCE_DECIMALS = 5
+
+
+def _dominance(phones: list[dict], targets: dict) -> dict:
+    """The dominance curves for ``"dominance": true``: ``{"groups": {group: [[float] * n_frames
+    per phone]}, "parameters": {parameter: group}}``. Dominance is the same for every parameter
+    of a group (``speech.dominance.GROUPS``), so it is sent once per group."""
+    import numpy as np
+
+    from glasshead.speech.coarticulation import coarticulate_arrays
+    from glasshead.speech.dominance import GROUPS
+
+    arrays = coarticulate_arrays(phones, targets, rate_hz=RATE_HZ,
+                                 constants={"return_dominance": True})
+    used = sorted(set(arrays["groups"].tolist()))
+    curves = np.round(arrays["dominance"], DOMINANCE_DECIMALS)
+    return {"groups": {GROUPS[g]: curves[g].tolist() for g in used},
+            "parameters": {n: GROUPS[g] for n, g in zip(arrays["names"],
+                                                          arrays["groups"].tolist(),
+                                                          strict=True)}}
+
+
 def _spoken(words, rate: float, word_names: list[str | None]) -> tuple[list[dict], object]:
     """One espeak-ng synthesis of ``words``; the phones with stress and word attached."""
     synthesis = espeak.get_engine().synthesize(words, rate)
@@ -190,8 +213,8 @@ def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> 
             synthesis.samples = audio.retime(synthesis.samples, synthesis.sample_rate,
                                              bounds_from, bounds_to)
 
-    result = _coarticulate([{k: p[k] for k in ("symbol", "stress", "start_s", "end_s")}
-                            for p in phones], targets)
+    timed = [{k: p[k] for k in ("symbol", "stress", "start_s", "end_s")} for p in phones]
+    result = _coarticulate(timed, targets)
     voice, audio_url = None, None
     if kind == "articulatory":
         samples, sample_rate = vtl_voice.synthesize(phones)
@@ -228,6 +251,8 @@ def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> 
         "voice": voice,
         "warnings": warnings,
     }
+    if request.get("dominance"):
+        response["dominance"] = _dominance(timed, targets)
     data = json.dumps(response, separators=(",", ":")).encode()
     _write_atomic(cache_dir / f"{utterance_id}.json", data)
     return data

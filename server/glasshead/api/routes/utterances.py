@@ -13,8 +13,7 @@ from fastapi import APIRouter, File, Form, HTTPException, Response, UploadFile
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, Field, model_validator
 
-from glasshead.api.deps import AssetsDep
-from glasshead.settings import get_settings
+from glasshead.api.deps import AssetsDep, SpeechCacheDep
 from glasshead.speech import audio, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
 from glasshead.speech.pronounce import MAX_TEXT_CHARS
@@ -55,6 +54,8 @@ class UtteranceRequest(BaseModel):
     phones: list[PhoneIn] | None = Field(None, description="phones with their own timings")
     rate: float = Rate
     audio: AudioOptions = Field(default_factory=AudioOptions)
+    dominance: bool = Field(False, description="also send each phone's dominance curves, per "
+                                               "group of parameters (the player plots them)")
 
     @model_validator(mode="after")
     def one_input(self):
@@ -99,12 +100,15 @@ class Utterance(BaseModel):
     voice: str | None = Field(description="what made the audio, e.g. espeak-ng en-us, "
                                           "VocalTractLab JD3; null without audio")
     warnings: list[str] = Field(description="e.g. the words that could not be pronounced")
+    dominance: dict | None = Field(None, description="with dominance: true, {groups: {group: "
+                                   "[[float] * n_frames per phone]}, parameters: {parameter: "
+                                   "group}}")
 
 
-def _respond(request: dict, assets) -> Response:
+def _respond(request: dict, assets, cache_dir) -> Response:
     entry = assets.entry("phoneme_targets")
     try:
-        data = utterance.make(request, entry.value, entry.sha256, get_settings().speech_cache_dir)
+        data = utterance.make(request, entry.value, entry.sha256, cache_dir)
     except utterance.UtteranceInputError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
     except EspeakUnavailableError as exc:
@@ -113,16 +117,18 @@ def _respond(request: dict, assets) -> Response:
 
 
 @router.post("/utterances", operation_id="createUtterance", response_model=Utterance)
-def create_utterance(body: UtteranceRequest, assets: AssetsDep) -> Response:
+def create_utterance(body: UtteranceRequest, assets: AssetsDep,
+                     cache_dir: SpeechCacheDep) -> Response:
     """Speak text, phonemes (IPA or ARPAbet) or timed phones: the phones with their times, the
     coarticulated tracks and cues, and the audio's URL."""
-    return _respond(body.model_dump(mode="json"), assets)
+    return _respond(body.model_dump(mode="json"), assets, cache_dir)
 
 
 @router.post("/utterances/textgrid", operation_id="createUtteranceFromTextGrid",
              response_model=Utterance)
 def create_utterance_from_textgrid(
     assets: AssetsDep,
+    cache_dir: SpeechCacheDep,
     file: Annotated[UploadFile, File(description="a Praat TextGrid; its first interval tier")],
     rate: Annotated[float, Form(ge=0.5, le=2.0)] = 1.0,
     audio_kind: Annotated[AudioKind, Form()] = "none",
@@ -144,14 +150,14 @@ def create_utterance_from_textgrid(
     body = UtteranceRequest(phones=phones, rate=rate,
                             audio={"kind": audio_kind, "cutoff_hz": cutoff_hz,
                                    "channels": channels})
-    return _respond(body.model_dump(mode="json"), assets)
+    return _respond(body.model_dump(mode="json"), assets, cache_dir)
 
 
 @router.get("/utterances/{utterance_id}/audio.wav", operation_id="getUtteranceAudio",
             response_class=FileResponse)
-def get_utterance_audio(utterance_id: str) -> FileResponse:
+def get_utterance_audio(utterance_id: str, cache_dir: SpeechCacheDep) -> FileResponse:
     """The WAV of an utterance made before (16-bit mono)."""
-    path = utterance.wav_path(get_settings().speech_cache_dir, utterance_id)
+    path = utterance.wav_path(cache_dir, utterance_id)
     if path is None:
         raise HTTPException(status_code=404, detail=f"no audio for utterance {utterance_id!r}; "
                                                     "POST /api/v1/utterances makes it")
