@@ -1,7 +1,8 @@
 // The workbench's Observation and Phoneme target groups without a browser: their controls
 // (web/src/ui/ObservationOverlay.js, PhonemeChooser.js) over a fake API, on the fitted tongue of
 // the shared vectors; the ray error (web/src/core/rayError.js) on small exact cases; the sagittal
-// overlay drawn into a recording context.
+// overlay drawn into a recording context and the 3D layer (web/src/scene/ObservationLayer.js)
+// without a renderer.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -16,7 +17,8 @@ import { createRayFan, rayFirstHits } from '../../web/src/core/rayFirstHit.js';
 import { createRayError, PART_OUTLINE, PART_SURFACE, rayError, STAT_MAX, STAT_MISSES, STAT_RMS } from '../../web/src/core/rayError.js';
 import { assignParams, drawObservationSagittal, formatMm, ObservationControl } from '../../web/src/ui/ObservationOverlay.js';
 import { PhonemeTargetControl } from '../../web/src/ui/PhonemeChooser.js';
-import { OBSERVATION_COLORS, sphereRadius } from '../../web/src/scene/ObservationLayer.js';
+import { OBSERVATION_COLORS, ObservationLayer, sphereRadius } from '../../web/src/scene/ObservationLayer.js';
+import { Color, Matrix4, Plane, Vector3 } from 'three';
 import { debugObject, registerDebug } from '../../web/src/debug.js';
 import { near } from './support/near.js';
 
@@ -290,5 +292,42 @@ test( 'a target out of range is refused whole, and readouts show two decimals', 
 	assert.deepEqual( assignParams( state, { blade_height: 2, nasal_port: 1 } ), [ 'nasal_port' ] );
 	assert.equal( formatMm( 1.234 ), '1.23 mm' );
 	assert.equal( formatMm( NaN ), '–' );
+
+} );
+
+test( 'the 3D layer draws a vector from each P to its Q and a sphere at P sized and coloured by the error', () => {
+
+	const positions = Float32Array.of( 10, - 9, - 9, 10, 9, - 9, 10, 9, 9, 10, - 9, 9 );
+	const model = createRayError( [ 0, 0, 0 ], [ [ 5, 1 ], [ 20, - 2 ] ], [ [ 12, 0, 3 ] ] );
+	rayError( model, positions, Uint32Array.of( 0, 1, 2, 0, 2, 3 ), 2 );
+	let cut = true;
+	const layer = new ObservationLayer( { clipPlane: new Plane( new Vector3( 0, 0, 1 ), 0 ), isCut: () => cut } );
+	layer.setModel( model );
+	const [ outline, surface ] = layer.parts;
+	assert.deepEqual( [ outline.count, surface.count ], [ 2, 1 ] );
+	const line = outline.vectors.geometry.attributes.position.array;
+	assert.deepEqual( Array.from( line.subarray( 0, 3 ) ), [ 5, 1, 0 ], 'from P' );
+	near( line[ 3 ], 10, 1e-6, 'to Q on the square' );
+	const matrix = new Matrix4();
+	const colour = new Color();
+	for ( let k = 0; k < 2; k ++ ) {
+
+		outline.spheres.getMatrixAt( k, matrix );
+		near( matrix.elements[ 0 ], sphereRadius( model.signed[ k ] ), 1e-6, `sphere ${ k } radius` );
+		near( matrix.elements[ 12 ], model.points[ 3 * k ], 1e-6, `sphere ${ k } at P` );
+		outline.spheres.getColorAt( k, colour );
+		assert.equal( `#${ colour.getHexString() }`, k === 0 ? OBSERVATION_COLORS.beyond : OBSERVATION_COLORS.short );
+
+	}
+
+	assert.equal( surface.points.material.clippingPlanes.length, 1, 'the surface is clipped with the anatomy' );
+	assert.equal( outline.points.material.clippingPlanes.length, 0, 'the outline lies in the cut' );
+	outline.points.onBeforeRender();
+	assert.equal( outline.points.material.depthTest, false, 'over everything while the cutaway shows' );
+	cut = false;
+	outline.points.onBeforeRender();
+	assert.equal( outline.points.material.depthTest, true, 'inside the whole tongue without it' );
+	layer.dispose();
+	assert.equal( layer.parts.length, 0 );
 
 } );
