@@ -15,6 +15,7 @@ const router = new Router( document.getElementById( 'app' ) );
 router.register( '/', async ( container ) => ( await import( './ui/HeadView.js' ) ).mountHeadView( container ), { title: 'Glasshead' } );
 router.register( '/workbench', async ( container ) => ( await import( './ui/WorkbenchView.js' ) ).mountWorkbenchView( container ), { title: 'Glasshead workbench' } );
 router.register( '/clinician', async ( container ) => ( await import( './ui/ClinicianView.js' ) ).mountClinicianView( container ), { title: 'Glasshead clinician' } );
+router.register( '/speak', async ( container ) => ( await import( './ui/SpeechView.js' ) ).mountSpeechView( container ), { title: 'Glasshead: say it' } );
 
 registerDebug( 'route', () => router.currentPath );
 registerDebug( 'routes', () => router.paths );
