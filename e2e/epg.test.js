@@ -144,9 +144,12 @@ describe( 'synthetic EPG and the clinician view', { timeout: 300_000 }, () => {
 
 	} );
 
-	test( 'playing runs through the frames at the recording\'s own frame rate', async () => {
+	test( 'playing at real time runs through the frames at the recording\'s own frame rate', async () => {
 
 		const duration = detail.t_s[ detail.t_s.length - 1 ] - detail.t_s[ 0 ];
+		assert.equal( ( await clinician() ).speed, 0.1, 'playback starts at a tenth of real time' );
+		await page.getByRole( 'combobox', { name: 'Playback speed' } ).selectOption( '1' );
+		assert.equal( ( await clinician() ).speed, 1 );
 		const elapsed = await page.evaluate( async () => {
 
 			const start = performance.now();

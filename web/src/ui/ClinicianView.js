@@ -3,23 +3,23 @@
 // recording's own frame rate, and read the synthetic and the real palatograms side by side, their
 // electrode-by-electrode agreement, the EPG indices of the frame and their curves over time.
 //
-// Deep links: #/clinician?recording=12&target=pose:3&frame=40. Keys: left and right arrows step,
-// Home and End jump, space plays and pauses.
+// The URL holds the selection (#/clinician?recording=12&target=pose:3&frame=40, clinicianUrl.js),
+// restored on load; a bad value there is said in words. Recordings can be imported by choosing or
+// dropping a file (clinicianImport.js). Playback starts at a tenth of real time. Keys: left and
+// right arrows step, Home and End jump, space plays and pauses.
 
 import { api as pageApi } from '../api.js';
 import { registerDebug } from '../debug.js';
-import { EPG_CELLS } from '../core/constants.js';
-import { h } from './Controls.js';
 import { ClinicianData } from './clinicianData.js';
-import { clinicianEpgReport, clinicianReport, formatIndexValue } from './clinicianReport.js';
-import { frameCount, frameTimes, indexRows, plotTracks, targetFrameAt } from './clinicianFrames.js';
-import { clinicianLayout, keyHandler } from './clinicianLayout.js';
+import { clinicianEpgReport, clinicianReport } from './clinicianReport.js';
+import { frameCount, frameTimes, targetFrameAt } from './clinicianFrames.js';
+import { clinicianLayout, DEFAULT_SPEED, fillChoices, keyHandler, offers } from './clinicianLayout.js';
+import { RecordingImport } from './clinicianImport.js';
+import { missingChoiceMessage, parseSelection, selectionHash } from './clinicianUrl.js';
+import { renderClinician } from './clinicianRender.js';
 import { PlaybackClock } from './playbackClock.js';
 import { TargetPalate3D } from './TargetPalate3D.js';
 import './epg.css';
-
-const TABLE_INDICES = Object.freeze( [ 'percent', 'cog', 'anteriority', 'centrality', 'dorsopalatal', 'alveolar_percent', 'palatal_percent', 'velar_percent' ] );
-const TRACK_COLORS = Object.freeze( { recording: '#1f2328', target: '#b4384a' } );
 
 export class ClinicianView {
 
@@ -38,7 +38,7 @@ export class ClinicianView {
 			schedule: ( tick ) => this.window.requestAnimationFrame( tick ),
 			cancel: ( handle ) => this.window.cancelAnimationFrame( handle ),
 		} );
-		this.state = { loaded: false, error: null, frame: 0, playing: false, speed: 1, target: null, recording: null, comparison: null, target3d: null };
+		this.state = { loaded: false, error: null, frame: 0, playing: false, speed: DEFAULT_SPEED, target: null, recording: null, comparison: null, target3d: null };
 		this.unregister = [];
 		this.loadVersion = 0;
 
@@ -55,7 +55,8 @@ export class ClinicianView {
 			lastFrame: () => this.setFrame( this.frameCount() - 1 ),
 			togglePlay: () => this.togglePlay(),
 		};
-		Object.assign( this, clinicianLayout( actions ) );
+		this.importer = new RecordingImport( { onImported: ( body ) => this.imported( body ) } );
+		Object.assign( this, clinicianLayout( actions, { importBox: this.importer.element } ) );
 		container.append( this.root );
 
 		this.onKey = keyHandler( actions );
@@ -80,44 +81,76 @@ export class ClinicianView {
 
 	}
 
+	/** The choices, then the selection in the URL: what is not on offer is said, not chosen. */
 	async load() {
 
-		const query = new URLSearchParams( ( this.window.location.hash.split( '?' )[ 1 ] ) ?? '' );
+		const selection = parseSelection( this.window.location.hash );
+		const problems = [ ...selection.problems ];
 		try {
 
-			const choices = await this.data.choices();
-			for ( const group of choices.groups ) {
+			await this.refreshChoices();
+			for ( const [ slot, select ] of [ [ 'target', this.targetSelect ], [ 'recording', this.recordingSelect ] ] ) {
 
-				const options = group.targets.map( ( t ) => h( 'option', { value: t.value }, t.label ) );
-				if ( group.error ) options.push( h( 'option', { value: '', disabled: true }, `unavailable: ${ group.error }` ) );
-				this.targetSelect.append( h( 'optgroup', { label: group.title }, ...options ) );
+				const value = selection[ slot ];
+				if ( ! value ) continue;
+				if ( ! offers( select, value ) ) {
 
-			}
+					problems.push( missingChoiceMessage( slot, value ) );
+					continue;
 
-			for ( const r of choices.recordings ) this.recordingSelect.append( h( 'option', { value: r.value }, r.label ) );
-			this.showStatus( choices.empty ? 'No recordings or saved poses yet: import a recording or save a pose from the workbench.' : '' );
-			if ( query.get( 'target' ) ) {
+				}
 
-				this.targetSelect.value = query.get( 'target' );
-				await this.chooseTarget( query.get( 'target' ), { keepFrame: true } );
-
-			}
-
-			if ( query.get( 'recording' ) ) {
-
-				this.recordingSelect.value = query.get( 'recording' );
-				await this.chooseRecording( query.get( 'recording' ), { keepFrame: true } );
+				select.value = value;
+				await ( slot === 'target' ? this.chooseTarget( value, { keepFrame: true } ) : this.chooseRecording( value, { keepFrame: true } ) );
 
 			}
 
-			if ( query.get( 'frame' ) ) this.setFrame( Number( query.get( 'frame' ) ) );
+			if ( selection.frame !== null ) this.setFrame( selection.frame );
 			this.state.loaded = true;
+			if ( problems.length && ! this.state.error ) this.fail( problems.join( ' ' ), { log: false } );
+			this.writeUrl();
 
 		} catch ( error ) {
 
 			this.fail( error.message );
 
 		}
+
+	}
+
+	/** List what there is to choose from again, keeping what is chosen. */
+	async refreshChoices() {
+
+		const choices = await this.data.choices();
+		fillChoices( this, choices );
+		this.targetSelect.value = this.state.target?.name ?? '';
+		this.recordingSelect.value = this.state.recording ? String( this.state.recording.id ) : '';
+		this.showStatus( choices.empty ? 'No recordings or saved poses yet: import a recording below, or save a pose in the workbench.' : '' );
+
+	}
+
+	/** After an import: list the recordings again and show the first one imported. */
+	async imported( body ) {
+
+		await this.refreshChoices();
+		const id = String( body.recordings[ 0 ].id );
+		this.recordingSelect.value = id;
+		await this.chooseRecording( id );
+
+	}
+
+	/** Put the selection in the URL, without a new history entry (at most every 250 ms). */
+	writeUrl() {
+
+		this.window.clearTimeout( this.urlTimer );
+		this.urlTimer = this.window.setTimeout( () => {
+
+			const { target, recording, frame, playing } = this.state;
+			const hash = selectionHash( { target: target?.name, recording: recording?.id, frame } );
+			if ( playing || ! this.root.isConnected || this.window.location.hash === hash ) return;
+			this.window.history.replaceState( this.window.history.state, '', hash );
+
+		}, 250 );
 
 	}
 
@@ -210,6 +243,7 @@ export class ClinicianView {
 		if ( ! keepFrame ) this.state.frame = 0;
 		this.state.frame = Math.min( this.state.frame, this.frameCount() - 1 );
 		this.render();
+		this.writeUrl();
 		return this.state;
 
 	}
@@ -239,6 +273,7 @@ export class ClinicianView {
 		if ( ! Number.isFinite( frame ) ) return;
 		this.state.frame = Math.max( 0, Math.min( this.frameCount() - 1, Math.round( frame ) ) );
 		this.render();
+		if ( ! this.state.playing ) this.writeUrl();
 
 	}
 
@@ -284,6 +319,7 @@ export class ClinicianView {
 
 		this.state.playing = playing;
 		if ( ! this.playButton ) return;
+		if ( ! playing ) this.writeUrl();
 		const label = playing ? 'Pause' : 'Play';
 		this.playButton.textContent = label;
 		this.playButton.setAttribute( 'aria-label', label );
@@ -300,60 +336,14 @@ export class ClinicianView {
 
 	render() {
 
-		const { target, recording, comparison, frame } = this.state;
-		const count = this.frameCount();
-		this.slider.max = String( count - 1 );
-		this.slider.value = String( frame );
-		const times = this.times();
-		const ms = times ? Math.round( ( times[ frame ] - times[ 0 ] ) * 1000 ) : 0;
-		this.frameLabel.textContent = `Frame ${ frame + 1 } of ${ count }${ times ? ` · ${ ms } ms` : '' }`;
-
-		const t = this.targetFrameIndex();
-		this.targetCaption.textContent = target ? target.label : 'none chosen';
-		this.targetPalatogram.set( target ? target.frames : null, { offset: Math.max( 0, t ) * EPG_CELLS } );
-		this.recordingCaption.textContent = recording ? recording.name : 'none chosen';
-		this.recordingPalatogram.set( recording ? recording.frames : null, { offset: frame * EPG_CELLS } );
-		if ( comparison ) {
-
-			this.agreementCaption.textContent = `${ Math.round( comparison.agreement[ frame ] * 100 ) }% agree (mean ${ Math.round( comparison.summary.mean_agreement * 100 ) }%)`;
-			this.agreementPalatogram.set( null, { codes: comparison.codeFrames, offset: frame * EPG_CELLS } );
-
-		} else {
-
-			this.agreementCaption.textContent = 'choose both';
-			this.agreementPalatogram.set( null );
-
-		}
-
-		this.renderTable( t );
-		if ( recording || target ) {
-
-			this.plot.set( plotTracks( this.state, times, TRACK_COLORS ) );
-			this.stripCaption.textContent = comparison ? 'Agreement over time (click a frame)' : recording ? 'Recording over time (click a frame)' : 'Target over time';
-			if ( recording ) this.strip.set( recording.frames, recording.count, frame, recording.t_s, comparison ? comparison.codeFrames : null );
-			else this.strip.set( target.frames, target.count, frame, target.t_s );
-
-		} else {
-
-			this.plot.set( { t_s: [], tracks: [] } );
-			this.strip.set( null, 0, 0 );
-
-		}
-
-	}
-
-	renderTable( targetFrame ) {
-
-		const head = h( 'tr', {}, h( 'th', {}, 'index' ), h( 'th', {}, 'target' ), h( 'th', {}, 'recording' ), h( 'th', {}, 'difference' ) );
-		const rows = indexRows( this.state, targetFrame, TABLE_INDICES ).map( ( row ) => h( 'tr', {}, h( 'td', {}, row.name ), ...[ row.target, row.recording, row.difference ].map( ( v ) => h( 'td', {}, formatIndexValue( v ) ) ) ) );
-		this.table.replaceChildren( head, ...rows );
+		renderClinician( this, this.state, { count: this.frameCount(), times: this.times(), targetFrame: this.targetFrameIndex() } );
 
 	}
 
 	/** window.glasshead.clinician */
 	report() {
 
-		return clinicianReport( this.state, { frames: this.frameCount(), targetFrame: this.targetFrameIndex(), squares: this.palate3d?.electrodes?.contacted ?? null } );
+		return clinicianReport( this.state, { frames: this.frameCount(), targetFrame: this.targetFrameIndex(), squares: this.palate3d?.electrodes?.contacted ?? null, imported: this.importer.outcome } );
 
 	}
 
@@ -370,13 +360,14 @@ export class ClinicianView {
 
 	}
 
-	fail( message ) {
+	/** Show `message` as the view's error (and log it, unless it is about what the user gave). */
+	fail( message, { log = true } = {} ) {
 
 		this.state.error = message;
 		this.error.textContent = message;
 		this.error.hidden = false;
 		this.showStatus( '' );
-		console.error( `Glasshead: ${ message }` );
+		if ( log ) console.error( `Glasshead: ${ message }` );
 		return null;
 
 	}
@@ -393,6 +384,7 @@ export class ClinicianView {
 		this.pause();
 		this.loadVersion ++;
 		this.window.removeEventListener( 'keydown', this.onKey );
+		this.window.clearTimeout( this.urlTimer );
 		this.resizeObserver?.disconnect();
 		this.palate3d?.dispose();
 		for ( const unregister of this.unregister ) unregister();

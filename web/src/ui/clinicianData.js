@@ -6,13 +6,14 @@
 
 import { api as pageApi } from '../api.js';
 import { codesFromRows, framesFromRows, indexTracks } from './clinicianFrames.js';
+import { recordingTitle } from './clinicianText.js';
 import { parseTargetName, targetSources } from './targets.js';
 
-/** How a recording is listed: its name, frame count and frame rate. */
+/** How a recording is listed: its title (word, speaker; else its name), frame count and rate. */
 export function recordingLabel( recording ) {
 
 	const rate = recording.frame_rate_hz ? `, ${ Math.round( recording.frame_rate_hz ) } Hz` : '';
-	return `${ recording.name } (${ recording.n_frames } frames${ rate })`;
+	return `${ recordingTitle( recording ) } (${ recording.n_frames } frames${ rate })`;
 
 }
 
@@ -62,7 +63,7 @@ export class ClinicianData {
 	}
 
 	/**
-	 * A recording ready to show: { id, name, frameRateHz, t_s: Float64Array, frames: Uint8Array
+	 * A recording ready to show: { id, name, title (clinicianText.recordingTitle), frameRateHz, t_s: Float64Array, frames: Uint8Array
 	 * (64 cells per frame), count, indices: { name: Float64Array } }.
 	 */
 	async recording( id ) {
@@ -70,7 +71,7 @@ export class ClinicianData {
 		const body = await this.api.get( `epg/recordings/${ encodeURIComponent( id ) }` );
 		const frames = framesFromRows( body.frames );
 		return {
-			id: body.id, name: body.name, frameRateHz: body.frame_rate_hz, t_s: Float64Array.from( body.t_s ),
+			id: body.id, name: body.name, title: recordingTitle( body ), frameRateHz: body.frame_rate_hz, t_s: Float64Array.from( body.t_s ),
 			frames, count: body.n_frames, indices: indexTracks( frames, body.n_frames ),
 		};
 

@@ -5,18 +5,22 @@ import { frameContacts } from './clinicianFrames.js';
 /**
  * window.glasshead.clinician: what is loaded and shown.
  * @param {object} state the view's state
- * @param {{ frames: number, targetFrame: number, squares: number | null }} shown
+ * @param {{ frames: number, targetFrame: number, squares: number | null, imported?: object }} shown
+ *   `imported`: the outcome of the last import ({ ok, message, ids }) or null
  */
-export function clinicianReport( state, { frames, targetFrame, squares } ) {
+export function clinicianReport( state, { frames, targetFrame, squares, imported = null } ) {
 
 	const { target, recording, comparison, frame, playing, loaded, error, speed, target3d } = state;
 	return {
 		loaded, error, frame, frames, playing, speed,
 		target: target ? { name: target.name, label: target.label, frames: target.count, frame: targetFrame } : null,
-		recording: recording ? { id: recording.id, name: recording.name, frames: recording.count, frameRateHz: recording.frameRateHz } : null,
+		recording: recording ? { id: recording.id, name: recording.name, title: recording.title, frames: recording.count, frameRateHz: recording.frameRateHz } : null,
 		agreement: comparison ? comparison.agreement[ frame ] : null,
 		target3d: target3d ? { rows: target3d.rows, contacted: target3d.contacted, squares } : null,
 		meanAgreement: comparison ? comparison.summary.mean_agreement : null,
+		kappa: comparison?.kappa ? comparison.kappa[ frame ] : null,
+		meanKappa: comparison?.kappa ? comparison.summary.mean_kappa : null,
+		imported,
 	};
 
 }
