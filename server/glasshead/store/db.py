@@ -6,13 +6,15 @@ The URL comes from ``GLASSHEAD_DATABASE_URL`` (settings.database_url): a SQLite 
 package; the application runs it at start-up, and ``python -m glasshead.store.db`` runs it alone.
 """
 
+import fcntl
 import sys
+from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
 
 from alembic import command
 from alembic.config import Config
-from sqlalchemy import Engine, create_engine, event
+from sqlalchemy import Engine, create_engine, event, text
 from sqlalchemy.engine import make_url
 from sqlalchemy.pool import StaticPool
 
@@ -20,6 +22,10 @@ from glasshead.settings import get_settings
 
 #: Where Alembic finds env.py and versions/, as a package resource (works from an install).
 MIGRATIONS = "glasshead.store:migrations"
+#: The PostgreSQL advisory lock held while migrating (any constant of our own: "glasshead").
+MIGRATION_LOCK_KEY = 0x676C617373686561
+#: How long a SQLite writer waits for another connection's lock before "database is locked".
+SQLITE_BUSY_TIMEOUT_MS = 5000
 
 
 def database_url() -> str:
@@ -29,7 +35,9 @@ def database_url() -> str:
 @lru_cache(maxsize=8)
 def engine_for(url: str) -> Engine:
     """One engine per URL. SQLite: the file's directory is created, foreign keys are enforced,
-    and an in-memory database is shared by every connection of the process."""
+    a file is in WAL mode (readers never block the writer, and a killed server leaves a database
+    that the next start recovers) with a busy timeout instead of an immediate "database is
+    locked", and an in-memory database is shared by every connection of the process."""
     parsed = make_url(url)
     if parsed.get_backend_name() != "sqlite":
         return create_engine(url, pool_pre_ping=True)
@@ -38,12 +46,19 @@ def engine_for(url: str) -> Engine:
         options["poolclass"] = StaticPool
     else:
         Path(parsed.database).expanduser().parent.mkdir(parents=True, exist_ok=True)
+    in_file = "poolclass" not in options
     engine = create_engine(url, **options)
 
     @event.listens_for(engine, "connect")
-    def _enforce_foreign_keys(dbapi_connection, _record):
+    def _on_connect(dbapi_connection, _record):
         cursor = dbapi_connection.cursor()
         cursor.execute("PRAGMA foreign_keys=ON")
+        cursor.execute(f"PRAGMA busy_timeout={SQLITE_BUSY_TIMEOUT_MS}")
+        if in_file:
+            cursor.execute("PRAGMA journal_mode=WAL")
+            # WAL's durable setting: a committed (acknowledged) write survives a killed process;
+            # NORMAL would only risk the last commits on a power cut, FULL avoids that too.
+            cursor.execute("PRAGMA synchronous=FULL")
         cursor.close()
 
     return engine
@@ -64,12 +79,33 @@ def alembic_config(url: str | None = None) -> Config:
 
 
 def upgrade_to_head(engine: Engine | None = None) -> None:
-    """Bring the database up to the newest migration (creating it if new)."""
+    """Bring the database up to the newest migration (creating it if new).
+
+    Several servers may start at once on one database (``uvicorn --workers``, app replicas):
+    one migrates while the others wait, then find it at head. PostgreSQL: a transaction-scoped
+    advisory lock; a SQLite file: an exclusive lock on a file beside it."""
     engine = engine or get_engine()
     config = alembic_config(engine.url.render_as_string(hide_password=False))
-    with engine.begin() as connection:
+    with _sqlite_migration_lock(engine.url), engine.begin() as connection:
+        if engine.dialect.name == "postgresql":
+            connection.execute(text("SELECT pg_advisory_xact_lock(:key)"),
+                               {"key": MIGRATION_LOCK_KEY})
         config.attributes["connection"] = connection
         command.upgrade(config, "head")
+
+
+@contextmanager
+def _sqlite_migration_lock(url):
+    database = url.database if url.get_backend_name() == "sqlite" else None
+    if database in (None, "", ":memory:"):
+        yield
+        return
+    with open(f"{Path(database).expanduser()}.migrate-lock", "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
 
 
 def main() -> int:
