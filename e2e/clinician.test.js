@@ -198,10 +198,17 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 
 	} );
 
-	test( 'a file that is not a recording is refused in plain words beside the import box, and nothing is stored', async () => {
+	test( 'a dropped file that is not a recording is refused in plain words beside the import box, and nothing is stored', async () => {
 
 		const before = ( await api( 'GET', '/epg/recordings?limit=1' ) ).body.total;
-		await page.getByLabel( 'Import a recording file' ).setInputFiles( { name: 'notes.csv', mimeType: 'text/csv', buffer: Buffer.from( 'name,age\nanna,7\n' ) } );
+		const dataTransfer = await page.evaluateHandle( () => {
+
+			const transfer = new DataTransfer();
+			transfer.items.add( new File( [ 'name,age\nanna,7\n' ], 'notes.csv', { type: 'text/csv' } ) );
+			return transfer;
+
+		} );
+		await page.locator( '.cv-import' ).dispatchEvent( 'drop', { dataTransfer } );
 		await page.waitForFunction( () => window.glasshead.clinician.imported?.ok === false, null, { timeout: 30_000, polling: 100 } );
 		const { imported } = await clinician();
 		assert.match( imported.message, /^The file could not be imported, nothing was stored: / );
