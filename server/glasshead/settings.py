@@ -1,5 +1,6 @@
 """Settings read from the environment; the defaults work out of the box from a clone."""
 
+import os
 from functools import lru_cache
 from pathlib import Path
 
@@ -33,6 +34,10 @@ class Settings(BaseSettings):
     #: Worker processes that run fit jobs (POST /fits), and how many jobs may wait for them.
     fit_workers: int = Field(1, ge=1, le=64)
     fit_queue_limit: int = Field(8, ge=1, le=10000)
+    #: Worker processes for the CPU-heavy routes (default: the CPU count), and how many
+    #: requests may wait for them before the server answers 503 (glasshead.api.compute_pool).
+    compute_workers: int = Field(default_factory=lambda: os.cpu_count() or 1, ge=1, le=256)
+    compute_queue_limit: int = Field(32, ge=0, le=10000)
 
 
 @lru_cache

@@ -9,6 +9,8 @@ from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
+from glasshead.api.compute_pool import ComputePool
+from glasshead.api.limits import BodyLimitMiddleware
 from glasshead.api.security import install_safe_defaults
 from glasshead.api.static import mount_static
 from glasshead.asset_store import AssetStore, AssetUnavailableError
@@ -35,7 +37,9 @@ async def lifespan(app: FastAPI):
     app.state.assets.load_all()
     # Fit jobs run in worker processes; those a stopped server left are failed or queued again.
     app.state.fits.start()
+    app.state.compute.start()
     yield
+    app.state.compute.shutdown()
     app.state.fits.shutdown()
 
 
@@ -53,6 +57,9 @@ def create_app() -> FastAPI:
     app.state.assets = AssetStore(settings.assets_dir)
     app.state.fits = FitRunner(settings.database_url, settings.assets_dir,
                                workers=settings.fit_workers, queue_limit=settings.fit_queue_limit)
+    app.state.compute = ComputePool(settings.assets_dir, workers=settings.compute_workers,
+                                    queue_limit=settings.compute_queue_limit)
+    app.add_middleware(BodyLimitMiddleware)  # 413 while the body streams in
     for name in ROUTE_MODULES:
         module = importlib.import_module(f"glasshead.api.routes.{name}")
         app.include_router(module.router, prefix=API_PREFIX)

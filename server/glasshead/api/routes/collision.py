@@ -7,15 +7,18 @@ out of the pharyngeal wall, after the palate, as the web app's frame does
 The tables are one binary file built by `glasshead build` (format in
 ``glasshead.geometry.collision_format``). GET /collision/tables answers with its JSON header and
 the URL of the binary; the browser fetches the binary, checks it and corrects the tongue itself
-every frame. POST /collision/correct runs the Python twin of that correction on given vertices.
+every frame. POST /collision/correct runs the Python twin of that correction on given vertices,
+in a compute worker (``api.compute_pool``).
 """
 
 from typing import Annotated
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Response
 from pydantic import BaseModel, Field
 
+from glasshead.api.compute_pool import ComputeDep
 from glasshead.api.deps import AssetsDep
+from glasshead.asset_store import AssetStore
 from glasshead.constants import (
     COLLISION_MAX_VERTICES,
     COLLISION_TABLES_FILE,
@@ -75,7 +78,16 @@ def collision_tables(assets: AssetsDep) -> TablesInfo:
 
 @router.post("/collision/correct", operation_id="correctCollision",
              response_model=CorrectResponse)
-def collision_correct(request: CorrectRequest, assets: AssetsDep) -> CorrectResponse:
+async def collision_correct(request: CorrectRequest, compute: ComputeDep) -> Response:
+    return await compute.respond(correct, request)
+
+
+def correct(assets: AssetStore, request: CorrectRequest) -> bytes:
+    """The CorrectResponse of a request, as JSON (runs in a compute worker)."""
+    return _correct(assets, request).model_dump_json().encode()
+
+
+def _correct(assets: AssetStore, request: CorrectRequest) -> CorrectResponse:
     tables = assets.get("collision_tables")
     if not request.vertices:
         counts = CollisionCounts(screened=0, tested=0, corrected=0)

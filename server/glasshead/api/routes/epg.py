@@ -1,7 +1,8 @@
 """GET /epg/layout: the electrodes on the palate. POST /epg/contacts: synthetic EPG (Python twin).
 
 The layout is built by `glasshead build` (``pipeline.epg_layout``); the browser computes contacts
-itself every frame (``web/src/core/epgContacts.js``). POST /epg/contacts runs the Python twin:
+itself every frame (``web/src/core/epgContacts.js``). POST /epg/contacts runs the Python twin,
+in a compute worker (``api.compute_pool``):
 with ``params`` it evaluates the tongue, corrects it against the palate and tests the probes;
 with ``vertices`` it tests a tongue the client already has (the rig's triangles, unless
 ``triangles`` are given).
@@ -10,9 +11,10 @@ with ``vertices`` it tests a tongue the client already has (the rig's triangles,
 from typing import Annotated, Literal
 
 import numpy as np
-from fastapi import APIRouter, HTTPException, Query
+from fastapi import APIRouter, HTTPException, Query, Response
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from glasshead.api.compute_pool import ComputeDep
 from glasshead.api.deps import AssetsDep
 from glasshead.api.params import split_params
 from glasshead.asset_store import AssetStore
@@ -114,8 +116,17 @@ def epg_layout(assets: AssetsDep,
 
 
 @router.post("/epg/contacts", operation_id="computeEpgContacts", response_model=ContactsResponse)
-def epg_contacts(request: ContactsRequest, assets: AssetsDep) -> ContactsResponse:
+async def epg_contacts(request: ContactsRequest, compute: ComputeDep) -> Response:
     """Which electrodes the tongue touches, and the EPG indices of that frame."""
+    return await compute.respond(contacts_json, request)
+
+
+def contacts_json(assets: AssetStore, request: ContactsRequest) -> bytes:
+    """The ContactsResponse of a request, as JSON (runs in a compute worker)."""
+    return _contacts(assets, request).model_dump_json().encode()
+
+
+def _contacts(assets: AssetStore, request: ContactsRequest) -> ContactsResponse:
     probes = _probes(assets, request.grid)
     collision = None
     if request.params is not None:

@@ -1,9 +1,11 @@
-"""POST /epg/indices: the emuR EPG indices of frames sent by the client."""
+"""POST /epg/indices: the emuR EPG indices of frames sent by the client (in a compute worker)."""
 
 import numpy as np
-from fastapi import APIRouter, HTTPException
+from fastapi import APIRouter, HTTPException, Response
 from pydantic import BaseModel, Field
 
+from glasshead.api.compute_pool import ComputeDep
+from glasshead.asset_store import AssetStore
 from glasshead.epg.formats import rows_to_frame
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices
 from glasshead.epg.sequence import EpgFormatError
@@ -27,13 +29,19 @@ class IndicesResponse(BaseModel):
 
 
 @router.post("/epg/indices", operation_id="computeEpgIndices", response_model=IndicesResponse)
-def compute_indices(request: IndicesRequest) -> IndicesResponse:
+async def compute_indices(request: IndicesRequest, compute: ComputeDep) -> Response:
     """Percent contact, contacts per row and zone, centre of gravity, anteriority, centrality
     and dorsopalatal indices (emuR, R/epg.class.R) of each frame."""
+    return await compute.respond(indices_json, request)
+
+
+def indices_json(assets: AssetStore, request: IndicesRequest) -> bytes:
+    """The IndicesResponse of a request, as JSON (runs in a compute worker)."""
     try:
         frames = np.stack([rows_to_frame(rows, i) for i, rows in enumerate(request.frames)])
     except EpgFormatError as error:
         raise HTTPException(status_code=422, detail=str(error)) from None
     values = epg_indices(frames)
     return IndicesResponse(names=list(INDEX_SLOTS),
-                           indices={k: v.tolist() for k, v in values.items()})
+                           indices={k: v.tolist() for k, v in values.items()}
+                           ).model_dump_json().encode()

@@ -1,16 +1,19 @@
 """GET /tongue/rig: the rig definition. POST /tongue/surface: the tongue for a parameter set.
 
-The surface comes from the Python reference evaluator (``geometry.tongue_surface``); the web app
-evaluates the same definition itself every frame (``web/src/core/tongue.js``).
+The surface comes from the Python reference evaluator (``geometry.tongue_surface``), run in a
+compute worker (``api.compute_pool``); the web app evaluates the same definition itself every
+frame (``web/src/core/tongue.js``).
 """
 
 from typing import Annotated
 
-from fastapi import APIRouter, Body, HTTPException
+from fastapi import APIRouter, Body, HTTPException, Response
 from pydantic import BaseModel, ConfigDict, Field
 
+from glasshead.api.compute_pool import ComputeDep
 from glasshead.api.deps import AssetsDep
 from glasshead.api.params import split_params
+from glasshead.asset_store import AssetStore
 from glasshead.geometry.tongue_surface import ParameterError
 
 router = APIRouter(tags=["tongue"])
@@ -75,7 +78,13 @@ def tongue_rig(assets: AssetsDep) -> dict:
 
 
 @router.post("/tongue/surface", operation_id="evaluateTongueSurface", response_model=Surface)
-def tongue_surface(request: Annotated[SurfaceRequest, Body()], assets: AssetsDep) -> Surface:
+async def tongue_surface(request: Annotated[SurfaceRequest, Body()],
+                         compute: ComputeDep) -> Response:
+    return await compute.respond(evaluate_surface, request)
+
+
+def evaluate_surface(assets: AssetStore, request: SurfaceRequest) -> bytes:
+    """The Surface of a request, as JSON (runs in a compute worker)."""
     rig = assets.get("tongue_rig")
     tongue = split_params(assets, request.params).tongue  # lips and velum: checked, not used
     try:
@@ -91,4 +100,4 @@ def tongue_surface(request: Annotated[SurfaceRequest, Body()], assets: AssetsDep
         normals=surface.normals.tolist(),
         triangles=surface.triangles.tolist(),
         volume_mm3=surface.volume,
-    )
+    ).model_dump_json().encode()

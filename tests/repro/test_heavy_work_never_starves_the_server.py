@@ -1,0 +1,145 @@
+"""Issue 13, item 3: CPU-heavy routes run in a bounded pool of worker processes.
+
+At 20 connections POST /tongue/surface ran in the server's own process, and /health took 1.7 s
+at p50 meanwhile. Now the heavy routes answer from worker processes with the same documents as
+the in-process code, a full queue is answered 503 with Retry-After at once, and /health is
+answered while compute requests are still in flight. Speeds are measured in bench/load.py."""
+
+import asyncio
+import json
+import threading
+import time
+import urllib.request
+
+import pytest
+from fastapi import HTTPException
+from live_server_support import live_server
+
+from glasshead.api.compute_pool import ComputePool
+from glasshead.api.routes.collision import CorrectRequest, correct
+from glasshead.api.routes.epg import ContactsRequest, contacts_json
+from glasshead.api.routes.epg_indices import IndicesRequest, indices_json
+from glasshead.api.routes.tongue import SurfaceRequest, evaluate_surface
+
+API = "/api/v1"
+ROWS = ["00111100", "01111110", "11000011", "10000001", "10000001", "10000001", "10000001",
+        "11111111"]
+
+
+def slow_task(store, seconds: float) -> bytes:
+    """A task that holds its worker for ``seconds``."""
+    time.sleep(seconds)
+    return json.dumps({"slept": seconds}).encode()
+
+
+def test_the_pool_gives_the_same_answers_as_the_in_process_code(start_app, built_assets):
+    app, client = start_app()
+    surface = client.post(f"{API}/tongue/surface", json={"params": {"tip_height": 5.0}})
+    assert surface.status_code == 200
+    vertices = surface.json()["vertices"]
+    cases = [
+        ("/tongue/surface", evaluate_surface, SurfaceRequest,
+         {"params": {"tip_height": 5.0, "jaw_opening": 10.0}}),
+        ("/collision/correct", correct, CorrectRequest, {"vertices": vertices}),
+        ("/collision/correct", correct, CorrectRequest,
+         {"vertices": vertices, "velum_opening": 0.6}),
+        ("/epg/contacts", contacts_json, ContactsRequest, {"params": {"tip_height": 6.0}}),
+        ("/epg/contacts", contacts_json, ContactsRequest, {"vertices": vertices}),
+        ("/epg/indices", indices_json, IndicesRequest, {"frames": [ROWS] * 5}),
+    ]
+    for path, task, model, body in cases:
+        response = client.post(API + path, json=body)
+        assert response.status_code == 200, (path, response.text)
+        in_process = json.loads(task(app.state.assets, model(**body)))
+        assert response.json() == in_process, path
+    corrected = json.loads(correct(app.state.assets, CorrectRequest(vertices=vertices)))
+    assert len(corrected["flags"]) == len(vertices) == corrected["counts"]["screened"]
+
+
+def test_an_error_raised_in_a_worker_answers_as_it_would_in_process(start_app, built_assets):
+    _, client = start_app()
+    response = client.post(f"{API}/epg/indices", json={"frames": [["2" * 8] * 8]})
+    assert response.status_code == 422
+    assert isinstance(response.json()["detail"], str) and response.json()["detail"]
+
+
+def test_a_full_queue_is_answered_503_with_retry_after_at_once(built_assets):
+    pool = ComputePool(built_assets, workers=1, queue_limit=1)
+
+    async def scenario():
+        running = [asyncio.ensure_future(pool.run(slow_task, 1.0)) for _ in range(2)]
+        while pool.pending < 2:
+            await asyncio.sleep(0)
+        with pytest.raises(HTTPException) as refused:
+            await pool.run(slow_task, 0.0)
+        assert pool.pending == 2  # the refused request never queued
+        answers = await asyncio.gather(*running)
+        again = await pool.run(slow_task, 0.0)
+        return refused.value, answers, again
+
+    pool.start()
+    try:
+        refused, answers, again = asyncio.run(scenario())
+    finally:
+        pool.shutdown()
+    assert refused.status_code == 503
+    assert refused.headers == {"Retry-After": "1"}
+    assert "1 computations run and 1 wait" in refused.detail
+    assert [json.loads(a) for a in answers] == [{"slept": 1.0}] * 2
+    assert json.loads(again) == {"slept": 0.0}
+    assert pool.pending == 0
+
+
+def test_a_compute_route_answers_503_when_its_queue_is_full(start_app, built_assets,
+                                                            monkeypatch):
+    monkeypatch.setenv("GLASSHEAD_COMPUTE_WORKERS", "1")
+    monkeypatch.setenv("GLASSHEAD_COMPUTE_QUEUE_LIMIT", "0")
+    app, client = start_app()
+    app.state.compute.pending = 1  # one request holds the only worker
+    busy = client.post(f"{API}/tongue/surface", json={"params": {}})
+    assert busy.status_code == 503
+    assert busy.headers["Retry-After"] == "1"
+    assert "busy" in busy.json()["detail"]
+    assert client.get(f"{API}/health").status_code == 200
+    app.state.compute.pending = 0
+    assert client.post(f"{API}/tongue/surface", json={"params": {}}).status_code == 200
+
+
+def _post(url: str, body: dict) -> int:
+    request = urllib.request.Request(url, data=json.dumps(body).encode(), method="POST",
+                                     headers={"Content-Type": "application/json"})
+    with urllib.request.urlopen(request, timeout=120) as response:
+        return response.status
+
+
+def test_health_and_a_read_route_are_answered_while_compute_requests_are_in_flight(
+        tmp_path, built_assets):
+    in_flight = 4
+    with live_server(tmp_path, compute_workers="1", compute_queue_limit="8") as (base, _):
+        surface = json.loads(urllib.request.urlopen(urllib.request.Request(
+            f"{base}{API}/tongue/surface", data=b'{"params": {}}', method="POST",
+            headers={"Content-Type": "application/json"}), timeout=60).read())
+        heavy = {"vertices": surface["vertices"] * 6, "velum_opening": 0.5}
+        _post(f"{base}{API}/collision/correct", {"vertices": surface["vertices"][:10]})  # warm
+        finished, statuses = [], []
+
+        def compute():
+            statuses.append(_post(f"{base}{API}/collision/correct", heavy))
+            finished.append(time.monotonic())
+
+        threads = [threading.Thread(target=compute) for _ in range(in_flight)]
+        for thread in threads:
+            thread.start()
+        time.sleep(0.3)  # let the requests reach the server
+        with urllib.request.urlopen(f"{base}{API}/health", timeout=60) as health:
+            health_status = health.status
+        done_at_health = len(finished)
+        with urllib.request.urlopen(f"{base}{API}/tongue/rig", timeout=60) as rig:
+            rig_status = rig.status
+        done_at_rig = len(finished)
+        for thread in threads:
+            thread.join(timeout=300)
+    assert health_status == 200 and rig_status == 200
+    assert done_at_health < in_flight and done_at_rig < in_flight, (
+        f"{done_at_health} and {done_at_rig} of {in_flight} compute requests had finished")
+    assert statuses == [200] * in_flight
