@@ -10,6 +10,7 @@ import { api as pageApi } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { h } from './Controls.js';
 import { loadPhonemeList, loadPhonemeTarget } from './loaders.js';
+import { assignParams } from './ObservationControl.js';
 import { phonemeLabel } from './targets.js';
 
 export class PhonemeTargetControl {
@@ -53,17 +54,8 @@ export class PhonemeTargetControl {
 
 		const target = await loadPhonemeTarget( symbol, { api: this.api } );
 		if ( request !== this.request ) return null;
-		const known = {};
-		const ignored = [];
-		for ( const [ name, value ] of Object.entries( target.params ?? {} ) ) {
-
-			if ( this.state.index.has( name ) ) known[ name ] = value;
-			else ignored.push( name );
-
-		}
-
 		this.current = null; // while the state changes, no target is named (and none is 'edited')
-		this.state.assign( known );
+		const ignored = assignParams( this.state, target.params );
 		this.appliedVersion = this.state.version;
 		this.current = { symbol: target.arpabet ?? symbol, ipa: target.ipa ?? null, label: phonemeLabel( target ), ignored, source: target.source ?? null };
 		return target;
