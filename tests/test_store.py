@@ -56,7 +56,7 @@ def test_the_migrations_build_exactly_the_schema_of_the_models(engine):
 def test_upgrading_twice_changes_nothing_and_records_the_head_revision(engine):
     upgrade_to_head(engine)
     with engine.connect() as connection:
-        assert MigrationContext.configure(connection).get_current_revision() == "0003"
+        assert MigrationContext.configure(connection).get_current_revision() == "0004"
 
 
 def test_the_migrations_render_as_postgresql(tmp_path):

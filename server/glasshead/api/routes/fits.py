@@ -32,6 +32,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from glasshead.api import idempotency
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.fitting import uploads
 from glasshead.fitting.job_runner import FitRunner
@@ -123,6 +124,7 @@ async def create_fit(
     session: SessionDep,
     runner: RunnerDep,
     kind: Annotated[Kind, Form(description="what the file holds")],
+    idempotency_key: idempotency.IdempotencyKeyHeader = None,
     file: Annotated[UploadFile | None, File(description="the observation file")] = None,
     name: Annotated[str | None, Form(max_length=200,
                                      description="the target's name (default: the file's)")] = None,
@@ -133,26 +135,38 @@ async def create_fit(
     frame: Annotated[int | None, Form(ge=0, description="epg: fit this frame (0-based) "
                                                         "instead of the majority")] = None,
 ) -> FitJob:
-    """Queue a fit of one uploaded observation; 202 with the job, Location its URL."""
+    """Queue a fit of one uploaded observation; 202 with the job, Location its URL. A retry
+    with the same ``Idempotency-Key`` gets the first answer and queues nothing new."""
     declared = request.headers.get("content-length", "")
     if declared.isdigit() and int(declared) > uploads.MAX_BYTES[kind] + _CHUNK:
         raise HTTPException(status_code=413, detail=uploads.size_limit_message(kind))
     if file is None:
         raise HTTPException(status_code=422, detail="field file: the upload has no file part")
     content = await _read_limited(file, kind)
+    digest = idempotency.upload_digest(kind, content, file.filename, name, method, max_evals,
+                                       frame)
+    replayed = await run_in_threadpool(idempotency.replay, session, "createFit",
+                                       idempotency_key, digest)
+    if replayed is not None:
+        return replayed
     try:
         observation = await run_in_threadpool(uploads.read_observation, kind, content,
                                                file.filename, frame=frame)
     except uploads.ObservationError as error:
         raise HTTPException(status_code=error.status, detail=str(error)) from None
-    job = await run_in_threadpool(_store, session, runner, observation, name or file.filename
-                                  or f"{kind} fit", method, max_evals)
+    job = await run_in_threadpool(
+        _store, session, runner, observation, name or file.filename or f"{kind} fit", method,
+        max_evals, idempotency_key, digest,
+        lambda fit_id: str(request.url_for("get_fit", fit_id=fit_id).path))
+    if isinstance(job, Response):  # the same key's first request committed meanwhile
+        return job
     response.headers["Location"] = str(request.url_for("get_fit", fit_id=job.id).path)
     return job
 
 
 def _store(session: Session, runner: FitRunner, observation: uploads.Observation, name: str,
-           method: str | None, max_evals: int | None) -> FitJob:
+           method: str | None, max_evals: int | None, key: str | None = None, digest: str = "",
+           location=None) -> FitJob | Response:
     if runner.queue_full(session):
         raise HTTPException(status_code=503, headers={"Retry-After": str(RETRY_AFTER_S)},
                             detail=f"{runner.queue_limit} fits are already waiting; retry "
@@ -164,7 +178,13 @@ def _store(session: Session, runner: FitRunner, observation: uploads.Observation
                  source={**observation.source, "options": options})
     job.set_observation(observation.points)
     session.add(job)
-    session.commit()
+    session.flush()
+    if key is not None:
+        idempotency.remember(session, "createFit", key, digest, status.HTTP_202_ACCEPTED,
+                             FitOut.model_validate(job).model_dump(mode="json"),
+                             {"Location": location(job.id)})
+    if (replayed := idempotency.commit_or_replay(session, "createFit", key, digest)) is not None:
+        return replayed
     runner.submit(job.id)
     return job
 

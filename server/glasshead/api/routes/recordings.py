@@ -29,6 +29,7 @@ from pydantic import BaseModel, Field, ValidationError
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from glasshead.api import idempotency
 from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId, get_record
 from glasshead.epg import formats
@@ -41,6 +42,8 @@ router = APIRouter(tags=["epg recordings"])
 
 #: The kind in a recording's ETag (api/etags.py).
 KIND = "recording"
+#: The operation an import's Idempotency-Key belongs to (api/idempotency.py).
+IMPORT_OPERATION = "createRecordings"
 
 #: Largest upload accepted, bytes. Every export must import again: the largest recording
 #: (MAX_FRAMES, every contact on, long times) exports as 20.9 MiB of emuR JSON, 23.4 MiB when
@@ -97,8 +100,9 @@ def summary(record: EpgRecording) -> RecordingSummary:
 
 
 @router.post(
-    "/epg/recordings", operation_id="createRecordings", status_code=status.HTTP_201_CREATED,
+    "/epg/recordings", operation_id=IMPORT_OPERATION, status_code=status.HTTP_201_CREATED,
     response_model=RecordingList,
+    responses={415: {"description": "the body is neither multipart/form-data nor JSON"}},
     # The multipart form comes from the parameters below; the JSON alternative is added here.
     openapi_extra={"requestBody": {"required": True, "content": {
         "application/json": {"schema": RecordingUpload.model_json_schema()},
@@ -107,13 +111,15 @@ def summary(record: EpgRecording) -> RecordingSummary:
 async def create_recordings(
     request: Request,
     session: SessionDep,
+    idempotency_key: idempotency.IdempotencyKeyHeader = None,
     file: Annotated[UploadFile | None, File(description="the recording file (multipart)")] = None,
     format: Annotated[FormatName | None, Form(
         description="the file's format; detected from its name and content when left out")] = None,
     name: Annotated[str | None, Form(max_length=200,
                                      description="overrides the file's name")] = None,
 ) -> RecordingList:
-    """Import a file; emuR JSON with several segments makes one recording per segment."""
+    """Import a file; emuR JSON with several segments makes one recording per segment. A retry
+    with the same ``Idempotency-Key`` gets the first answer and stores nothing new."""
     content_type = request.headers.get("content-type", "").split(";")[0].strip().lower()
     declared = request.headers.get("content-length", "")
     if declared.isdigit() and int(declared) > MAX_UPLOAD_BYTES + 64 * 1024:
@@ -126,10 +132,14 @@ async def create_recordings(
     else:
         raise HTTPException(status_code=415, detail="send multipart/form-data (a file) or "
                                                     "application/json (format and content)")
-    return await run_in_threadpool(_import, session, content, fmt, name)
+    return await run_in_threadpool(_import, session, content, fmt, name, idempotency_key)
 
 
-def _import(session: Session, content: bytes, fmt: str | None, name: str | None):
+def _import(session: Session, content: bytes, fmt: str | None, name: str | None,
+            key: str | None = None):
+    digest = idempotency.upload_digest(content, fmt, name)
+    if (replayed := idempotency.replay(session, IMPORT_OPERATION, key, digest)) is not None:
+        return replayed
     try:
         fmt = fmt or formats.detect_format(content)
         sequences = formats.parse(content, fmt, name=name)
@@ -137,8 +147,11 @@ def _import(session: Session, content: bytes, fmt: str | None, name: str | None)
         raise HTTPException(status_code=422, detail=str(error)) from None
     records = [EpgRecording.from_sequence(seq, fmt) for seq in sequences]
     session.add_all(records)
-    session.commit()
-    return RecordingList(recordings=[summary(r) for r in records], total=len(records))
+    session.flush()
+    result = RecordingList(recordings=[summary(r) for r in records], total=len(records))
+    idempotency.remember(session, IMPORT_OPERATION, key, digest, status.HTTP_201_CREATED,
+                         result.model_dump(mode="json"))
+    return idempotency.commit_or_replay(session, IMPORT_OPERATION, key, digest) or result
 
 
 async def _read_body(request: Request) -> bytes:
@@ -225,7 +238,9 @@ def get_recording_indices(recording_id: RecordId, session: SessionDep) -> IndexT
 
 @router.get("/epg/recordings/{recording_id}/export", operation_id="exportRecording",
             response_class=Response,
-            responses={200: {"content": {t: {} for t in set(formats.MEDIA_TYPES.values())}}})
+            responses={200: {"content": {t: {} for t in set(formats.MEDIA_TYPES.values())}},
+                       409: {"description": "ssff of unevenly spaced frames, or an export "
+                                            "larger than the import limit"}})
 def export_recording(recording_id: RecordId, session: SessionDep,
                      format: Annotated[FormatName, Query()] = "csv") -> Response:
     """The recording as a file in ``format``; ssff needs evenly spaced frames (else 409), and
