@@ -19,8 +19,8 @@ COPY --from=web /app/web/dist ./web/dist
 # The server runs as an unprivileged user that owns only what it writes: the built assets (and
 # the utterance cache inside them) and var/ for a SQLite database when no PostgreSQL is given.
 RUN useradd --system --uid 10001 --home-dir /app --shell /usr/sbin/nologin glasshead \
-    && mkdir -p /app/assets/build /app/var \
-    && chown glasshead:glasshead /app/assets/build /app/var
+    && mkdir -p /app/assets/build /app/var/utterances \
+    && chown -R glasshead:glasshead /app/assets /app/var
 USER glasshead
 ENV GLASSHEAD_DATA_DIR=/data \
     GLASSHEAD_DATABASE_URL=sqlite:////app/var/glasshead.sqlite3 \
