@@ -9,8 +9,10 @@ event loop only moves bytes.
 
 - The pool is a ``ProcessPoolExecutor`` over spawned processes (a fork would copy the event
   loop and its threads), ``settings.compute_workers`` of them (default: the CPU count). The
-  lifespan starts it; the processes start at the first request. One executor serves every app
-  of a process with the same worker count, so tests that make many apps do not spawn many pools.
+  lifespan starts it; the processes start at the first request. They run at a lower priority
+  (``WORKER_NICENESS``), so that the event loop never waits for a CPU behind them. One
+  executor serves every app of a process with the same worker count, so tests that make many
+  apps do not spawn many pools.
 - Back-pressure: at most ``workers + settings.compute_queue_limit`` requests are running or
   waiting; the next one is answered 503 with ``Retry-After`` at once instead of an ever-growing
   wait. A client that goes away while its request waits takes it out of the queue.
@@ -25,6 +27,7 @@ event loop only moves bytes.
 
 import asyncio
 import multiprocessing
+import os
 import threading
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
@@ -37,6 +40,9 @@ from glasshead.asset_store import AssetStore, AssetUnavailableError
 
 #: Seconds a client is told to wait (Retry-After) when the queue is full.
 RETRY_AFTER_S = 1
+#: Added to the workers' niceness: with as many workers as CPUs, the server's own process
+#: still gets a CPU as soon as a request arrives.
+WORKER_NICENESS = 10
 
 #: A task: a module-level function of (store, payload) returning a JSON document as bytes.
 Task = Callable[[AssetStore, Any], bytes]
@@ -52,7 +58,8 @@ def _executor(workers: int) -> ProcessPoolExecutor:
         executor = _executors.get(workers)
         if executor is None:
             executor = _executors[workers] = ProcessPoolExecutor(
-                max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
+                max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
+                initializer=os.nice, initargs=(WORKER_NICENESS,))
         return executor
 
 
