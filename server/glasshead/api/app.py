@@ -3,13 +3,14 @@
 import importlib
 from contextlib import asynccontextmanager
 
-from fastapi import FastAPI, HTTPException, Request
+from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
 from glasshead.api.compute_pool import ComputePool
+from glasshead.api.error_responses import install_error_responses, unknown_path_error
 from glasshead.api.limits import BodyLimitMiddleware
 from glasshead.api.security import install_safe_defaults
 from glasshead.api.static import mount_static
@@ -70,8 +71,8 @@ def create_app() -> FastAPI:
         methods=["GET", "POST", "PUT", "PATCH", "DELETE"],
         include_in_schema=False,
     )
-    async def unknown_api_path(rest: str):
-        raise HTTPException(status_code=404, detail=f"no API resource at {API_PREFIX}/{rest}")
+    async def unknown_api_path(request: Request, rest: str):
+        raise unknown_path_error(app, request)
 
     @app.exception_handler(StarletteHTTPException)
     async def json_http_error(request: Request, exc: StarletteHTTPException):
@@ -87,6 +88,7 @@ def create_app() -> FastAPI:
         return JSONResponse({"detail": _describe_validation_errors(exc.errors())},
                             status_code=422)
 
+    install_error_responses(app, API_PREFIX, ROUTE_MODULES)  # {detail: string}; 404, 405
     mount_static(app, settings)
     return app
 

@@ -27,6 +27,8 @@ from glasshead.store.session import SessionDep
 router = APIRouter(tags=["poses"])
 
 KIND = "pose"
+#: The 409 of a write that would give a pose another pose's name.
+NAME_CONFLICT = {409: {"description": "a pose with that name already exists"}}
 IfMatch = Annotated[str | None, Header(description="the ETag last read: the write goes ahead "
                                                   "only while the pose is still at it (412 "
                                                   "otherwise); leave out to overwrite")]
@@ -100,7 +102,7 @@ def _commit(session: Session, name: str, record: SavedPose | None = None) -> Non
 
 
 @router.post("/poses", operation_id="createPose", status_code=status.HTTP_201_CREATED,
-             response_model=PoseOut)
+             response_model=PoseOut, responses=NAME_CONFLICT)
 def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep,
                 response: Response) -> SavedPose:
     check_known_params(assets, pose.params)
@@ -132,7 +134,7 @@ def get_pose(pose_id: RecordId, session: SessionDep, response: Response) -> Save
 
 
 @router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut,
-            responses=PRECONDITION)
+            responses={**PRECONDITION, **NAME_CONFLICT})
 def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep, assets: AssetsDep,
                  response: Response, if_match: IfMatch = None) -> SavedPose:
     record = get_pose_record(session, pose_id)
@@ -145,7 +147,7 @@ def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep, assets: A
 
 
 @router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut,
-              responses=PRECONDITION)
+              responses={**PRECONDITION, **NAME_CONFLICT})
 def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep, assets: AssetsDep,
                 response: Response, if_match: IfMatch = None) -> SavedPose:
     record = get_pose_record(session, pose_id)
