@@ -269,15 +269,26 @@ class ProgressWriter:
             raise JobDeletedError(self.job_id)
 
 
+def claim_job(session: Session, job_id: int) -> bool:
+    """Mark the queued job ``job_id`` running, in one conditional UPDATE; False when it is not
+    queued (any more). Several servers (workers, replicas) may each hand the same queued job to
+    their pool at start-up: only one of them runs it."""
+    now = utc_now()
+    claimed = session.execute(
+        update(FitJob).where(FitJob.id == job_id, FitJob.state == "queued")
+        .values(state="running", started_at=now, updated_at=now,
+                progress={"evaluations": 0, "best_error": None, "fraction": 0.0}))
+    session.commit()
+    return claimed.rowcount == 1
+
+
 def run_job(database_url: str, assets_dir: str, job_id: int) -> str:
     """Run the queued job ``job_id`` (in a worker process); returns its final state."""
     with Session(engine_for(database_url), expire_on_commit=False) as session:
-        job = session.get(FitJob, job_id)
-        if job is None or job.state != "queued":
+        if not claim_job(session, job_id):
+            job = session.get(FitJob, job_id)
             return "gone" if job is None else job.state
-        job.state, job.started_at = "running", utc_now()
-        job.progress = {"evaluations": 0, "best_error": None, "fraction": 0.0}
-        session.commit()
+        job = session.get(FitJob, job_id)
         kind, method, name = job.kind, job.method, job.name
         points, options = job.get_observation(), dict(job.source.get("options", {}))
         writer = ProgressWriter(session, job_id)
