@@ -19,7 +19,7 @@ import { assignParams, formatMm, ObservationControl } from '../../web/src/ui/Obs
 import { drawObservationSagittal } from '../../web/src/ui/ObservationOverlay.js';
 import { PhonemeTargetControl } from '../../web/src/ui/PhonemeChooser.js';
 import { OBSERVATION_COLORS, ObservationLayer, sphereRadius } from '../../web/src/scene/ObservationLayer.js';
-import { Color, Matrix4, Plane, Vector3 } from 'three';
+import { Color, Matrix4 } from 'three';
 import { debugObject, registerDebug } from '../../web/src/debug.js';
 import { near } from './support/near.js';
 
@@ -296,13 +296,13 @@ test( 'a target out of range is refused whole, and readouts show two decimals', 
 
 } );
 
-test( 'the 3D layer draws a vector from each P to its Q and a sphere at P sized and coloured by the error', () => {
+test( 'the 3D layer draws a vector from each P to its Q and a sphere at P sized and coloured by the error, the outline in the cutaway and the surface on the whole tongue', () => {
 
 	const positions = Float32Array.of( 10, - 9, - 9, 10, 9, - 9, 10, 9, 9, 10, - 9, 9 );
 	const model = createRayError( [ 0, 0, 0 ], [ [ 5, 1 ], [ 20, - 2 ] ], [ [ 12, 0, 3 ] ] );
 	rayError( model, positions, Uint32Array.of( 0, 1, 2, 0, 2, 3 ), 2 );
 	let cut = true;
-	const layer = new ObservationLayer( { clipPlane: new Plane( new Vector3( 0, 0, 1 ), 0 ), isCut: () => cut } );
+	const layer = new ObservationLayer( { isCut: () => cut } );
 	layer.setModel( model );
 	const [ outline, surface ] = layer.parts;
 	assert.deepEqual( [ outline.count, surface.count ], [ 2, 1 ] );
@@ -321,13 +321,15 @@ test( 'the 3D layer draws a vector from each P to its Q and a sphere at P sized 
 
 	}
 
-	assert.equal( surface.points.material.clippingPlanes.length, 1, 'the surface is clipped with the anatomy' );
-	assert.equal( outline.points.material.clippingPlanes.length, 0, 'the outline lies in the cut' );
 	outline.points.onBeforeRender();
+	surface.spheres.onBeforeRender();
 	assert.equal( outline.points.material.depthTest, false, 'over everything while the cutaway shows' );
+	assert.equal( surface.spheres.material.colorWrite, false, 'the surface is left out of the cutaway' );
 	cut = false;
 	outline.points.onBeforeRender();
+	surface.spheres.onBeforeRender();
 	assert.equal( outline.points.material.depthTest, true, 'inside the whole tongue without it' );
+	assert.equal( surface.spheres.material.colorWrite, true, 'the surface shows on the whole tongue' );
 	layer.dispose();
 	assert.equal( layer.parts.length, 0 );
 

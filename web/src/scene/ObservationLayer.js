@@ -4,11 +4,12 @@
 // coloured by the error's sign (the tongue beyond the observation, or short of it). The numbers
 // come from core/rayError.js; this object only shows them.
 //
-// Two groups. The outline (z = 0) lies in the cutaway's plane, where the tongue's cut is drawn:
-// while the cutaway shows, it is drawn over everything and never clipped; without the cutaway it
-// lies inside the tongue and is depth-tested like the anatomy. The surface points are always
-// depth-tested and clipped with the anatomy, so the cutaway shows the half of them on the tongue
-// it shows, and the whole tongue hides those inside it.
+// Two groups, one for each of the paper's figures. The outline (z = 0, Figure 5) lies in the
+// cutaway's plane, where the tongue's cut is drawn: while the cutaway shows, it is drawn over
+// everything and never clipped; without the cutaway it lies inside the tongue and is depth-tested
+// like the anatomy. The surface (Figure 6) shows on the whole tongue only, depth-tested, so the
+// tongue hides the points inside it: in the cutaway the view looks at the cut from the side the
+// cut took away, and the surface's points would show only dimly, behind the cut and the air.
 
 import { BufferAttribute, BufferGeometry, Color, DynamicDrawUsage, Group, InstancedMesh, LineBasicMaterial, LineSegments, Matrix4, MeshLambertMaterial, Points, PointsMaterial, SphereGeometry } from 'three';
 
@@ -27,13 +28,9 @@ export function sphereRadius( distance ) {
 
 export class ObservationLayer {
 
-	/**
-	 * @param {{ clipPlane?: import('three').Plane|null, isCut?: () => boolean }} options the
-	 *   cutaway's plane (the surface part is clipped by it) and whether the cutaway shows now
-	 */
-	constructor( { clipPlane = null, isCut = () => true } = {} ) {
+	/** @param {{ isCut?: () => boolean }} options whether the cutaway shows now */
+	constructor( { isCut = () => true } = {} ) {
 
-		this.clipPlane = clipPlane;
 		this.isCut = isCut;
 		this.group = new Group();
 		this.group.name = 'observation';
@@ -61,8 +58,7 @@ export class ObservationLayer {
 
 		const count = to - from;
 		if ( count === 0 ) return null;
-		const clipping = onTop || ! this.clipPlane ? [] : [ this.clipPlane ];
-		const common = { depthTest: ! onTop, depthWrite: ! onTop, clippingPlanes: clipping };
+		const common = { depthTest: ! onTop, depthWrite: ! onTop };
 		const pointGeometry = new BufferGeometry();
 		pointGeometry.setAttribute( 'position', new BufferAttribute( Float32Array.from( this.model.points.subarray( 3 * from, 3 * to ) ), 3 ) );
 		const points = new Points( pointGeometry, new PointsMaterial( { color: OBSERVATION_COLORS.observed, size: pointSize, sizeAttenuation: false, ...common } ) );
@@ -78,8 +74,10 @@ export class ObservationLayer {
 
 			object.frustumCulled = false;
 			object.renderOrder = onTop ? RENDER_ORDER : 0;
-			// Read as each is drawn, so the outline follows the cutaway toggle without a hook.
-			if ( onTop ) object.onBeforeRender = () => ( object.material.depthTest = object.material.depthWrite = ! this.isCut() );
+			// Read as each is drawn, so both follow the cutaway toggle without a hook.
+			const material = object.material;
+			if ( onTop ) object.onBeforeRender = () => ( material.depthTest = material.depthWrite = ! this.isCut() );
+			else object.onBeforeRender = () => ( material.colorWrite = material.depthWrite = ! this.isCut() );
 			group.add( object );
 
 		}

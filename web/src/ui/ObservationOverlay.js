@@ -83,7 +83,7 @@ export class ObservationPanel {
 		this.viewer = viewer;
 		this.sagittal = sagittal;
 		this.redrawSagittal = redrawSagittal;
-		this.layer = new ObservationLayer( { clipPlane: head?.clipPlane ?? null, isCut: () => Boolean( head?.cutaway ) } );
+		this.layer = new ObservationLayer( { isCut: () => Boolean( head?.cutaway ) } );
 		viewer.scene.add( this.layer.group );
 		this.control = new ObservationControl( { api, articulation, onUpdate: () => this.sync() } );
 		this.error = null;
@@ -96,7 +96,8 @@ export class ObservationPanel {
 		this.overlayButton = h( 'button', { type: 'button', className: 'toggle wb-toggle', 'aria-pressed': 'true', disabled: '', onClick: () => this.toggleOverlay() }, 'Overlay' );
 		this.readout = h( 'div', { className: 'wb-readout', role: 'status', 'aria-live': 'polite' } );
 		this.legend = h( 'p', { className: 'wb-legend', hidden: '' },
-			h( 'span', {}, swatch( OBSERVATION_COLORS.beyond ), ' tongue beyond the shape' ), h( 'span', {}, swatch( OBSERVATION_COLORS.short ), ' tongue short of it' ) );
+			h( 'span', {}, swatch( OBSERVATION_COLORS.beyond ), ' tongue beyond the shape' ), h( 'span', {}, swatch( OBSERVATION_COLORS.short ), ' tongue short of it' ),
+			h( 'span', { className: 'wb-note' }, 'The cutaway shows the outline; without it, the surface.' ) );
 		this.plotLink = h( 'a', { className: 'wb-note', target: '_blank', rel: 'noopener', hidden: '' }, 'The fit\u2019s plot (SVG)' );
 		this.errorText = h( 'p', { className: 'error wb-inline', role: 'alert', hidden: '' } );
 		this.element = h( 'fieldset', { className: 'wb-box wb-observation', 'aria-label': 'Observation' },
