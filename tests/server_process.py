@@ -22,6 +22,10 @@ REPO = Path(__file__).resolve().parents[1]
 #: Seconds a server may take to start (migrations, assets, spawned workers).
 START_TIMEOUT_S = 90.0
 API = "/api/v1"
+#: Writes sent in all by the crash tests (bounded), and after how many acknowledgements the
+#: server is killed.
+WRITES = 200
+KILL_AFTER = 60
 
 
 def free_port() -> int:
@@ -145,3 +149,19 @@ def check_acknowledged_writes_are_there(base: str, acknowledged: dict) -> None:
                 assert response.json()["name"] == body["name"]
                 assert response.json()["frames"] == [
                     frame["rows"] for frame in body["content"]["frames"]], k
+
+
+def kill_during_writes(server: ServerProcess) -> dict:
+    """Concurrent writes to ``server``, killed with SIGKILL after KILL_AFTER acknowledgements;
+    returns the acknowledged writes, at least KILL_AFTER and fewer than WRITES."""
+    killed = threading.Event()
+
+    def on_ack(so_far):
+        if so_far >= KILL_AFTER and not killed.is_set():
+            killed.set()
+            server.kill()
+
+    acknowledged = write_concurrently(server.base, WRITES, on_ack=on_ack)
+    assert killed.is_set(), f"only {len(acknowledged)} writes were acknowledged"
+    assert KILL_AFTER <= len(acknowledged) < WRITES, len(acknowledged)
+    return acknowledged

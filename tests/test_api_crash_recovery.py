@@ -7,14 +7,15 @@ writers wait instead of failing and a kill leaves a log the next start recovers.
 """
 
 import sqlite3
-import threading
 
 from glasshead.store.db import SQLITE_BUSY_TIMEOUT_MS, engine_for
-from server_process import ServerProcess, check_acknowledged_writes_are_there, write_concurrently
-
-#: Writes sent in all (bounded), and after how many acknowledgements the server is killed.
-WRITES = 200
-KILL_AFTER = 60
+from server_process import (
+    WRITES,
+    ServerProcess,
+    check_acknowledged_writes_are_there,
+    kill_during_writes,
+    write_concurrently,
+)
 
 
 def test_a_sqlite_file_database_is_in_wal_mode_with_a_busy_timeout(tmp_path):
@@ -25,22 +26,6 @@ def test_a_sqlite_file_database_is_in_wal_mode_with_a_busy_timeout(tmp_path):
         assert driver.execute("PRAGMA busy_timeout").fetchone()[0] == SQLITE_BUSY_TIMEOUT_MS
         assert driver.execute("PRAGMA foreign_keys").fetchone()[0] == 1
     engine.dispose()
-
-
-def kill_during_writes(server: ServerProcess) -> dict:
-    """Concurrent writes to ``server``, killed with SIGKILL after KILL_AFTER acknowledgements;
-    returns the acknowledged writes, at least KILL_AFTER and fewer than WRITES."""
-    killed = threading.Event()
-
-    def on_ack(so_far):
-        if so_far >= KILL_AFTER and not killed.is_set():
-            killed.set()
-            server.kill()
-
-    acknowledged = write_concurrently(server.base, WRITES, on_ack=on_ack)
-    assert killed.is_set(), f"only {len(acknowledged)} writes were acknowledged"
-    assert KILL_AFTER <= len(acknowledged) < WRITES, len(acknowledged)
-    return acknowledged
 
 
 def test_every_acknowledged_write_survives_a_sigkill_and_the_database_checks_ok(tmp_path):
