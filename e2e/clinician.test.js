@@ -185,6 +185,19 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 
 	} );
 
+	test( 'the frame slider is a 44 px touch target, and the strip of frames takes the focus and steps with the arrows', async () => {
+
+		const slider = await page.getByRole( 'slider', { name: 'Frame' } ).boundingBox();
+		assert.ok( slider.height >= 44, `the frame slider is ${ slider.height } px tall` );
+		const strip = page.getByRole( 'img', { name: /Palatograms over time/ } );
+		assert.equal( await strip.evaluate( ( node ) => node.tabIndex ), 0 );
+		await strip.focus();
+		const before = ( await clinician() ).frame;
+		await page.keyboard.press( 'ArrowRight' );
+		assert.equal( ( await clinician() ).frame, before + 1 );
+
+	} );
+
 	test( 'bad values in the URL are said in words and nothing is chosen', async () => {
 
 		await openClinician( '#/clinician?target=pose:999999&recording=abc&frame=-3' );
@@ -224,6 +237,9 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 		const created = await api( 'POST', '/poses', { name: LONG_NAME, params: TONGUE } );
 		assert.equal( created.status, 201, JSON.stringify( created.body ) );
 		await openClinician( `#/clinician?target=pose:${ created.body.id }&recording=${ recordingIds[ 0 ] }&frame=20` );
+		const state = await clinician();
+		assert.equal( state.error, null );
+		assert.equal( state.target.label, LONG_NAME );
 		const caption = page.locator( 'figure', { hasText: 'Target (synthetic)' } ).locator( '.cv-sub' );
 		const box = await caption.evaluate( ( node ) => ( { scroll: node.scrollWidth, client: node.clientWidth, height: node.clientHeight, title: node.title, overflow: getComputedStyle( node ).textOverflow } ) );
 		assert.equal( box.title, LONG_NAME );

@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 
 import { agreementText, indexLabel, INDEX_LABELS, recordingTitle, speakerOf } from '../../web/src/ui/clinicianText.js';
-import { missingChoiceMessage, parseSelection, selectionHash } from '../../web/src/ui/clinicianUrl.js';
+import { missingChoiceMessage, parseSelection, SelectionUrl, selectionHash } from '../../web/src/ui/clinicianUrl.js';
 import { importErrorMessage, importRecordingFile, MAX_IMPORT_BYTES } from '../../web/src/ui/clinicianImport.js';
 import { DEFAULT_SPEED, SPEEDS, speedLabel } from '../../web/src/ui/clinicianLayout.js';
 import { TABLE_INDICES } from '../../web/src/ui/clinicianRender.js';
@@ -123,5 +123,56 @@ test( 'a refused file is explained in plain words, and empty or oversized files 
 	await assert.rejects( importRecordingFile( huge, { fetchImpl } ), { message: 'The file is too large: recordings can be at most 32 MB.' } );
 	assert.equal( sent.length, 1, 'only the first file reached the server' );
 	assert.equal( importErrorMessage( 500, 'database locked' ), 'The import failed (HTTP 500): database locked.' );
+
+} );
+
+/** A window with a location hash, a history that replaces it, timers run by hand and events. */
+function fakeWindow( hash ) {
+
+	const listeners = {};
+	const timers = [];
+	const win = {
+		location: { hash },
+		history: { state: null, replaceState: ( state, title, url ) => ( win.location.hash = url ) },
+		setTimeout: ( fn ) => timers.push( fn ),
+		clearTimeout: () => timers.splice( 0 ),
+		addEventListener: ( type, fn ) => ( listeners[ type ] = fn ),
+		removeEventListener: ( type ) => delete listeners[ type ],
+		runTimers: () => timers.splice( 0 ).forEach( ( fn ) => fn() ),
+		navigate: ( next ) => {
+
+			win.location.hash = next;
+			listeners.hashchange?.();
+
+		},
+	};
+	return win;
+
+}
+
+test( 'the URL is written after a change, applied when typed, and never overwritten when someone else changed it', () => {
+
+	const win = fakeWindow( '#/clinician?target=pose:3' );
+	let selection = { target: 'pose:3', recording: 12, frame: 0 };
+	const applied = [];
+	const url = new SelectionUrl( win, { selection: () => selection, writable: () => true, apply: ( hash ) => applied.push( hash ) } );
+	assert.equal( url.read( win.location.hash ).target, 'pose:3' );
+	url.write();
+	win.runTimers();
+	assert.equal( win.location.hash, '#/clinician?target=pose:3&recording=12' );
+	// Typed into the address bar: applied, and a write pending from before does not undo it.
+	url.write();
+	win.navigate( '#/clinician?recording=5' );
+	win.runTimers();
+	assert.equal( win.location.hash, '#/clinician?recording=5' );
+	assert.deepEqual( applied, [ '#/clinician?recording=5' ] );
+	url.read( win.location.hash );
+	selection = { target: null, recording: 5, frame: 7 };
+	url.write();
+	win.runTimers();
+	assert.equal( win.location.hash, '#/clinician?recording=5&frame=7' );
+	url.stop();
+	win.navigate( '#/clinician?recording=6' );
+	assert.equal( applied.length, 1, 'a stopped URL applies nothing' );
 
 } );

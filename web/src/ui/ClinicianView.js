@@ -15,7 +15,7 @@ import { clinicianEpgReport, clinicianReport } from './clinicianReport.js';
 import { frameCount, frameTimes, targetFrameAt } from './clinicianFrames.js';
 import { clinicianLayout, DEFAULT_SPEED, fillChoices, keyHandler, offers } from './clinicianLayout.js';
 import { RecordingImport } from './clinicianImport.js';
-import { missingChoiceMessage, parseSelection, selectionHash } from './clinicianUrl.js';
+import { missingChoiceMessage, SelectionUrl } from './clinicianUrl.js';
 import { renderClinician } from './clinicianRender.js';
 import { PlaybackClock } from './playbackClock.js';
 import { TargetPalate3D } from './TargetPalate3D.js';
@@ -61,6 +61,11 @@ export class ClinicianView {
 
 		this.onKey = keyHandler( actions );
 		this.window.addEventListener( 'keydown', this.onKey );
+		this.url = new SelectionUrl( this.window, {
+			selection: () => ( { target: this.state.target?.name, recording: this.state.recording?.id, frame: this.state.frame } ),
+			writable: () => ! this.state.playing && this.root.isConnected,
+			apply: ( hash ) => this.state.loaded && this.applySelection( hash ),
+		} );
 		this.resizeObserver = new ResizeObserver( () => this.fit() );
 		this.resizeObserver.observe( this.main );
 		this.resizeObserver.observe( this.plotCard );
@@ -81,40 +86,41 @@ export class ClinicianView {
 
 	}
 
-	/** The choices, then the selection in the URL: what is not on offer is said, not chosen. */
+	/** The choices, then the selection in the URL. */
 	async load() {
 
-		const selection = parseSelection( this.window.location.hash );
-		const problems = [ ...selection.problems ];
 		try {
 
 			await this.refreshChoices();
-			for ( const [ slot, select ] of [ [ 'target', this.targetSelect ], [ 'recording', this.recordingSelect ] ] ) {
-
-				const value = selection[ slot ];
-				if ( ! value ) continue;
-				if ( ! offers( select, value ) ) {
-
-					problems.push( missingChoiceMessage( slot, value ) );
-					continue;
-
-				}
-
-				select.value = value;
-				await ( slot === 'target' ? this.chooseTarget( value, { keepFrame: true } ) : this.chooseRecording( value, { keepFrame: true } ) );
-
-			}
-
-			if ( selection.frame !== null ) this.setFrame( selection.frame );
+			await this.applySelection( this.window.location.hash );
 			this.state.loaded = true;
-			if ( problems.length && ! this.state.error ) this.fail( problems.join( ' ' ), { log: false } );
-			this.writeUrl();
 
 		} catch ( error ) {
 
 			this.fail( error.message );
 
 		}
+
+	}
+
+	/** Choose what the URL's `hash` names; what is not on offer or cannot be right is said, not chosen. */
+	async applySelection( hash ) {
+
+		const selection = this.url.read( hash );
+		const problems = [ ...selection.problems ];
+		for ( const [ slot, select ] of [ [ 'target', this.targetSelect ], [ 'recording', this.recordingSelect ] ] ) {
+
+			const value = selection[ slot ];
+			if ( value && ! offers( select, value ) ) problems.push( missingChoiceMessage( slot, value ) );
+			const chosen = value && offers( select, value ) ? value : '';
+			if ( chosen === ( slot === 'target' ? this.state.target?.name ?? '' : String( this.state.recording?.id ?? '' ) ) ) continue;
+			select.value = chosen;
+			await ( slot === 'target' ? this.chooseTarget( chosen, { keepFrame: true } ) : this.chooseRecording( chosen, { keepFrame: true } ) );
+
+		}
+
+		if ( selection.frame !== null ) this.setFrame( selection.frame );
+		if ( problems.length && ! this.state.error ) this.fail( problems.join( ' ' ), { log: false } );
 
 	}
 
@@ -139,20 +145,6 @@ export class ClinicianView {
 
 	}
 
-	/** Put the selection in the URL, without a new history entry (at most every 250 ms). */
-	writeUrl() {
-
-		this.window.clearTimeout( this.urlTimer );
-		this.urlTimer = this.window.setTimeout( () => {
-
-			const { target, recording, frame, playing } = this.state;
-			const hash = selectionHash( { target: target?.name, recording: recording?.id, frame } );
-			if ( playing || ! this.root.isConnected || this.window.location.hash === hash ) return;
-			this.window.history.replaceState( this.window.history.state, '', hash );
-
-		}, 250 );
-
-	}
 
 	chooseTarget( name, options ) {
 
@@ -243,7 +235,7 @@ export class ClinicianView {
 		if ( ! keepFrame ) this.state.frame = 0;
 		this.state.frame = Math.min( this.state.frame, this.frameCount() - 1 );
 		this.render();
-		this.writeUrl();
+		this.url.write();
 		return this.state;
 
 	}
@@ -273,7 +265,7 @@ export class ClinicianView {
 		if ( ! Number.isFinite( frame ) ) return;
 		this.state.frame = Math.max( 0, Math.min( this.frameCount() - 1, Math.round( frame ) ) );
 		this.render();
-		if ( ! this.state.playing ) this.writeUrl();
+		if ( ! this.state.playing ) this.url.write();
 
 	}
 
@@ -319,7 +311,7 @@ export class ClinicianView {
 
 		this.state.playing = playing;
 		if ( ! this.playButton ) return;
-		if ( ! playing ) this.writeUrl();
+		if ( ! playing ) this.url.write();
 		const label = playing ? 'Pause' : 'Play';
 		this.playButton.textContent = label;
 		this.playButton.setAttribute( 'aria-label', label );
@@ -384,7 +376,7 @@ export class ClinicianView {
 		this.pause();
 		this.loadVersion ++;
 		this.window.removeEventListener( 'keydown', this.onKey );
-		this.window.clearTimeout( this.urlTimer );
+		this.url.stop();
 		this.resizeObserver?.disconnect();
 		this.palate3d?.dispose();
 		for ( const unregister of this.unregister ) unregister();

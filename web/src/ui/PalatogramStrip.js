@@ -83,7 +83,9 @@ export class PalatogramStrip {
 		this.element = document.createElement( 'canvas' );
 		this.element.className = 'palatogram-strip';
 		this.element.setAttribute( 'role', 'img' );
-		this.element.setAttribute( 'aria-label', 'Palatograms over time' );
+		this.element.setAttribute( 'aria-label', 'Palatograms over time (click a frame, or focus and step with the arrow keys)' );
+		// Reachable with Tab: the view's keys step the frames while the strip has the focus.
+		this.element.tabIndex = 0;
 		this.ratio = Math.min( 2, globalThis.devicePixelRatio || 1 );
 		this.resize( width, height );
 		this.state = { frames: null, total: 0, current: 0, t_s: null, codes: null };

@@ -4,6 +4,7 @@
 // (a target without a kind, a recording id that is not a positive whole number, a frame that is not
 // a whole number) is dropped with a message that says what was wrong, instead of failing later.
 
+import { routePath } from './router.js';
 import { parseTargetName } from './targets.js';
 
 /** The route the view lives at. */
@@ -66,6 +67,67 @@ export function selectionHash( { target = null, recording = null, frame = null }
 	if ( frame ) query.set( 'frame', String( frame ) );
 	const text = query.toString().replaceAll( '%3A', ':' );
 	return text ? `${ CLINICIAN_ROUTE }?${ text }` : CLINICIAN_ROUTE;
+
+}
+
+/**
+ * The view's URL: reads the selection, writes it back (replacing the history entry, at most every
+ * 250 ms, not while `writable()` is false) and hands `apply( hash )` a selection typed into the
+ * URL while the view stays mounted. A URL changed by someone else since it was last read or
+ * written is theirs, and is not overwritten.
+ */
+export class SelectionUrl {
+
+	/**
+	 * @param {Window} win
+	 * @param {{ selection: () => object, writable: () => boolean, apply: ( hash: string ) => any }} view
+	 */
+	constructor( win, { selection, writable, apply } ) {
+
+		this.window = win;
+		this.selection = selection;
+		this.writable = writable;
+		this.lastHash = win.location.hash;
+		this.timer = null;
+		this.onHashChange = () => {
+
+			const hash = this.window.location.hash;
+			if ( hash !== this.lastHash && routePath( hash ) === '/clinician' ) apply( hash );
+
+		};
+		win.addEventListener( 'hashchange', this.onHashChange );
+
+	}
+
+	/** The selection in `hash`, which becomes the URL's last known state (see parseSelection). */
+	read( hash ) {
+
+		this.lastHash = hash;
+		return parseSelection( hash );
+
+	}
+
+	write() {
+
+		this.window.clearTimeout( this.timer );
+		this.timer = this.window.setTimeout( () => {
+
+			const hash = selectionHash( this.selection() );
+			const current = this.window.location.hash;
+			if ( ! this.writable() || current === hash || current !== this.lastHash ) return;
+			this.window.history.replaceState( this.window.history.state, '', hash );
+			this.lastHash = hash;
+
+		}, 250 );
+
+	}
+
+	stop() {
+
+		this.window.clearTimeout( this.timer );
+		this.window.removeEventListener( 'hashchange', this.onHashChange );
+
+	}
 
 }
 
