@@ -29,8 +29,9 @@ def test_a_sqlite_file_database_is_in_wal_mode_with_a_busy_timeout(tmp_path):
 
 
 def test_every_acknowledged_write_survives_a_sigkill_and_the_database_checks_ok(tmp_path):
+    """Two workers on one new file: they also migrate it once (a lock file beside it)."""
     database = tmp_path / "crash.sqlite3"
-    server = ServerProcess(tmp_path, f"sqlite:///{database}").start()
+    server = ServerProcess(tmp_path, f"sqlite:///{database}", workers=2).start()
     try:
         acknowledged = kill_during_writes(server)
         server.start()  # the same database file, recovered from its WAL
