@@ -7,6 +7,7 @@ answered while compute requests are still in flight. Speeds are measured in benc
 
 import asyncio
 import json
+import shutil
 import threading
 import time
 import urllib.request
@@ -20,6 +21,8 @@ from glasshead.api.routes.collision import CorrectRequest, correct
 from glasshead.api.routes.epg import ContactsRequest, contacts_json
 from glasshead.api.routes.epg_indices import IndicesRequest, indices_json
 from glasshead.api.routes.tongue import SurfaceRequest, evaluate_surface
+from glasshead.asset_store import RECHECK_S
+from glasshead.constants import TONGUE_RIG_FILE
 
 API = "/api/v1"
 ROWS = ["00111100", "01111110", "11000011", "10000001", "10000001", "10000001", "10000001",
@@ -61,6 +64,26 @@ def test_an_error_raised_in_a_worker_answers_as_it_would_in_process(start_app, b
     response = client.post(f"{API}/epg/indices", json={"frames": [["2" * 8] * 8]})
     assert response.status_code == 422
     assert isinstance(response.json()["detail"], str) and response.json()["detail"]
+
+
+def test_a_worker_follows_a_rebuilt_asset_by_its_content(start_app, built_assets, tmp_path):
+    assets = tmp_path / "assets"
+    shutil.copytree(built_assets, assets)
+    _, client = start_app(assets)
+    body = {"params": {"tip_height": 4.0}}
+    first = client.post(f"{API}/tongue/surface", json=body)
+    assert first.status_code == 200
+    rig = assets / TONGUE_RIG_FILE
+    good = rig.read_bytes()
+    rig.write_bytes(b"{ not json")
+    time.sleep(RECHECK_S + 0.1)
+    broken = client.post(f"{API}/tongue/surface", json=body)
+    assert broken.status_code == 503
+    assert broken.json()["asset"] == "tongue_rig" and broken.json()["problem"] == "corrupt"
+    rig.write_bytes(good)
+    time.sleep(RECHECK_S + 0.1)
+    again = client.post(f"{API}/tongue/surface", json=body)
+    assert again.status_code == 200 and again.json() == first.json()
 
 
 def test_a_full_queue_is_answered_503_with_retry_after_at_once(built_assets):
