@@ -16,8 +16,8 @@ COPY pyproject.toml README.md ./
 COPY server ./server
 RUN pip install --no-cache-dir '.[postgres]'
 COPY --from=web /app/web/dist ./web/dist
-# The server runs as an unprivileged user that owns only what it writes: the built assets (and
-# the utterance cache inside them) and var/ for a SQLite database when no PostgreSQL is given.
+# The server runs as an unprivileged user that owns only what it writes: the built assets, and
+# var/ for the utterance cache and a SQLite database when no PostgreSQL is given.
 RUN useradd --system --uid 10001 --home-dir /app --shell /usr/sbin/nologin glasshead \
     && mkdir -p /app/assets/build /app/var/utterances \
     && chown -R glasshead:glasshead /app/assets /app/var
@@ -25,6 +25,7 @@ USER glasshead
 ENV GLASSHEAD_DATA_DIR=/data \
     GLASSHEAD_DATABASE_URL=sqlite:////app/var/glasshead.sqlite3 \
     GLASSHEAD_ASSETS_DIR=/app/assets/build \
+    GLASSHEAD_SPEECH_CACHE_DIR=/app/var/utterances \
     GLASSHEAD_WEB_DIST_DIR=/app/web/dist \
     HOST=0.0.0.0 \
     PORT=8000
