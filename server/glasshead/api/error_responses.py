@@ -7,10 +7,11 @@ document declares that array (``HTTPValidationError``) and leaves out every othe
 ``install_error_responses`` has it rewritten once, when it is first asked for:
 
 - the one ``Error`` schema for every 4xx and 5xx it documents;
-- 422 on every operation that takes a parameter or a body; 404 on every operation with a path
-  parameter (the id or name may name nothing); 400 (a body that cannot be parsed) and 413 (past
-  its limit, ``api/limits.py``) on every operation with a body; 503 on every operation that
-  needs the built assets or the compute pool;
+- 400 on every operation (a Host not allowed, a body that cannot be parsed); 403 on every
+  write (a cross-site Origin, ``api/security.py``); 422 on every operation that takes a
+  parameter or a body; 404 on every operation with a path parameter (the id or name may name
+  nothing); 413 on every operation with a body (past its limit, ``api/limits.py``); 503 on every
+  operation that needs the built assets or the compute pool;
 - a route's own ``responses`` (409, 412, 415, a 503 for a full queue) keep their descriptions
   and gain the schema.
 
@@ -37,8 +38,9 @@ ERROR_SCHEMA = {
 
 #: The generic errors and when an operation can answer them.
 DESCRIPTIONS = {
-    "400": "the body cannot be read as its media type (JSON that is not UTF-8, a broken "
-           "multipart form)",
+    "400": "the Host is not one the server answers to (GLASSHEAD_ALLOWED_HOSTS), or the body "
+           "cannot be read as its media type (JSON that is not UTF-8, a broken multipart form)",
+    "403": "a write from another site: its Origin is not this server's (docs/api.md)",
     "404": "nothing has that id or name",
     "413": "the body is past the operation's size limit (docs/api.md), refused as it streams in",
     "422": "a parameter or the body is not valid; detail names the field and the problem",
@@ -50,6 +52,11 @@ DESCRIPTIONS = {
 #: AssetUnavailableError for a missing asset; the compute pool refuses work when it is full.
 UNAVAILABLE_DEPENDENCIES = frozenset({"get_asset_store", "get_compute_pool"})
 
+#: Operations that read the asset store without failing: /health reports a missing asset in its
+#: body, with 200.
+NEVER_UNAVAILABLE = frozenset({"getHealth"})
+#: Methods that a cross-site request may not use (api/security.py answers 403).
+WRITE_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 #: FastAPI's validation-error schemas, replaced by ``Error``.
 _FASTAPI_ERROR_SCHEMAS = ("HTTPValidationError", "ValidationError")
 
@@ -94,14 +101,17 @@ def _rewrite(document: dict, routes: dict[tuple[str, str], APIRoute]) -> None:
 def _generic_errors(operation: dict, route: APIRoute | None) -> list[str]:
     parameters = operation.get("parameters", [])
     has_body = "requestBody" in operation
-    errors = []
+    errors = ["400"]  # any request: the Host allow-list (api/security.py)
+    if route is not None and route.methods & WRITE_METHODS:
+        errors.append("403")
     if any(p.get("in") == "path" for p in parameters):
         errors.append("404")
     if has_body:
-        errors += ["400", "413"]
+        errors.append("413")
     if parameters or has_body:
         errors.append("422")
-    if route is not None and _depends_on(route.dependant, UNAVAILABLE_DEPENDENCIES):
+    if (route is not None and operation.get("operationId") not in NEVER_UNAVAILABLE
+            and _depends_on(route.dependant, UNAVAILABLE_DEPENDENCIES)):
         errors.append("503")
     return errors
 
