@@ -15,6 +15,7 @@ from glasshead.fitting.fit3d import (
     fit_shape3d,
     fit_surface,
     free_groups,
+    main,
     shape_vertices,
     surface_parameters,
     tip_rib,
@@ -191,3 +192,14 @@ def test_a_mask_of_the_wrong_shape_or_leaving_too_few_vertices_is_refused(rig, k
     few[:MIN_RAYS - 1] = True
     with pytest.raises(ValueError, match="leaves"):
         fit_surface(rig, observed, mask=few)
+
+
+def test_the_command_prints_a_line_per_shape_and_a_summary(built_assets, capsys):
+    assert main(["bobyqa", "a"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 2
+    assert lines[0].startswith("a ") and " mm (from " in lines[0] and "evals" in lines[0]
+    assert lines[1].startswith("1 shapes, bobyqa: median RMS ")
+    assert "within 1.5 mm" in lines[1]
+    with pytest.raises(ValueError, match="no such shapes: nonesuch"):
+        main(["bobyqa", "nonesuch"])

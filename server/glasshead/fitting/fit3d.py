@@ -387,6 +387,8 @@ def fit_all3d(rig: TongueRig, observations, *, method="bobyqa", names=None,
 
 
 def main(argv=None):
+    """``python -m glasshead.fitting.fit3d [method] [shape ...]``: every shape (or those named),
+    one line each, and a summary."""
     import sys
 
     from glasshead.settings import get_settings
@@ -395,7 +397,7 @@ def main(argv=None):
     method = argv[0] if argv else "bobyqa"
     rig, observations = fit2d.load_inputs(get_settings().assets_dir)
     started = time.perf_counter()
-    reports = fit_all3d(rig, observations, method=method)
+    reports = fit_all3d(rig, observations, method=method, names=argv[1:] or None)
     for r in reports:
         print(f"{r.shape:28s} {r.rms_mm:5.2f} mm (from {r.start_rms_mm:5.2f})  "
               f"max {r.max_error_mm:5.2f}  dV {r.volume_change_pct:+5.1f} %  "
