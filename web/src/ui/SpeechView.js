@@ -8,23 +8,18 @@
 import { api as pageApi, getAnatomy } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { packTracks, sampleTracks } from '../core/trackSampling.js';
-import { DiagramSection } from '../scene/DiagramSection.js';
 import { viewPose } from '../scene/viewPresets.js';
 import { h } from './Controls.js';
-import { drawDiagram } from './DiagramPanel.js';
-import { DominancePlot } from './DominancePlot.js';
 import { createHeadStage } from './headStage.js';
 import { loadAnatomy, loadArticulation, loadLandmarks, loadPhonemeTarget } from './loaders.js';
 import { PhonemeStrip } from './PhonemeStrip.js';
+import { SpeechPanels } from './SpeechPanels.js';
 import { SpeechForm, Transport } from './SpeechControls.js';
 import { phoneIndexAt, SpeechClock } from './speechClock.js';
-import { WorkbenchCues } from './WorkbenchCues.js';
 import './speech.css';
 
 /** What the 3D view frames in profile: the mouth, the velum and the pharynx (mm). */
 const FOCUS = Object.freeze( { center: [ - 4, - 8, 0 ], radius: 68 } );
-const DIAGRAM_SIZE = Object.freeze( [ 300, 280 ] );
-const DOMINANCE_SIZE = Object.freeze( [ 300, 170 ] );
 
 export class SpeechView {
 
@@ -94,16 +89,20 @@ export class SpeechView {
 	report() {
 
 		const u = this.utterance;
-		const phone = u && this.phone >= 0 ? u.phones[ this.phone ] : null;
 		const clock = this.clock;
+		// The clock as it is now, between frames too (a software-rendered page draws seldom): its
+		// time and phone; `shownTime` is the time the head, the strip and the palatogram show.
+		const time = u ? clock.update() : 0;
+		const index = u ? phoneIndexAt( u.phones, time ) : - 1;
+		const phone = index >= 0 ? u.phones[ index ] : null;
 		return {
 			id: u?.id ?? null, busy: this.busy ?? false, requests: this.requests,
 			duration: u?.duration_s ?? 0, rateHz: clock.rateHz, frames: u?.n_frames ?? 0,
-			playing: clock.playing, time: clock.time, frame: clock.frame, speed: clock.speed, loop: clock.loop,
+			playing: clock.playing, time, shownTime: this.shownTime ?? 0, frame: clock.frame, speed: clock.speed, loop: clock.loop,
 			source: clock.source, audioUrl: u?.audio_url ?? null, voice: u?.voice ?? null, audioKind: u?.audio?.kind ?? null,
 			audioTime: clock.hasAudio ? this.audio.currentTime : null, audioPaused: clock.hasAudio ? this.audio.paused : null,
 			audioRate: clock.hasAudio ? this.audio.playbackRate : null, preservesPitch: clock.hasAudio ? this.audio.preservesPitch : null,
-			audioError: clock.audioError, phoneIndex: this.phone,
+			audioError: clock.audioError, phoneIndex: index,
 			phone: phone ? { symbol: phone.symbol, ipa: phone.ipa, word: phone.word, start_s: phone.start_s, end_s: phone.end_s } : null,
 			phones: u ? u.phones.map( ( p ) => ( { symbol: p.symbol, ipa: p.ipa, start_s: p.start_s, end_s: p.end_s } ) ) : [],
 			hold: this.state.hold, dominance: this.dominance?.report() ?? null, warnings: u?.warnings ?? [],
@@ -132,7 +131,10 @@ export class SpeechView {
 		this.unregister.push( () => this.articulation.dispose() );
 		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } );
 		if ( ! this.viewer ) return;
-		this.buildPanels();
+		this.panels = new SpeechPanels( { head: this.head, viewer: this.viewer, articulation: this.articulation, landmarks: this.landmarks } );
+		this.unregister.push( () => this.panels.dispose() );
+		this.dominance = this.panels.dominance;
+		this.side.append( ...this.panels.sections );
 		this.unregister.push( this.viewer.onFrame( () => this.tick() ) );
 		this.apply();
 		this.viewer.flyTo( viewPose( 'profile', FOCUS.center, FOCUS.radius, this.viewer.camera.fov, this.viewer.aspect ), 0 );
@@ -140,49 +142,6 @@ export class SpeechView {
 		this.form.setBusy( false );
 		this.form.showStatus( '' );
 		this.form.submit(); // the example in the box, ready to play
-
-	}
-
-	/** The diagram, the cue switches and the dominance plot beside the head. */
-	buildPanels() {
-
-		const canvas = ( [ width, height ], label ) => {
-
-			const element = h( 'canvas', { className: 'sp-canvas', role: 'img', 'aria-label': label } );
-			const ratio = Math.min( window.devicePixelRatio || 1, 2 );
-			element.width = Math.round( width * ratio );
-			element.height = Math.round( height * ratio );
-			element.style.width = `${ width }px`;
-			element.style.height = `${ height }px`;
-			const ctx = element.getContext( '2d' );
-			ctx.setTransform( ratio, 0, 0, ratio, 0, 0 );
-			return { element, ctx, width, height };
-
-		};
-
-		this.diagramCanvas = canvas( DIAGRAM_SIZE, 'Diagram: the vocal tract cut at the mid-sagittal plane' );
-		this.diagram = new DiagramSection( this.head, { landmarks: this.landmarks } );
-		this.unregister.push( this.diagram.registerDebugField() );
-		this.diagramParts = Object.fromEntries( [ 'pharynx', 'larynx', 'palate', 'mandible', 'velum', 'upperLip', 'lowerLip', 'tongue' ].map( ( key ) => [ key, this.diagram.parts( key ) ] ) );
-		this.unregister.push( this.articulation.onCorrected( () => this.drawDiagram() ) );
-		this.drawDiagram();
-		this.cues = new WorkbenchCues( { viewer: this.viewer, articulation: this.articulation, diagram: this.diagram, landmarks: this.landmarks } );
-		this.cues.element.className = 'sp-buttons';
-		this.unregister.push( () => this.cues.dispose() );
-		const dominanceCanvas = canvas( DOMINANCE_SIZE, 'Dominance of each phoneme over time for the chosen parameter' );
-		this.dominance = new DominancePlot( dominanceCanvas, this.articulation.state );
-		this.side.append(
-			h( 'h2', { className: 'sp-heading' }, 'Diagram' ), this.diagramCanvas.element,
-			h( 'h2', { className: 'sp-heading' }, 'Air and voice' ), this.cues.element,
-			h( 'h2', { className: 'sp-heading' }, 'Dominance' ), this.dominance.element,
-		);
-
-	}
-
-	drawDiagram() {
-
-		this.diagram.update();
-		drawDiagram( this.diagramCanvas.ctx, { parts: this.diagramParts, air: this.diagram.polygon, constriction: this.diagram.constriction() }, this.diagramCanvas );
 
 	}
 
@@ -242,11 +201,16 @@ export class SpeechView {
 
 	}
 
-	/** Per frame: the clock's time, shown while playing; nothing to draw otherwise. */
+	/**
+	 * Every frame of the 3D view: the clock's time, shown when it moved (also the end, once).
+	 * Returns whether there is something new to draw.
+	 */
 	tick() {
 
-		if ( ! this.utterance || ! this.clock.playing ) return false;
-		this.show( this.clock.update() );
+		if ( ! this.utterance ) return false;
+		const t = this.clock.update();
+		if ( t === this.shownTime ) return false;
+		this.show( t );
 		return true;
 
 	}
@@ -256,6 +220,7 @@ export class SpeechView {
 
 		const u = this.utterance;
 		if ( ! u ) return;
+		this.shownTime = t;
 		const state = this.articulation.state;
 		if ( this.state.hold === null ) {
 

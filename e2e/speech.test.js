@@ -1,0 +1,311 @@
+// End-to-end: the speech player (#/speak) in Debian's Chromium. Type a sentence and press Say it;
+// play it and the current phoneme follows the audio's currentTime; slow motion slows the audio
+// with its pitch kept; frame steps move one frame. The articulation is checked by scrubbing the
+// clock to every frame, not by waiting for real-time playback (software rendering is slow), and
+// reading window.glasshead: the tongue tip's height peaks inside /t/ and /d/, the lips close
+// during /p b m/, the velum lowers during /m n ŋ/, the live palatogram shows front closure
+// during /t/ and back closure during /k/ (the last two, marked todo, fall short in the model today,
+// not in the player). Screenshots speech-1920 and speech-768 are for a person.
+
+import assert from 'node:assert/strict';
+import { after, before, describe, test } from 'node:test';
+import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+
+/** Has /t d k p b m n ŋ/, each more than once or next to a vowel. */
+const SENTENCE = 'Ted and Kim bring a pink map.';
+/** A lip gap at or under this is closed, mm (the face rig's lips meet at 0). */
+const LIPS_CLOSED_MM = 0.5;
+/** Velum opening (0 raised, 1 lowered): at least this is lowered, at most RAISED raised. */
+const VELUM_LOWERED = 0.5;
+const VELUM_RAISED = 0.15;
+/** The clock may lag the audio by this much more than two frames of the page, s. */
+const CLOCK_TOLERANCE_S = 0.1;
+
+/** Phones of `symbols` in `phones`, with their index. */
+function phonesOf( phones, symbols ) {
+
+	return phones.map( ( phone, index ) => ( { ...phone, index } ) ).filter( ( phone ) => symbols.includes( phone.symbol ) );
+
+}
+
+/** The samples inside a phone (its frames, start included, end excluded). */
+function within( samples, phone ) {
+
+	return samples.filter( ( s ) => s.time >= phone.start_s - 1e-9 && s.time < phone.end_s - 1e-9 );
+
+}
+
+/** Whether an emuR row string is fully contacted (the front row's corners have no electrode). */
+function rowClosed( rows, r ) {
+
+	return r === 0 ? rows[ 0 ].slice( 1, 7 ) === '111111' : rows[ r ] === '11111111';
+
+}
+
+describe( 'the speech player', { timeout: 600_000 }, () => {
+
+	let server, browser, page, utterance;
+	const samples = [];
+
+	before( async () => {
+
+		server = await startServer();
+		browser = await launchBrowser();
+		page = await openLoaded( browser, `${ server.baseUrl }/#/speak`, { width: 1920, height: 1080 } );
+		// The example in the box is said as the page loads.
+		await page.waitForFunction( () => window.glasshead.speech?.id && ! window.glasshead.speech.busy, null, { timeout: 60_000 } );
+
+	} );
+
+	after( async () => {
+
+		await browser?.close();
+		await server?.stop();
+
+	} );
+
+	const speech = async () => ( await readDebug( page ) ).speech;
+	const slider = ( name ) => page.getByRole( 'slider', { name, exact: true } );
+	const button = ( name ) => page.getByRole( 'button', { name, exact: true } );
+
+	test( 'typing a sentence and pressing Say it gives its phones, one button each in the strip', async () => {
+
+		const before = await speech();
+		await page.getByRole( 'textbox', { name: 'Text to say' } ).fill( SENTENCE );
+		await button( 'Say it' ).click();
+		await page.waitForFunction( ( id ) => window.glasshead.speech.id !== id && ! window.glasshead.speech.busy, before.id, { timeout: 60_000 } );
+		utterance = await speech();
+		const symbols = utterance.phones.map( ( p ) => p.symbol );
+		for ( const symbol of [ 'T', 'D', 'K', 'P', 'B', 'M', 'N', 'NG' ] ) assert.ok( symbols.includes( symbol ), `no /${ symbol }/ in ${ symbols.join( ' ' ) }` );
+		assert.equal( await page.getByRole( 'group', { name: 'Phonemes' } ).getByRole( 'button' ).count(), symbols.length );
+		assert.ok( utterance.audioUrl, 'natural audio by default' );
+		assert.equal( utterance.voice, 'espeak-ng en-us' );
+		assert.deepEqual( [ utterance.time, utterance.frame, utterance.playing ], [ 0, 0, false ] );
+
+	} );
+
+	test( 'pressing Play plays the audio, and the current phoneme advances with its currentTime', async () => {
+
+		// At half speed, so that a software-rendered page on a busy machine draws several frames.
+		await slider( 'Speed' ).fill( '0.5' );
+		// Read inside the page every 15 ms from before the click until playing ends: no round trips.
+		const sampling = page.evaluate( () => new Promise( ( resolve ) => {
+
+			const out = [];
+			const started = performance.now();
+			let began = false;
+			const read = () => {
+
+				const g = window.glasshead;
+				const s = g.speech;
+				began ||= s.playing;
+				if ( began ) out.push( { playing: s.playing, source: s.source, time: s.time, audioTime: s.audioTime, speed: s.speed, phoneIndex: s.phoneIndex, phone: s.phone, frameTimeMs: g.frameTimeMs ?? 0 } );
+				if ( ( began && ! s.playing ) || performance.now() - started > 60_000 ) resolve( out );
+				else setTimeout( read, 15 );
+
+			};
+
+			read();
+
+		} ) );
+		await button( 'Play' ).click();
+		const samples = await sampling;
+		const seen = [];
+		for ( const s of samples ) if ( s.playing && s.source === 'audio' && s.time > 0 && s.time !== seen.at( - 1 )?.time ) seen.push( s );
+		const frameMs = Math.max( ...seen.map( ( s ) => s.frameTimeMs ) );
+		assert.ok( seen.length >= 3, `the clock read the audio at ${ seen.length } times (frames ${ frameMs } ms apart)` );
+		for ( const s of seen ) {
+
+			// The clock is the audio's time at the last frame: behind it by at most a frame or two.
+			const lag = s.audioTime - s.time;
+			assert.ok( lag >= - 1e-3 && lag <= CLOCK_TOLERANCE_S + 2 * s.frameTimeMs / 1000 * s.speed, `audio at ${ s.audioTime } s, clock at ${ s.time } s, frames ${ s.frameTimeMs } ms apart` );
+			const phone = utterance.phones[ s.phoneIndex ];
+			assert.ok( phone.start_s <= s.time + 1e-9 && ( s.time < phone.end_s || s.phoneIndex === utterance.phones.length - 1 ), `phone ${ phone.symbol } (${ phone.start_s }-${ phone.end_s }) at ${ s.time } s` );
+
+		}
+
+		assert.ok( seen.at( - 1 ).audioTime > seen[ 0 ].audioTime, 'the audio advanced' );
+		assert.ok( seen.at( - 1 ).phoneIndex > seen[ 0 ].phoneIndex, `the phoneme advanced: ${ seen.map( ( s ) => `${ s.time.toFixed( 2 ) } s ${ s.phone.symbol }` ).join( ', ' ) }` );
+		await page.waitForFunction( () => window.glasshead.speech.playing === false, null, { timeout: 60_000 } );
+		const end = await speech();
+		assert.ok( Math.abs( end.time - end.duration ) < 1e-6, `stopped at the end: ${ end.time } of ${ end.duration } s` );
+		await page.waitForFunction( () => window.glasshead.speech.shownTime === window.glasshead.speech.duration, null, { timeout: 30_000 } );
+
+	} );
+
+	test( 'slow motion plays the audio at the chosen rate with its pitch kept', async () => {
+
+		await slider( 'Speed' ).fill( '0.25' );
+		let s = await speech();
+		assert.deepEqual( [ s.speed, s.audioRate, s.preservesPitch ], [ 0.25, 0.25, true ] );
+		await slider( 'Time' ).fill( '0' );
+		await button( 'Play' ).click();
+		await page.waitForFunction( () => window.glasshead.speech.source === 'audio' && window.glasshead.speech.audioTime > 0.02, null, { timeout: 10_000 } );
+		const first = await page.evaluate( () => [ performance.now(), window.glasshead.speech.audioTime ] );
+		await page.waitForTimeout( 1200 );
+		const last = await page.evaluate( () => [ performance.now(), window.glasshead.speech.audioTime ] );
+		// Without waiting for the button to be still: a slow page could reach the end meanwhile.
+		await button( 'Pause' ).dispatchEvent( 'click' );
+		await page.waitForFunction( () => window.glasshead.speech.playing === false );
+		const ratio = ( last[ 1 ] - first[ 1 ] ) / ( ( last[ 0 ] - first[ 0 ] ) / 1000 );
+		assert.ok( ratio > 0.15 && ratio < 0.35, `the audio ran at ${ ratio.toFixed( 3 ) } x real time at speed 0.25` );
+		await slider( 'Speed' ).fill( '1' );
+		s = await speech();
+		assert.deepEqual( [ s.speed, s.audioRate, s.playing ], [ 1, 1, false ] );
+
+	} );
+
+	test( 'the frame buttons step one frame of the tracks, and scrubbing goes to a frame', async () => {
+
+		await slider( 'Time' ).fill( '50' );
+		let s = await speech();
+		assert.equal( s.frame, 50 );
+		assert.ok( Math.abs( s.time - 50 / s.rateHz ) < 1e-9 );
+		await button( 'Next frame' ).click();
+		s = await speech();
+		assert.equal( s.frame, 51 );
+		await button( 'Previous frame' ).click();
+		await button( 'Previous frame' ).click();
+		s = await speech();
+		assert.equal( s.frame, 49 );
+		assert.equal( s.audioTime !== null && Math.abs( s.audioTime - s.time ) < 1e-3, true, `the audio follows a step: ${ s.audioTime } against ${ s.time }` );
+
+	} );
+
+	test( 'scrubbing every frame reads the articulation of that time', async () => {
+
+		// Through the slider's input event, every frame in one go inside the page: each step
+		// recomputes the articulation at once, so nothing waits for a drawn frame.
+		const frames = utterance.frames;
+		samples.push( ...await slider( 'Time' ).evaluate( ( input, count ) => {
+
+			const out = [];
+			for ( let f = 0; f < count; f ++ ) {
+
+				input.value = String( f );
+				input.dispatchEvent( new Event( 'input', { bubbles: true } ) );
+				const g = window.glasshead;
+				out.push( { time: g.speech.time, frame: g.speech.frame, phone: g.speech.phone?.symbol ?? null, tipY: g.tongue.tip[ 1 ], lipGap: g.lipGap, velum: g.velum?.opening ?? g.params.velum_opening, rows: g.epg.rows } );
+
+			}
+
+			return out;
+
+		}, frames ) );
+		assert.deepEqual( samples.map( ( s ) => s.frame ), Array.from( { length: frames }, ( _, f ) => f ) );
+		const phones = utterance.phones;
+		for ( const s of samples ) {
+
+			const phone = phones.find( ( p ) => p.start_s <= s.time + 1e-9 && s.time < p.end_s ) ?? phones.at( - 1 );
+			assert.equal( s.phone, phone.symbol, `at ${ s.time } s` );
+
+		}
+
+	} );
+
+	test( 'the velum lowers during /m n ŋ/ and stays raised during the oral stops', () => {
+
+		for ( const phone of phonesOf( utterance.phones, [ 'M', 'N', 'NG' ] ) ) {
+
+			const most = Math.max( ...within( samples, phone ).map( ( s ) => s.velum ) );
+			assert.ok( most >= VELUM_LOWERED, `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 2 ) } s: velum opening at most ${ most.toFixed( 2 ) }` );
+
+		}
+
+		for ( const phone of phonesOf( utterance.phones, [ 'T', 'D', 'K', 'P', 'B' ] ) ) {
+
+			const least = Math.min( ...within( samples, phone ).map( ( s ) => s.velum ) );
+			assert.ok( least <= VELUM_RAISED, `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 2 ) } s: velum opening at least ${ least.toFixed( 2 ) }` );
+
+		}
+
+	} );
+
+	test( 'the tongue tip\'s height peaks inside the /t/ and /d/ intervals', () => {
+
+		const phones = utterance.phones;
+		for ( const phone of phonesOf( phones, [ 'T', 'D' ] ) ) {
+
+			// From the middle of the phone before to the middle of the phone after.
+			const from = phone.index > 0 ? ( phones[ phone.index - 1 ].start_s + phones[ phone.index - 1 ].end_s ) / 2 : 0;
+			const to = phone.index < phones.length - 1 ? ( phones[ phone.index + 1 ].start_s + phones[ phone.index + 1 ].end_s ) / 2 : Infinity;
+			const around = samples.filter( ( s ) => s.time >= from && s.time <= to );
+			const peak = around.reduce( ( best, s ) => ( s.tipY > best.tipY ? s : best ) );
+			const frame = 1 / utterance.rateHz;
+			assert.ok( peak.time >= phone.start_s - frame && peak.time <= phone.end_s + frame, `/${ phone.symbol }/ ${ phone.start_s.toFixed( 2 ) }-${ phone.end_s.toFixed( 2 ) } s: the tip is highest (${ peak.tipY.toFixed( 1 ) } mm) at ${ peak.time.toFixed( 2 ) } s` );
+
+		}
+
+	} );
+
+	// The coarticulated lip track falls short of closure in a cluster: /m/ of "Kim" before the
+	// 18 ms /b/ of "bring" opens to 0.58 mm at its closest (the model's, not the player's).
+	test( 'the lips close during /p b m/', { todo: 'the coarticulated lips reach 0.58 mm, not under 0.5, in the /m/ of "Kim bring"' }, () => {
+
+		const open = phonesOf( utterance.phones, [ 'P', 'B', 'M' ] ).map( ( phone ) => [ phone, Math.min( ...within( samples, phone ).map( ( s ) => s.lipGap ) ) ] )
+			.filter( ( [ , least ] ) => ! ( least <= LIPS_CLOSED_MM ) )
+			.map( ( [ phone, least ] ) => `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 2 ) } s: the lips at least ${ least.toFixed( 2 ) } mm apart` );
+		assert.deepEqual( open, [] );
+
+	} );
+
+	const closedDuring = ( phone, rows ) => within( samples, phone ).some( ( s ) => rows.some( ( r ) => rowClosed( s.rows, r ) ) );
+
+	test( 'the live palatogram shows front closure during /t/', () => {
+
+		const open = phonesOf( utterance.phones, [ 'T' ] ).filter( ( phone ) => ! closedDuring( phone, [ 0, 1, 2 ] ) ).map( ( p ) => `/t/ at ${ p.start_s.toFixed( 2 ) } s: no full row in R1-R3` );
+		assert.deepEqual( open, [] );
+
+	} );
+
+	// The /k/ target itself has no full back row (its fitted EPG: R7 11100111), so neither has
+	// the coarticulated /k/ (the targets', not the player's).
+	test( 'the live palatogram shows back closure during /k/', { todo: 'the /k/ target (and so every /k/) has no full row in R6-R8' }, () => {
+
+		const open = phonesOf( utterance.phones, [ 'K' ] ).filter( ( phone ) => ! closedDuring( phone, [ 5, 6, 7 ] ) ).map( ( p ) => `/k/ at ${ p.start_s.toFixed( 2 ) } s: no full row in R6-R8` );
+		assert.deepEqual( open, [] );
+
+	} );
+
+	test( 'holding the target of /t/ freezes on it: front closure on the live palatogram', async () => {
+
+		const t = phonesOf( utterance.phones, [ 'T' ] )[ 0 ];
+		await page.getByRole( 'group', { name: 'Phonemes' } ).getByRole( 'button' ).nth( t.index ).click();
+		await button( 'Hold target' ).click();
+		await page.waitForFunction( () => window.glasshead.speech.hold === 'T' && /Holding/.test( document.querySelector( '.sp-form [role=status]' ).textContent ), null, { timeout: 10_000 } );
+		const state = await readDebug( page );
+		assert.equal( state.speech.phone.symbol, 'T' );
+		assert.ok( [ 0, 1, 2 ].some( ( r ) => rowClosed( state.epg.rows, r ) ), `rows ${ state.epg.rows.join( ' ' ) }` );
+		assert.equal( await button( 'Hold target' ).getAttribute( 'aria-pressed' ), 'true' );
+		await page.getByRole( 'button', { name: 'Cues', exact: true } ).click();
+		await settle( page );
+		await saveScreenshot( page, 'speech-1920' );
+		await button( 'Hold target' ).click();
+		assert.equal( ( await speech() ).hold, null );
+
+	} );
+
+	test( 'on an upright tablet the controls are at least 44 px and nothing is cut off', async () => {
+
+		
+		await page.setViewportSize( { width: 768, height: 1024 } );
+		await page.getByRole( 'button', { name: 'Cues', exact: true } ).click(); // still: no frames
+		const small = await page.evaluate( () => [ ...document.querySelectorAll( '.speech button:not([hidden]), .speech select, .speech input' ) ]
+			.map( ( e ) => ( { name: e.getAttribute( 'aria-label' ) ?? e.textContent, rect: e.getBoundingClientRect() } ) )
+			.filter( ( { rect } ) => rect.width > 0 && ( rect.height < 44 || rect.right > window.innerWidth + 0.5 ) )
+			.map( ( { name, rect } ) => `${ name }: ${ Math.round( rect.width ) } x ${ Math.round( rect.height ) } at x ${ Math.round( rect.left ) }` ) );
+		// The strip's phones are as wide as they last; a short one can be narrow, never low.
+		assert.deepEqual( small.filter( ( line ) => ! / x (4[4-9]|[5-9]\d|\d{3}) at/.test( line ) || /at x -/.test( line ) ), [] );
+		await page.evaluate( () => window.scrollTo( 0, 0 ) );
+		await settle( page );
+		await saveScreenshot( page, 'speech-768' );
+
+	} );
+
+	test( 'the page reported no errors', () => {
+
+		assert.deepEqual( page.problems, [] );
+
+	} );
+
+} );
