@@ -19,10 +19,18 @@ from live_server_support import live_server
 from glasshead.api.compute_pool import ComputePool
 from glasshead.api.routes.collision import CorrectRequest, correct
 from glasshead.api.routes.epg import ContactsRequest, contacts_json
+from glasshead.api.routes.epg_compare import (
+    CompareRequest,
+    comparison_json,
+    comparison_svg,
+    recording_svg,
+)
 from glasshead.api.routes.epg_indices import IndicesRequest, indices_json
 from glasshead.api.routes.tongue import SurfaceRequest, evaluate_surface
 from glasshead.asset_store import RECHECK_S
 from glasshead.constants import TONGUE_RIG_FILE
+from glasshead.epg.plot import DEFAULT_PANELS
+from glasshead.store.db import database_url
 
 API = "/api/v1"
 ROWS = ["00111100", "01111110", "11000011", "10000001", "10000001", "10000001", "10000001",
@@ -57,6 +65,29 @@ def test_the_pool_gives_the_same_answers_as_the_in_process_code(start_app, built
         assert response.json() == in_process, path
     corrected = json.loads(correct(app.state.assets, CorrectRequest(vertices=vertices)))
     assert len(corrected["flags"]) == len(vertices) == corrected["counts"]["screened"]
+
+
+def test_comparisons_and_plots_from_the_pool_match_the_in_process_code(start_app, data_dir):
+    app, client = start_app()
+    emur = (data_dir / "epg" / "emur-engassim.json").read_bytes()
+    created = client.post(f"{API}/epg/recordings",
+                          files={"file": ("engassim.json", emur, "application/json")})
+    assert created.status_code == 201
+    first, second = (r["id"] for r in created.json()["recordings"][:2])
+    url = database_url()
+    for body in ({"reference": {"frames": [ROWS]}}, {"reference": {"recording_id": second}}):
+        report = client.post(f"{API}/epg/recordings/{first}/compare", json=body)
+        assert report.status_code == 200
+        assert report.json() == json.loads(comparison_json(
+            app.state.assets, (url, first, CompareRequest(**body))))
+        plot = client.post(f"{API}/epg/recordings/{first}/compare/plot", json=body)
+        assert plot.headers["content-type"].startswith("image/svg+xml")
+        assert plot.content == comparison_svg(
+            app.state.assets, (url, first, CompareRequest(**body), list(DEFAULT_PANELS)))
+    alone = client.get(f"{API}/epg/recordings/{first}/plot")
+    assert alone.content == recording_svg(app.state.assets, (url, first, list(DEFAULT_PANELS)))
+    missing = client.get(f"{API}/epg/recordings/999/plot")
+    assert missing.status_code == 404
 
 
 def test_an_error_raised_in_a_worker_answers_as_it_would_in_process(start_app, built_assets):

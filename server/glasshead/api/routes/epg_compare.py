@@ -3,7 +3,9 @@
 The reference is another stored recording, or frames sent by the client: the synthetic EPG of a
 target (a saved pose, or a phoneme target) computed where the tongue model runs. One reference
 frame stands for the whole recording (a static target); a sequence is aligned by time from each
-side's first frame (see ``glasshead.epg.compare``).
+side's first frame (see ``glasshead.epg.compare``). The comparisons and plots run in a compute
+worker (``api.compute_pool``), which reads the recording from the database itself: one of
+120,000 frames takes 2 to 4 s.
 """
 
 from typing import Annotated
@@ -13,13 +15,15 @@ from fastapi import APIRouter, HTTPException, Query, Response
 from pydantic import BaseModel, Field
 from sqlalchemy.orm import Session
 
+from glasshead.api.compute_pool import ComputeDep
 from glasshead.api.lookups import MAX_ID, RecordId, get_pose_record, get_record
+from glasshead.asset_store import AssetStore
 from glasshead.epg import compare as epg_compare
 from glasshead.epg.formats import rows_to_frame
 from glasshead.epg.indices import epg_indices
 from glasshead.epg.plot import DEFAULT_PANELS, PANELS, Track, index_tracks_svg
 from glasshead.epg.sequence import EpgFormatError, check_times
-from glasshead.store.session import SessionDep
+from glasshead.store.db import database_url, engine_for
 
 router = APIRouter(tags=["epg recordings"])
 
@@ -113,10 +117,38 @@ def run_comparison(session: Session, recording_id: int, request: CompareRequest)
 
 @router.post("/epg/recordings/{recording_id}/compare", operation_id="compareRecording",
              response_model=ComparisonReport)
-def compare_recording(recording_id: RecordId, request: CompareRequest,
-                      session: SessionDep) -> ComparisonReport:
+async def compare_recording(recording_id: RecordId, request: CompareRequest,
+                            compute: ComputeDep) -> Response:
     """Electrode-by-electrode agreement per frame and the differences of the indices."""
-    sequence, label, _, result = run_comparison(session, recording_id, request)
+    return await compute.respond(comparison_json, (database_url(), recording_id, request))
+
+
+@router.post("/epg/recordings/{recording_id}/compare/plot", operation_id="plotComparison",
+             response_class=Response,
+             responses={200: {"content": {"image/svg+xml": {}}}})
+async def plot_comparison(recording_id: RecordId, request: CompareRequest, compute: ComputeDep,
+                          panels: PanelsQuery = None) -> Response:
+    """SVG: the recording's indices over time (solid) against the reference's (dashed)."""
+    payload = (database_url(), recording_id, request, _check_panels(panels))
+    return Response(await compute.run(comparison_svg, payload), media_type="image/svg+xml")
+
+
+@router.get("/epg/recordings/{recording_id}/plot", operation_id="plotRecording",
+            response_class=Response, responses={200: {"content": {"image/svg+xml": {}}}})
+async def plot_recording(recording_id: RecordId, compute: ComputeDep,
+                         panels: PanelsQuery = None) -> Response:
+    """SVG: the recording's indices over time."""
+    payload = (database_url(), recording_id, _check_panels(panels))
+    return Response(await compute.run(recording_svg, payload), media_type="image/svg+xml")
+
+
+# The work, in a compute worker (api.compute_pool): a recording of 120,000 frames takes seconds.
+
+def comparison_json(assets: AssetStore, payload: tuple) -> bytes:
+    """The ComparisonReport of (database URL, recording id, request), as JSON."""
+    url, recording_id, request = payload
+    with Session(engine_for(url)) as session:
+        sequence, label, _, result = run_comparison(session, recording_id, request)
     per_electrode = [[None if np.isnan(v) else float(v) for v in row]
                      for row in result.electrode_agreement]
     return ComparisonReport(
@@ -127,34 +159,30 @@ def compare_recording(recording_id: RecordId, request: CompareRequest,
         code_legend=CODE_LEGEND, electrode_agreement=per_electrode,
         recording_indices=_lists(result.recording_indices),
         reference_indices=_lists(result.reference_indices),
-        index_difference=_lists(result.index_difference), summary=result.summary())
+        index_difference=_lists(result.index_difference),
+        summary=result.summary()).model_dump_json().encode()
 
 
-@router.post("/epg/recordings/{recording_id}/compare/plot", operation_id="plotComparison",
-             response_class=Response,
-             responses={200: {"content": {"image/svg+xml": {}}}})
-def plot_comparison(recording_id: RecordId, request: CompareRequest, session: SessionDep,
-                    panels: PanelsQuery = None) -> Response:
-    """SVG: the recording's indices over time (solid) against the reference's (dashed)."""
-    panels = _check_panels(panels)
-    sequence, label, reference_frames, result = run_comparison(session, recording_id, request)
+def comparison_svg(assets: AssetStore, payload: tuple) -> bytes:
+    """The SVG of (database URL, recording id, request, panels)."""
+    url, recording_id, request, panels = payload
+    with Session(engine_for(url)) as session:
+        sequence, label, reference_frames, result = run_comparison(session, recording_id,
+                                                                   request)
     aligned = reference_frames[result.reference_frame]
     tracks = [Track(sequence.name, sequence.t_s, epg_indices(sequence.frames)),
               Track(label, sequence.t_s, epg_indices(aligned))]
-    svg = index_tracks_svg(tracks, panels, title=f"{sequence.name} against {label}")
-    return Response(svg, media_type="image/svg+xml")
+    return index_tracks_svg(tracks, panels,
+                            title=f"{sequence.name} against {label}").encode()
 
 
-@router.get("/epg/recordings/{recording_id}/plot", operation_id="plotRecording",
-            response_class=Response, responses={200: {"content": {"image/svg+xml": {}}}})
-def plot_recording(recording_id: RecordId, session: SessionDep,
-                   panels: PanelsQuery = None) -> Response:
-    """SVG: the recording's indices over time."""
-    panels = _check_panels(panels)
-    sequence = get_record(session, recording_id).to_sequence()
-    svg = index_tracks_svg([Track(sequence.name, sequence.t_s, epg_indices(sequence.frames))],
-                           panels, title=sequence.name)
-    return Response(svg, media_type="image/svg+xml")
+def recording_svg(assets: AssetStore, payload: tuple) -> bytes:
+    """The SVG of (database URL, recording id, panels)."""
+    url, recording_id, panels = payload
+    with Session(engine_for(url)) as session:
+        sequence = get_record(session, recording_id).to_sequence()
+    return index_tracks_svg([Track(sequence.name, sequence.t_s, epg_indices(sequence.frames))],
+                            panels, title=sequence.name).encode()
 
 
 def _check_panels(panels: list[str] | None) -> list[str]:
