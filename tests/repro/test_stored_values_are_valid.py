@@ -110,3 +110,16 @@ def test_an_export_larger_than_the_upload_limit_is_refused_naming_its_size(clien
     detail = response.json()["detail"]
     assert detail.startswith("the csv export is 0.0 MiB, more than the 0 MiB an import takes")
     assert "export as ssff" in detail
+
+
+def test_an_ssff_export_at_a_rate_the_import_refuses_is_a_409(client):
+    # emuR JSON has no frame rate: frames 1 microsecond apart are read as 1 MHz.
+    frames = [{"t_ms": i / 1000.0, "rows": ["00000000"] * 8} for i in range(3)]
+    response = client.post(f"{API}/epg/recordings",
+                           json={"format": "emur-json", "content": {"frames": frames}})
+    assert response.status_code == 201, response.text
+    record = response.json()["recordings"][0]
+    assert record["frame_rate_hz"] == pytest.approx(1e6, rel=1e-6)
+    exported = client.get(f"{API}/epg/recordings/{record['id']}/export?format=ssff")
+    assert exported.status_code == 409
+    assert "between 1 and 100000 Hz" in exported.json()["detail"]

@@ -131,6 +131,7 @@ def write_ssff(seq: EpgSequence) -> bytes:
     rate = seq.frame_rate_hz
     if rate is None:
         rate = 1.0
+    check_frame_rate(rate, "frame_rate_hz")  # what the reader would refuse is not written
     expected = seq.t_s[0] + np.arange(seq.n_frames) / rate
     drift = np.abs(seq.t_s - expected)
     if (drift > 0.01 / rate).any():
