@@ -185,7 +185,7 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 				input.value = String( f );
 				input.dispatchEvent( new Event( 'input', { bubbles: true } ) );
 				const g = window.glasshead;
-				out.push( { time: g.speech.time, frame: g.speech.frame, phone: g.speech.phone?.symbol ?? null, tipY: g.tongue.tip[ 1 ], lipGap: g.lipGap, velum: g.velum?.opening ?? g.params.velum_opening, rows: g.epg.rows } );
+				out.push( { time: g.speech.time, frame: g.speech.frame, phone: g.speech.phone?.symbol ?? null, tipY: g.tongue.tip[ 1 ], lipGap: g.lipGap, velum: g.velum?.opening ?? g.params.velum_opening, rows: g.epg.rows, voiced: g.speech.voiced } );
 
 			}
 
@@ -218,6 +218,17 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 			assert.ok( least <= VELUM_RAISED, `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 2 ) } s: velum opening at least ${ least.toFixed( 2 ) }` );
 
 		}
+
+	} );
+
+	test( 'the cue layer\'s voice sounds in the middle of the vowels and not of /t k p/', () => {
+
+		const middle = ( phone ) => samples.reduce( ( best, s ) => ( Math.abs( s.time - ( phone.start_s + phone.end_s ) / 2 ) < Math.abs( best.time - ( phone.start_s + phone.end_s ) / 2 ) ? s : best ) );
+		const wrong = [
+			...phonesOf( utterance.phones, [ 'EH', 'AH', 'IH', 'AE' ] ).filter( ( phone ) => middle( phone ).voiced !== true ),
+			...phonesOf( utterance.phones, [ 'T', 'K', 'P' ] ).filter( ( phone ) => middle( phone ).voiced !== false ),
+		].map( ( phone ) => `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 2 ) } s` );
+		assert.deepEqual( wrong, [] );
 
 	} );
 

@@ -39,11 +39,13 @@ export class CueLayer {
 	 *   constriction: Float64Array|null, portArea: () => number }} options the glottis and the
 	 *   nasal port (x y, mm, from GET /anatomy/landmarks), the tract's midline from the lips
 	 *   (tractMidline), the live constriction result (core/constriction.js layout) and the nasal
-	 *   port's current area (mm²)
+	 *   port's current area (mm²); `voiced()` whether the voice sounds now (a speech player's
+	 *   voicing track; always, by default, as on the workbench)
 	 */
-	constructor( { glottis, port, midline, constriction = null, portArea = () => 0 } ) {
+	constructor( { glottis, port, midline, constriction = null, portArea = () => 0, voiced = () => true } ) {
 
 		this.glottis = glottis;
+		this.voiced = voiced;
 		this.constriction = constriction;
 		this.portArea = portArea;
 		this.oralPath = oralPath( midline, glottis );
@@ -164,8 +166,8 @@ export class CueLayer {
 
 		}
 
-		this.voicing.visible = c.voicing;
-		if ( c.voicing ) {
+		this.voicing.visible = c.voicing && this.voiced();
+		if ( this.voicing.visible ) {
 
 			layoutRings( t, RINGS.count, RINGS.periodS, RINGS.innerMm, RINGS.outerMm, this.radii );
 			for ( let k = 0; k < RINGS.count; k ++ ) {

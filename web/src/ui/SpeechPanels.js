@@ -39,7 +39,9 @@ export class SpeechPanels {
 		this.diagramParts = Object.fromEntries( DIAGRAM_PARTS.map( ( key ) => [ key, this.diagram.parts( key ) ] ) );
 		this.unregister.push( this.diagram.registerDebugField(), articulation.onCorrected( () => this.drawDiagram() ) );
 		this.drawDiagram();
-		this.cues = new WorkbenchCues( { viewer, articulation, diagram: this.diagram, landmarks } );
+		/** Whether the voice sounds at the clock's time (the utterance's voicing cue), set by the player. */
+		this.voiced = true;
+		this.cues = new WorkbenchCues( { viewer, articulation, diagram: this.diagram, landmarks, voiced: () => this.voiced } );
 		this.cues.element.className = 'sp-buttons';
 		this.dominance = new DominancePlot( canvas( DOMINANCE_SIZE, 'Dominance of each phoneme over time for the chosen parameter' ), articulation.state );
 		const section = ( title, ...content ) => h( 'section', { className: 'sp-section' }, h( 'h2', { className: 'sp-heading' }, title ), ...content );

@@ -20,6 +20,8 @@ import './speech.css';
 
 /** What the 3D view frames in profile: the mouth, the velum and the pharynx (mm). */
 const FOCUS = Object.freeze( { center: [ - 4, - 8, 0 ], radius: 68 } );
+/** The voicing cue (0..1) above which the voice is shown sounding. */
+const VOICED = 0.5;
 
 export class SpeechView {
 
@@ -105,7 +107,7 @@ export class SpeechView {
 			audioError: clock.audioError, phoneIndex: index,
 			phone: phone ? { symbol: phone.symbol, ipa: phone.ipa, word: phone.word, start_s: phone.start_s, end_s: phone.end_s } : null,
 			phones: u ? u.phones.map( ( p ) => ( { symbol: p.symbol, ipa: p.ipa, start_s: p.start_s, end_s: p.end_s } ) ) : [],
-			hold: this.state.hold, dominance: this.dominance?.report() ?? null, warnings: u?.warnings ?? [],
+			hold: this.state.hold, voiced: this.panels?.voiced ?? null, dominance: this.dominance?.report() ?? null, warnings: u?.warnings ?? [],
 		};
 
 	}
@@ -231,6 +233,9 @@ export class SpeechView {
 		}
 
 		this.phone = phoneIndexAt( u.phones, t );
+		// The voice buzzes at the glottis only while the utterance is voiced (its voicing cue).
+		const voicing = u.cues?.voicing;
+		this.panels.voiced = voicing ? voicing[ Math.min( Math.max( Math.round( t * u.rate_hz ), 0 ), voicing.length - 1 ) ] > VOICED : true;
 		this.strip.show( t, this.phone );
 		this.dominance.show( t );
 		this.transport.show( { playing: this.clock.playing, loop: this.clock.loop, hold: this.state.hold !== null, frame: this.clock.frame, time: t, speed: this.clock.speed } );

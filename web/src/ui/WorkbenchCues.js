@@ -26,9 +26,10 @@ export class WorkbenchCues {
 	/**
 	 * @param {{ viewer: object, articulation: object, diagram: object, landmarks: object|null }}
 	 *   parts the workbench's viewer, articulation (its state and velum), DiagramSection (its
-	 *   midline and live constriction) and GET /anatomy/landmarks (the glottis and the nasal port)
+	 *   midline and live constriction) and GET /anatomy/landmarks (the glottis and the nasal port);
+	 *   `voiced()` whether the voice sounds now (default: always)
 	 */
-	constructor( { viewer, articulation, diagram, landmarks } ) {
+	constructor( { viewer, articulation, diagram, landmarks, voiced = () => true } ) {
 
 		this.viewer = viewer;
 		this.unregister = [];
@@ -38,7 +39,7 @@ export class WorkbenchCues {
 		const velum = articulation.velum ?? null;
 		this.layer = new CueLayer( {
 			glottis, port: landmark( landmarks, 'nasal_port' ), midline: diagram.midline.points,
-			constriction: diagram.result, portArea: () => velum?.portArea ?? 0,
+			constriction: diagram.result, portArea: () => velum?.portArea ?? 0, voiced,
 		} );
 		this.layer.set( CUE_DEFAULTS );
 		viewer.scene.add( this.layer.group );
