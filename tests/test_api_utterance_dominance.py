@@ -1,4 +1,4 @@
-"""POST /utterances with ``"dominance": true``: each phone's dominance curves, for the player's plot."""
+"""POST /utterances with ``"dominance": true``: each phone's dominance curves, for the player."""
 
 import pytest
 
