@@ -1,14 +1,17 @@
 """Dependencies shared by the routes, as ``Annotated`` aliases: ``AssetsDep`` (the built assets),
-``SpeechCacheDep`` (where utterances are cached).
+``SpeechCacheDep`` (where utterances are cached), ``BuiltUrlDep`` (content-hashed URLs of built
+files).
 
 The database session is ``glasshead.store.session.SessionDep``.
 """
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated
 
 from fastapi import Depends, Request
 
+from glasshead.api.static import hashed_url
 from glasshead.asset_store import AssetStore
 from glasshead.settings import get_settings
 
@@ -27,3 +30,13 @@ def get_speech_cache_dir() -> Path:
 
 
 SpeechCacheDep = Annotated[Path, Depends(get_speech_cache_dir)]
+
+
+def get_built_url(request: Request) -> Callable[[str], str]:
+    """``built_url(name)``: the immutable, content-hashed URL of a built file (relative to the
+    assets directory), so that routes name files without reading them."""
+    assets_dir = request.app.state.assets.assets_dir
+    return lambda name: hashed_url(assets_dir, name)
+
+
+BuiltUrlDep = Annotated[Callable[[str], str], Depends(get_built_url)]

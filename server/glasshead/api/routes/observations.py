@@ -14,8 +14,7 @@ import numpy as np
 from fastapi import APIRouter, HTTPException
 from pydantic import BaseModel, Field
 
-from glasshead.api.deps import AssetsDep
-from glasshead.api.static import hashed_url
+from glasshead.api.deps import AssetsDep, BuiltUrlDep
 from glasshead.asset_store import AssetUnavailableError
 from glasshead.constants import FIT_REPORT_FILE
 
@@ -110,7 +109,7 @@ def list_observations(assets: AssetsDep) -> dict:
 
 
 @router.get("/observations/{name}", operation_id="getObservation", response_model=Observation)
-def get_observation(name: str, assets: AssetsDep) -> dict:
+def get_observation(name: str, assets: AssetsDep, built_url: BuiltUrlDep) -> dict:
     """One observed shape: the rays' origin, the compared outline, the observed surface, the
     fit's start and result, and the URL of its overlay plot."""
     shapes, fits = _shapes(assets), _fits(assets)
@@ -131,5 +130,5 @@ def get_observation(name: str, assets: AssetsDep) -> dict:
         "after": {key: fit[key] for key in ("params", "rms_mm", "max_error_mm", "evaluations",
                                             "seconds", "method", "volume_change_pct",
                                             "at_limit")},
-        "plot_url": hashed_url(assets.assets_dir, fit["plot"]),
+        "plot_url": built_url(fit["plot"]),
     }
