@@ -148,25 +148,73 @@ def test_a_full_queue_is_503_with_retry_after_and_stores_nothing(start_app, outl
     assert client.get(f"{API}/fits").json()["total"] == 1
 
 
-def test_a_job_left_running_by_a_stopped_server_fails_at_the_next_start(tmp_path, outline):
+def test_a_job_left_running_by_a_stopped_server_fails_and_a_live_ones_is_left_alone(tmp_path,
+                                                                                     outline):
+    """A running row unchanged for STALE_AFTER_S lost its worker; a fresh one is another live
+    server's (several app containers share the database)."""
+    from datetime import timedelta
+
+    from sqlalchemy.orm import Session
+
+    from glasshead.fitting.job_runner import STALE_AFTER_S
+    from glasshead.store.base import utc_now
     from glasshead.store.db import upgrade_to_head
 
     url = f"sqlite:///{tmp_path / 'fits.sqlite3'}"
     engine = engine_for(url)
     upgrade_to_head(engine)
+    ids = {}
+    with Session(engine) as session:
+        for name, age_s in (("left", STALE_AFTER_S + 5.0), ("live", 1.0)):
+            job = FitJob(name=name, kind="contour", method="bobyqa", state="running",
+                         progress={}, source={}, updated_at=utc_now() - timedelta(seconds=age_s))
+            job.set_observation(outline)
+            session.add(job)
+            session.commit()
+            ids[name] = job.id
+    runner = FitRunner(url, tmp_path)
+    runner.start()
+    try:
+        with Session(engine) as session:
+            left, live = session.get(FitJob, ids["left"]), session.get(FitJob, ids["live"])
+            assert left.state == "failed" and "stopped" in left.message
+            assert live.state == "running"
+    finally:
+        runner.shutdown()
+    engine.dispose()
+
+
+def test_a_job_queued_by_a_server_that_died_is_run_by_another_servers_sweep(tmp_path, outline,
+                                                                            built_assets,
+                                                                            monkeypatch):
     from sqlalchemy.orm import Session
 
-    with Session(engine) as session:
-        job = FitJob(name="left", kind="contour", method="bobyqa", state="running",
-                     progress={}, source={})
-        job.set_observation(outline)
-        session.add(job)
-        session.commit()
-        job_id = job.id
-    FitRunner(url, tmp_path).start()
-    with Session(engine) as session:
-        job = session.get(FitJob, job_id)
-        assert job.state == "failed" and "stopped" in job.message
+    from glasshead.fitting import job_runner
+    from glasshead.store.db import upgrade_to_head
+
+    monkeypatch.setattr(job_runner, "SWEEP_S", 0.2)
+    url = f"sqlite:///{tmp_path / 'fits.sqlite3'}"
+    engine = engine_for(url)
+    upgrade_to_head(engine)
+    runner = FitRunner(url, built_assets)
+    runner.start()  # nothing queued yet
+    try:
+        with Session(engine) as session:  # queued by another server, which then died
+            job = FitJob(name="orphan", kind="contour", method="bobyqa", state="queued",
+                         progress={}, source={"options": {"max_evals": MAX_EVALS}})
+            job.set_observation(outline)
+            session.add(job)
+            session.commit()
+            job_id = job.id
+        deadline = time.monotonic() + 120.0
+        state = "queued"
+        while state in ("queued", "running") and time.monotonic() < deadline:
+            time.sleep(0.2)
+            with Session(engine) as session:
+                state = session.get(FitJob, job_id).state
+        assert state == "done"
+    finally:
+        runner.shutdown()
     engine.dispose()
 
 

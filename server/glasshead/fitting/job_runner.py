@@ -7,10 +7,16 @@ and threads. A worker is started at the first job and reads the assets once.
 
 The queue is the database: a job is a row in state ``queued`` and the executor is handed only
 its id. ``queue_full`` answers whether ``settings.fit_queue_limit`` jobs already wait (the API
-answers 503). At start, a job left ``running`` by a server that stopped (crashed or killed) is
-marked failed, and jobs left ``queued`` are handed to the pool again. At shutdown the waiting
-futures are cancelled (their rows stay ``queued`` for the next start) and a fit still running is
-stopped with its worker and marked failed.
+answers 503). At shutdown the waiting futures are cancelled (their rows stay ``queued``) and a fit
+still running is stopped with its worker and marked failed.
+
+Several servers (workers of one server, or app containers behind a load balancer) share the
+database, so none may decide alone about another's jobs. A running fit writes its progress to its
+row several times a second; a row left ``running`` with no change for ``STALE_AFTER_S`` has lost
+its worker (its server crashed or was killed) and is marked failed, by whichever server sweeps
+first. Every server sweeps at start and then every ``SWEEP_S``, and hands the ``queued`` rows it
+does not hold to its pool, so a job queued by a server that died is run by another; claiming a
+job is one conditional UPDATE (``jobs.claim_job``), so a job two servers hand on runs once.
 """
 
 import logging
@@ -18,6 +24,7 @@ import multiprocessing
 import threading
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
+from datetime import timedelta
 
 from sqlalchemy import func, select, update
 from sqlalchemy.orm import Session
@@ -32,6 +39,11 @@ log = logging.getLogger("glasshead.fits")
 #: Times a job that never started is handed to a new pool after its pool broke.
 RESUBMITS = 2
 STOPPED_MESSAGE = "the server stopped while this fit was running; upload it again"
+#: A running job whose row has not changed for this long has lost its worker (a fit writes its
+#: progress several times a second and takes seconds, not minutes).
+STALE_AFTER_S = 60.0
+#: How often a server looks for stale running jobs and for queued jobs nobody holds.
+SWEEP_S = 5.0
 
 
 class FitRunner:
@@ -49,18 +61,39 @@ class FitRunner:
         self._stopping = False
         self._lock = threading.RLock()
         self._retries: dict[int, int] = {}
+        self._wake = threading.Event()
+        self._sweeper: threading.Thread | None = None
 
     def start(self) -> None:
-        """Fail the jobs a stopped server left running; queue again those it left queued."""
+        """Sweep once (fail the stale running jobs, hand on the queued ones), then every
+        ``SWEEP_S`` in a background thread until ``shutdown``."""
+        self.sweep()
+        self._sweeper = threading.Thread(target=self._sweep_until_stopped, daemon=True,
+                                         name="fit-job-sweeper")
+        self._sweeper.start()
+
+    def sweep(self) -> None:
+        """Mark failed the running jobs unchanged for ``STALE_AFTER_S``; hand every queued job
+        this runner does not already hold to the pool."""
+        stale_before = utc_now() - timedelta(seconds=STALE_AFTER_S)
         with Session(engine_for(self.database_url)) as session:
-            session.execute(update(FitJob).where(FitJob.state == "running").values(
+            session.execute(update(FitJob).where(FitJob.state == "running",
+                                                 FitJob.updated_at < stale_before).values(
                 state="failed", message=STOPPED_MESSAGE, finished_at=utc_now(),
                 updated_at=utc_now()))
             session.commit()
             waiting = session.scalars(select(FitJob.id).where(FitJob.state == "queued")
                                       .order_by(FitJob.id)).all()
         for job_id in waiting:
-            self.submit(job_id)
+            if job_id not in self._futures:
+                self.submit(job_id)
+
+    def _sweep_until_stopped(self) -> None:
+        while not self._wake.wait(SWEEP_S):
+            try:
+                self.sweep()
+            except Exception:  # a database hiccup: the next sweep tries again
+                log.exception("fit job sweep failed")
 
     def queue_full(self, session: Session) -> bool:
         queued = session.scalar(select(func.count()).select_from(FitJob)
@@ -119,6 +152,7 @@ class FitRunner:
         with self._lock:
             executor, self._executor = self._executor, None
             self._stopping = True
+        self._wake.set()
         if executor is None:
             return
         running = [job_id for job_id, future in list(self._futures.items())
