@@ -43,11 +43,11 @@ test( 'a duplicate pose name is explained with the name', async () => {
 
 } );
 
-test( 'a refused value shows where and what, from the validation details', async () => {
+test( 'a refused value shows where and what in words, from the validation details', async () => {
 
 	const detail = [ { loc: [ 'body', 'params', 'tip_height' ], msg: 'Input should be a finite number', type: 'finite_number' } ];
 	const { api } = fakeFetch( 422, { detail } );
-	await assert.rejects( savePose( 'x', { tip_height: 1 }, { api } ), { message: 'POST /api/v1/poses failed with HTTP 422: params.tip_height: Input should be a finite number' } );
+	await assert.rejects( savePose( 'x', { tip_height: 1 }, { api } ), { message: 'Tip height: input should be a finite number. The pose was not saved.' } );
 
 } );
 
@@ -67,7 +67,7 @@ test( 'an unreachable server is said so', async () => {
 
 	};
 
-	await assert.rejects( savePose( 'a', {}, { api: createApi( { fetchImpl } ) } ), { message: 'Could not reach the server for POST /api/v1/poses: Failed to fetch' } );
+	await assert.rejects( savePose( 'a', {}, { api: createApi( { fetchImpl } ) } ), { message: 'Could not reach the server, so the pose was not saved. Check the connection and save again.' } );
 
 } );
 

@@ -1,14 +1,17 @@
 // The workbench's pose box: reset, copy the parameters as JSON, paste JSON back (a bad paste is
 // explained inline and changes nothing), and save the parameters as a named pose
-// (POST /api/v1/poses).
+// (POST /api/v1/poses). What saving says appears right under the Save button and is scrolled
+// into view, in plain words (poseMessages.js), so that a click on Save never seems to do nothing.
 
 import { api as pageApi, ApiError } from '../api.js';
 import { h } from './Controls.js';
+import { poseSaveMessage } from './poseMessages.js';
 
 /**
  * Save `params` as the pose `name` (POST /poses). Resolves to the created pose; rejects with an
- * ApiError whose message can be shown as it is (a duplicate name, a refused value, an unreachable
- * server), or an Error when there is no name.
+ * ApiError whose message is a plain sentence to show as it is (a duplicate name, a refused value,
+ * an unreachable server; the request and status stay on the error), or an Error when there is no
+ * name.
  */
 export async function savePose( name, params, { api = pageApi } = {} ) {
 
@@ -20,14 +23,9 @@ export async function savePose( name, params, { api = pageApi } = {} ) {
 
 	} catch ( error ) {
 
-		if ( error instanceof ApiError && error.status === 409 ) {
-
-			const { method, url, status, detail } = error;
-			throw new ApiError( `A pose named "${ trimmed }" already exists. Choose another name.`, { method, url, status, detail, cause: error } );
-
-		}
-
-		throw error;
+		if ( ! ( error instanceof ApiError ) ) throw error;
+		const { method, url, status, detail } = error;
+		throw new ApiError( poseSaveMessage( error, trimmed ), { method, url, status, detail, cause: error } );
 
 	}
 
@@ -143,6 +141,10 @@ export class PoseBox {
 		this.status.textContent = status ?? '';
 		this.saveError.textContent = error ?? '';
 		this.saveError.hidden = ! error;
+		this.name.setAttribute( 'aria-invalid', String( Boolean( error ) && /name/i.test( error ) ) );
+		// Where the person is looking: the message sits under the button and is brought on screen.
+		const shown = error ? this.saveError : status ? this.status : null;
+		shown?.scrollIntoView?.( { block: 'nearest' } );
 
 	}
 
