@@ -86,3 +86,11 @@ class SavedPose(Versioned, Timestamped, Base):
 # Tables kept in sibling modules, imported here so that every table is on Base.metadata.
 from glasshead.store.fit_jobs import FitJob  # noqa: E402, F401
 from glasshead.store.idempotency_keys import IdempotencyKey  # noqa: E402, F401
+from glasshead.store.lessons import (  # noqa: E402, F401
+    Assignment,
+    Child,
+    Lesson,
+    PracticeRecord,
+    SchoolClass,
+)
+from glasshead.store.users import AuthToken, User  # noqa: E402, F401

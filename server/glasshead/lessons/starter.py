@@ -1,0 +1,62 @@
+"""The lessons a new store starts with, so that a first user has something to open at once.
+
+Contrasts that speech therapy teaches first, each as the two phonemes shown side by side and
+then minimal pairs of words: /s/ against /ʃ/, /t/ against /k/, /r/ against /l/, the nasals
+against their oral pairs, and the vowels from front to back. Migration 0005 inserts them once,
+into the new ``lessons`` table; they are ordinary lessons afterwards (edited or deleted like
+any other, never put back).
+"""
+
+from glasshead.lessons.schema import LessonContent
+
+#: Views that show the tongue against the palate: skin mostly clear, the EPG panel on.
+_PALATE = {"skin_transparency": 0.8, "cutaway": False, "diagram": False, "cues": True,
+           "labels": True, "epg": True}
+#: Views for the velum and voicing: the mid-sagittal cutaway with cues.
+_CUTAWAY = {"skin_transparency": 1.0, "cutaway": True, "diagram": True, "cues": True,
+            "labels": True, "epg": False}
+#: Views for vowels: tongue and lips seen through the skin, no EPG.
+_VOWEL = {"skin_transparency": 0.7, "cutaway": True, "diagram": False, "cues": False,
+          "labels": True, "epg": False}
+
+
+def _phoneme(symbol: str, views: dict) -> dict:
+    return {"target": {"kind": "phoneme", "text": symbol}, "presentation": "static",
+            "audio": {"kind": "natural"}, "views": views, "speed": 1.0}
+
+
+def _word(text: str, views: dict, speed: float = 0.5) -> dict:
+    return {"target": {"kind": "word", "text": text}, "presentation": "dynamic",
+            "audio": {"kind": "natural"}, "views": views, "speed": speed}
+
+
+def _contrast(title: str, description: str, phonemes: list[str], words: list[str],
+              views: dict) -> dict:
+    return {"format_version": 1, "title": title, "language": "en-US", "description": description,
+            "items": [_phoneme(p, views) for p in phonemes] + [_word(w, views) for w in words]}
+
+
+STARTER_LESSONS: tuple[dict, ...] = (
+    _contrast("/s/ and /ʃ/", "The tongue tip at the ridge, then further back and domed: "
+              "watch the groove move on the EPG.", ["s", "ʃ"],
+              ["sip", "ship", "sore", "shore", "sell", "shell"], _PALATE),
+    _contrast("/t/ and /k/", "A closure at the front of the palate, then at the back.",
+              ["t", "k"], ["tea", "key", "tap", "cap", "tot", "cot"], _PALATE),
+    _contrast("/r/ and /l/", "The bunched /r/ keeps off the palate; /l/ touches the ridge "
+              "with the sides open.", ["r", "l"],
+              ["red", "led", "right", "light", "rock", "lock"], _PALATE),
+    _contrast("Nasals and their oral pairs", "The same closures with the velum lowered: air "
+              "through the nose for /m n ŋ/, not for /b d ɡ/.", ["m", "b", "n", "d", "ŋ", "ɡ"],
+              ["me", "bee", "knee", "dee", "sing", "sig"], _CUTAWAY),
+    {"format_version": 1, "title": "The vowels", "language": "en-US",
+     "description": "From the front of the mouth to the back: how high the tongue is, and "
+                    "where, and the lips.",
+     "items": [_phoneme(p, _VOWEL) for p in ["i", "ɪ", "ɛ", "æ", "ʌ", "ɑ", "ɔ", "ʊ", "u"]]
+     + [_word(w, _VOWEL, speed=0.4) for w in ["beat", "bit", "bet", "bat", "but", "father",
+                                             "caught", "book", "boot"]]},
+)
+
+
+def starter_lessons() -> list[LessonContent]:
+    """The starter lessons, validated."""
+    return [LessonContent.model_validate(lesson) for lesson in STARTER_LESSONS]
