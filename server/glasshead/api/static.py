@@ -1,12 +1,22 @@
-"""Static files: GLB assets with caching headers, and the built web app."""
+"""Static files: GLB assets with caching headers, and the built web app.
+
+A file with a fresh ``.gz`` sibling (written at build time by ``glasshead.pipeline.precompress``)
+is sent as that sibling with ``Content-Encoding: gzip`` when the request's ``Accept-Encoding``
+allows it. Every file that has a sibling answers with ``Vary: Accept-Encoding``, and the two
+encodings have different ETags (the gzip one ends in ``-gzip``), so that no cache confuses them.
+"""
 
 import hashlib
+import mimetypes
 from functools import lru_cache
 from pathlib import Path
 from urllib.parse import quote
 
 from fastapi import FastAPI, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse, Response
+
+from glasshead.api.compression import accepts_gzip
+from glasshead.pipeline.precompress import fresh_sibling
 
 #: Content-hashed asset URLs never change, so browsers may keep them for a year.
 IMMUTABLE = "public, max-age=31536000, immutable"
@@ -68,20 +78,42 @@ def _safe_child(root: Path, relative: str) -> Path:
     return candidate
 
 
+def encoded_file(path: Path, request: Request) -> tuple[Path, dict[str, str]]:
+    """The file to send for ``path`` (its fresh ``.gz`` sibling when the request allows gzip)
+    and the headers that say so; ``{}`` for a file without a sibling."""
+    gz = fresh_sibling(path)
+    if gz is None:
+        return path, {}
+    if accepts_gzip(request.headers.get("accept-encoding", "")):
+        return gz, {"Content-Encoding": "gzip", "Vary": "Accept-Encoding"}
+    return path, {"Vary": "Accept-Encoding"}
+
+
+def file_response(path: Path, request: Request, headers: dict[str, str],
+                  media_type: str | None = None) -> Response:
+    """``path`` (or its gzip sibling) with ``headers`` and an ETag of the encoding sent; 304 when
+    the request's If-None-Match names that ETag."""
+    sent, encoding = encoded_file(path, request)
+    etag = _etag(path)
+    if "Content-Encoding" in encoding:
+        etag = etag[:-1] + '-gzip"'
+    headers = {**headers, **encoding, "ETag": etag}
+    if request.headers.get("if-none-match") == etag:
+        return Response(status_code=304, headers=headers)
+    media_type = media_type or mimetypes.guess_type(path.name)[0] or "application/octet-stream"
+    return FileResponse(sent, media_type=media_type, headers=headers)
+
+
 def mount_static(app: FastAPI, settings) -> None:
     @app.get("/assets/build/{name:path}", include_in_schema=False)
     async def built_asset(name: str, request: Request):
         path = _safe_child(settings.assets_dir, name)
-        etag = _etag(path)
         cache = IMMUTABLE if is_content_hashed(path, request.query_params.get("v")) else REVALIDATE
-        headers = {"ETag": etag, "Cache-Control": cache}
-        if request.headers.get("if-none-match") == etag:
-            return Response(status_code=304, headers=headers)
         media_type = MEDIA_TYPES.get(path.suffix, "application/octet-stream")
-        return FileResponse(path, media_type=media_type, headers=headers)
+        return file_response(path, request, {"Cache-Control": cache}, media_type)
 
     @app.get("/{name:path}", include_in_schema=False)
-    async def web_app(name: str):
+    async def web_app(name: str, request: Request):
         dist = settings.web_dist_dir
         index = dist / "index.html"
         if "\0" in name:
@@ -90,7 +122,7 @@ def mount_static(app: FastAPI, settings) -> None:
             candidate = (dist / name).resolve()
             if dist.resolve() in candidate.parents and candidate.is_file():
                 cache = IMMUTABLE if name.startswith("assets/") else REVALIDATE
-                return FileResponse(candidate, headers={"Cache-Control": cache})
+                return file_response(candidate, request, {"Cache-Control": cache})
             if "." in Path(name).name:
                 raise HTTPException(status_code=404, detail=f"no file named {name!r}")
         if not index.is_file():
@@ -99,4 +131,4 @@ def mount_static(app: FastAPI, settings) -> None:
                 "<p>The web app is not built yet: run <code>npm start</code>.</p>",
                 status_code=503,
             )
-        return FileResponse(index, headers={"Cache-Control": REVALIDATE})
+        return file_response(index, request, {"Cache-Control": REVALIDATE})

@@ -20,6 +20,7 @@ from pathlib import Path
 from glasshead.constants import MANIFEST_FILE, MANIFEST_FORMAT_VERSION
 from glasshead.pipeline import sources
 from glasshead.pipeline.outputs import read_json, write_json
+from glasshead.pipeline.precompress import precompress
 from glasshead.pipeline.report_paths import portable
 
 MANIFEST = MANIFEST_FILE
@@ -180,6 +181,7 @@ def run(data_dir, assets_dir, force=False, log=print):
     digest = inputs_digest(data_dir)
     if not force and is_up_to_date(assets_dir, digest):
         _make_report_portable(assets_dir, data_dir)  # one written before reports were
+        precompress(assets_dir)  # the .gz siblings the server sends (pipeline/precompress.py)
         log(f"assets up to date in {assets_dir}")
         return {"up_to_date": True}
     ctx = BuildContext(data_dir=data_dir, assets_dir=assets_dir, log=log)
@@ -195,6 +197,7 @@ def run(data_dir, assets_dir, force=False, log=print):
     manifest = json.loads((assets_dir / MANIFEST).read_text())
     manifest["inputs_sha256"] = digest
     write_json(assets_dir / MANIFEST, manifest)
+    precompress(assets_dir)
     log(f"built {len(manifest['meshes'])} meshes and {len(STEPS) - 1} tables in "
         f"{ctx.reports['total_s']:.1f} s; report in {assets_dir / REPORT}")
     return ctx.reports
