@@ -1,4 +1,5 @@
-"""The `glasshead` command: build the assets, fit the tongue to an observation, serve the app."""
+"""The `glasshead` command: build the assets, fit the tongue to an observation, serve the app,
+add a user."""
 
 import argparse
 import json
@@ -123,6 +124,36 @@ def serve(args):
     return 0
 
 
+def user_create(args):
+    """Add a user (the first admin, say): the password from a prompt or one line of stdin."""
+    from sqlalchemy.orm import Session
+
+    from glasshead.accounts import AccountError, check_password, create_user
+    from glasshead.store.db import engine_for, upgrade_to_head
+
+    if args.password_stdin:
+        password = sys.stdin.readline().rstrip("\r\n")
+    else:
+        import getpass
+
+        password = getpass.getpass(f"password for {args.username}: ")
+        if password != getpass.getpass("the same password again: "):
+            print("error: the two passwords differ; nothing was stored", file=sys.stderr)
+            return 1
+    engine = engine_for(get_settings().database_url)
+    try:
+        check_password(password)
+        upgrade_to_head(engine)
+        with Session(engine) as session:
+            user = create_user(session, args.username, password, args.role, args.display_name)
+            session.commit()
+            print(f"created {user.role} {user.username} (user {user.id})", file=sys.stderr)
+    except AccountError as error:
+        print(f"error: {error}; nothing was stored", file=sys.stderr)
+        return 1
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="glasshead", description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -150,6 +181,18 @@ def main(argv=None):
     serve_parser.add_argument("--host", help="default: HOST or 127.0.0.1")
     serve_parser.add_argument("--port", type=int, help="default: PORT or 8000")
     serve_parser.set_defaults(handler=serve)
+    user_parser = commands.add_parser("user", help="manage the people who sign in "
+                                                   "(docs/auth.md)")
+    user_commands = user_parser.add_subparsers(dest="user_command", required=True)
+    create_parser = user_commands.add_parser("create", help="add a user, e.g. the first admin")
+    create_parser.add_argument("username", help="unique; an email address will do")
+    create_parser.add_argument("--role", required=True,
+                               choices=("author", "teacher", "clinician", "admin"))
+    create_parser.add_argument("--display-name", help="the name shown (default: the username)")
+    create_parser.add_argument("--password-stdin", action="store_true",
+                               help="read the password from the first line of stdin instead of "
+                                    "a prompt")
+    create_parser.set_defaults(handler=user_create)
     args = parser.parse_args(argv)
     return args.handler(args)
 
