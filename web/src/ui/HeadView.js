@@ -102,7 +102,7 @@ export class HeadView {
 
 		if ( ! this.viewer ) return; // unmounted while loading
 		this.state.meshes = this.head.meshInfo();
-		this.articulation = await loadArticulation( this.head, this.viewer, { api: this.api } ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
+		this.articulation = await loadArticulation( this.head, this.viewer, { api: this.api, tables: 'whenMoved' } ).catch( ( error ) => console.warn( `Glasshead: showing the rest tongue; the tongue rig did not load: ${ error.message }` ) );
 		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
 		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } ); // electrodes on the palate, live palatogram
 		await this.attachLabels();

@@ -72,15 +72,16 @@ export async function loadCollisionTables( { api = pageApi } = {} ) {
 /**
  * What scene/Articulation.js createArticulation() is handed: the tongue rig definition (rejects
  * without it), the collision tables, the face rig and the velum rig definitions, each null with
- * its error message when it could not be had.
+ * its error message when it could not be had. `tables: false` leaves the tables out (null, with
+ * no error): loadArticulation's 'whenMoved' loads them later.
  * @returns {Promise<{ definition: object, tables: object|null, tablesError: string|null,
  *   face: object|null, faceRigError: string|null, velum: object|null, velumError: string|null }>}
  */
-export async function loadArticulationData( { api = pageApi } = {} ) {
+export async function loadArticulationData( { api = pageApi, tables: withTables = true } = {} ) {
 
 	const [ definition, tables, face, velum ] = await Promise.all( [
 		api.get( 'tongue/rig' ),
-		loadCollisionTables( { api } ).catch( ( error ) => error ),
+		withTables ? loadCollisionTables( { api } ).catch( ( error ) => error ) : null,
 		api.get( 'face/rig' ).catch( ( error ) => error ),
 		api.get( 'velum/rig' ).catch( ( error ) => error ),
 	] );
@@ -96,10 +97,55 @@ export async function loadArticulationData( { api = pageApi } = {} ) {
 
 }
 
-/** Load the articulation's data and put the parametric tongue and the face rig into `head`. */
-export async function loadArticulation( head, viewer, { api = pageApi } = {} ) {
+/**
+ * Load the articulation's data and put the parametric tongue and the face rig into `head`.
+ * `tables: 'whenMoved'` (the head view) leaves the collision tables (2.9 MB, 1.25 MB gzipped, the
+ * largest download of the page) until the tongue first leaves its rest pose, which needs no
+ * correction; the workbench and speech views move the tongue at once and load them with the rest.
+ */
+export async function loadArticulation( head, viewer, { api = pageApi, tables = 'now' } = {} ) {
 
-	return createArticulation( head, viewer, await loadArticulationData( { api } ) );
+	const lazy = tables === 'whenMoved';
+	const articulation = createArticulation( head, viewer, await loadArticulationData( { api, tables: ! lazy } ) );
+	if ( lazy && viewer ) loadTablesWhenMoved( articulation, viewer, { api } );
+	return articulation;
+
+}
+
+/**
+ * Give `articulation` its collision tables once its parameters first change (read on the
+ * viewer's frames), and correct the tongue again when they arrive; a failure is kept in
+ * articulation.tablesError, as at load. Stops with the articulation's dispose().
+ */
+export function loadTablesWhenMoved( articulation, viewer, { api = pageApi } = {} ) {
+
+	const restVersion = articulation.state.version;
+	let live = true;
+	const stop = viewer.onFrame( () => {
+
+		if ( articulation.state.version === restVersion ) return;
+		stop();
+		loadCollisionTables( { api } ).then( ( tables ) => {
+
+			if ( ! live ) return;
+			articulation.tables = tables;
+			articulation.update( true );
+			viewer.requestRender();
+
+		}, ( error ) => {
+
+			articulation.tablesError = error.message;
+			console.warn( `Glasshead: the tongue is not kept out of the palate; the collision tables did not load: ${ error.message }` );
+
+		} );
+
+	} );
+	articulation.unregister.push( () => {
+
+		live = false;
+		stop();
+
+	} );
 
 }
 
