@@ -4,7 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { ApiError, createApi } from '../../web/src/api.js';
-import { loadArticulationData, loadEpgLayout } from '../../web/src/ui/loaders.js';
+import { loadArticulationData, loadEpgLayout, loadTablesWhenMoved } from '../../web/src/ui/loaders.js';
 
 /** A client answering `routes` (path under /api/v1 -> [status, body]) and recording the paths asked. */
 function fakeApi( routes ) {
@@ -76,5 +76,52 @@ test( 'collision tables of another format version are refused before their binar
 	assert.match( data.tablesError, /format version 99/ );
 	assert.match( data.faceRigError, /HTTP 503: face rig not built/ );
 	assert.ok( ! asked.some( ( path ) => path.includes( '.bin' ) ) );
+
+} );
+
+test( 'the head view\'s collision tables are asked for only once the tongue leaves its rest pose, and once', async () => {
+
+	const { api, asked } = fakeApi( {
+		'tongue/rig': [ 200, {} ],
+		'collision/tables': [ 200, { format_version: 99, url: '/assets/build/collision-tables.bin' } ],
+	} );
+	const data = await loadArticulationData( { api, tables: false } );
+	assert.equal( data.tables, null );
+	assert.equal( data.tablesError, null );
+	assert.ok( ! asked.includes( 'collision/tables' ), asked.join( ', ' ) );
+
+	const hooks = new Set();
+	const viewer = { onFrame: ( fn ) => ( hooks.add( fn ), () => hooks.delete( fn ) ), requestRender() {} };
+	const frame = () => [ ...hooks ].forEach( ( fn ) => fn() );
+	const articulation = { state: { version: 4 }, tables: null, tablesError: null, unregister: [], update() {} };
+	const warn = console.warn;
+	const warned = [];
+	console.warn = ( message ) => warned.push( message );
+	try {
+
+		loadTablesWhenMoved( articulation, viewer, { api } );
+		frame();
+		frame();
+		assert.equal( asked.filter( ( path ) => path === 'collision/tables' ).length, 0, 'at rest' );
+		articulation.state.version = 5;
+		frame();
+		frame();
+		await new Promise( ( resolve ) => setTimeout( resolve, 10 ) );
+		assert.equal( asked.filter( ( path ) => path === 'collision/tables' ).length, 1, 'once moved' );
+		assert.equal( hooks.size, 0 );
+		assert.match( articulation.tablesError, /format version 99/ );
+		assert.equal( articulation.tables, null );
+		assert.equal( warned.length, 1 );
+
+	} finally {
+
+		console.warn = warn;
+
+	}
+
+	const disposed = { state: { version: 1 }, tables: null, unregister: [] };
+	loadTablesWhenMoved( disposed, viewer, { api } );
+	disposed.unregister.forEach( ( stop ) => stop() );
+	assert.equal( hooks.size, 0, 'dispose() stops watching' );
 
 } );
