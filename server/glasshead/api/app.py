@@ -24,7 +24,8 @@ API_PREFIX = "/api/v1"
 #: Route modules under glasshead.api.routes, each exposing ``router``; included under API_PREFIX.
 ROUTE_MODULES = ["health", "anatomy", "recordings", "epg_compare", "epg_indices", "poses",
                  "collision", "tongue", "epg", "face", "landmarks", "velum",
-                 "phonemes", "observations", "fits", "utterances"]
+                 "phonemes", "observations", "fits", "utterances", "auth", "users",
+                 "lessons", "classes", "practice"]
 
 #: Functions run once at start-up (e.g. database migrations), as "module:function".
 STARTUP_HOOKS: list[str] = ["glasshead.store.db:upgrade_to_head"]
