@@ -15,6 +15,8 @@ import {
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { easeInOut, interpolatePose } from './viewPresets.js';
 import { FrameTimer } from './FrameTimer.js';
+import { attachKeyboardOrbit } from './keyboardOrbit.js';
+import { registerDebug } from '../debug.js';
 
 export const BACKGROUND_COLOR = '#dfe3e8';
 
@@ -32,6 +34,7 @@ export class Viewer {
 		this.renderer.setPixelRatio( Math.min( window.devicePixelRatio || 1, 2 ) );
 		this.renderer.domElement.className = 'viewer-canvas';
 		this.renderer.domElement.setAttribute( 'aria-label', '3D view of the head' );
+		this.renderer.domElement.setAttribute( 'aria-description', 'Arrow keys turn the head, + and − zoom' );
 		this.renderer.domElement.setAttribute( 'role', 'img' );
 		container.appendChild( this.renderer.domElement );
 
@@ -56,6 +59,11 @@ export class Viewer {
 			this.flight = null;
 
 		} );
+		this.detachKeys = attachKeyboardOrbit( this );
+		// Where the camera is: tests of the keyboard and of the views read it.
+		this.unregisterCamera = registerDebug( 'camera', () => ( {
+			position: this.camera.position.toArray(), target: this.controls.target.toArray(),
+		} ) );
 
 		this.frameHooks = new Set();
 		this.timer = new FrameTimer( 60 );
@@ -267,6 +275,8 @@ export class Viewer {
 	dispose() {
 
 		this.renderer.setAnimationLoop( null );
+		this.detachKeys();
+		this.unregisterCamera();
 		this.resizeObserver.disconnect();
 		this.controls.dispose();
 		this.renderer.dispose();

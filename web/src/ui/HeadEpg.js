@@ -13,6 +13,7 @@ import { createEpgLive } from '../scene/EpgLive.js';
 import { h } from './Controls.js';
 import { loadEpgLayout } from './loaders.js';
 import { Palatogram } from './Palatogram.js';
+import { keepCardClearOfLips } from './epgCardPlacement.js';
 import './epg.css';
 
 /** The rows of a frame without contact (emuR strings, R1 first). */
@@ -57,7 +58,7 @@ export async function attachHeadEpg( view, { api } = {} ) {
 
 	};
 
-	const cleanups = [];
+	const cleanups = [ keepCardClearOfLips( view, panel ) ];
 	if ( live ) {
 
 		cleanups.push( live.onUpdate( () => show( live.frame, live.contacted ) ) );
@@ -74,6 +75,7 @@ export async function attachHeadEpg( view, { api } = {} ) {
 
 	// The see-through pass follows the skin: on while it is transparent or cut away.
 	cleanups.push( view.viewer.onFrame( () => electrodes.setXray( view.head.transparency > 0 || view.head.cutaway ) ) );
+	cleanups.push( registerDebug( 'electrodes', () => ( view.viewer ? electrodes.probe( view.viewer ) : null ) ) );
 	const dispose = () => {
 
 		for ( const cleanup of cleanups ) cleanup();

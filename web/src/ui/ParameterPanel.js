@@ -44,6 +44,31 @@ export function sliderStep( p ) {
 }
 
 /** A value for display, one or two decimals: "2.5 mm", "2.25 mm", "12.0°", "−0.4 mm" (a true minus), "0.75" (a ratio). */
+/**
+ * One arrow press on a slider: about a 100th of the range, rounded up to 1, 2 or 5 times a power of
+ * ten, so that the arrows cross any range in at most 100 presses (the slider's own step stays finer,
+ * for dragging; PageUp and PageDown move a tenth of the range, as the browser does).
+ */
+export function keyStep( p ) {
+
+	const raw = ( p.max - p.min ) / 100;
+	if ( ! ( raw > 0 ) ) return 1;
+	const power = 10 ** Math.floor( Math.log10( raw ) );
+	const mantissa = raw / power;
+	return ( mantissa <= 1 + 1e-9 ? 1 : mantissa <= 2 ? 2 : mantissa <= 5 ? 5 : 10 ) * power;
+
+}
+
+/** The value after an arrow key (`key`) on a slider of parameter `p` at `value`, or null for other keys. */
+export function arrowValue( p, value, key ) {
+
+	const direction = { ArrowRight: 1, ArrowUp: 1, ArrowLeft: - 1, ArrowDown: - 1 }[ key ];
+	if ( ! direction ) return null;
+	const step = keyStep( p );
+	return Math.min( p.max, Math.max( p.min, roundValue( value + direction * step ) ) );
+
+}
+
 export function formatValue( value, unit ) {
 
 	const text = roundValue( value ).toFixed( 2 ).replace( /(\.\d)0$/, '$1' );
@@ -82,6 +107,15 @@ export class ParameterPanel {
 			type: 'range', id, min: String( p.min ), max: String( p.max ), step: String( sliderStep( p ) ),
 			value: String( p.neutral ), 'aria-label': humanise( p.name ), 'data-param': p.name, className: 'wb-slider',
 			onInput: () => this.state.set( p.name, Math.min( p.max, Math.max( p.min, Number( slider.value ) ) ) ),
+			onKeydown: ( event ) => {
+
+				const next = arrowValue( p, Number( slider.value ), event.key );
+				if ( next === null || event.altKey || event.ctrlKey || event.metaKey ) return;
+				event.preventDefault();
+				slider.value = String( next );
+				this.state.set( p.name, next );
+
+			},
 		} );
 		const output = h( 'output', { for: id, className: 'wb-value' } );
 		const row = h( 'div', { className: 'wb-row', title: p.description ?? '' },
