@@ -4,12 +4,16 @@
 // built once, so nothing is allocated.
 //
 // A contacted electrode lies between the palate and the tongue that touches it, so it is hidden
-// in any view from outside. While the skin is see-through or cut away, a faint second pass drawn
-// over everything (no depth test) shows the markers through the tongue; the cutaway's clipping
-// plane applies to both passes.
+// in any view from outside. While the skin is see-through or cut away, a faint second pass without
+// depth test shows the markers through the tongue; the cutaway's clipping plane applies to both
+// passes. The faint pass blends but stays in the opaque queue, after the anatomy and before the
+// lips and the skin, so that whatever of them is opaque covers it (the nostril with the cutaway on,
+// the upper lip) and whatever is faded blends over it.
 
 import {
+	Box3,
 	BoxGeometry,
+	CustomBlending,
 	Group,
 	InstancedMesh,
 	Matrix4,
@@ -24,8 +28,11 @@ export const ELECTRODE_COLORS = Object.freeze( { dot: '#4a5562', square: '#10161
 export const ELECTRODE_SIZES = Object.freeze( { dot: 0.55, square: 1.9, thickness: 0.35, lift: 0.2 } );
 /** Opacity of the see-through pass. */
 const GHOST_OPACITY = 0.45;
-/** Drawn after the skin (whose passes use small render orders). */
-const GHOST_RENDER_ORDER = 50;
+/**
+ * The see-through pass: after the opaque anatomy (0) and the section caps and outlines (1 to 7),
+ * before the lips (LIP_RENDER_ORDER, 9) and the skin passes (SKIN_RENDER_ORDER, 10 to 12).
+ */
+export const GHOST_RENDER_ORDER = 8;
 
 export class Electrodes {
 
@@ -39,13 +46,16 @@ export class Electrodes {
 		const count = grid.electrodes.length;
 		this.count = count;
 		this.cells = Int32Array.from( grid.electrodes, ( e ) => e.cell );
+		this.positions = Float64Array.from( grid.electrodes.flatMap( ( e ) => e.position ) );
 		this.group = new Group();
 		this.group.name = 'epg-electrodes';
 
 		const dotGeometry = new SphereGeometry( ELECTRODE_SIZES.dot, 12, 8 );
 		const squareGeometry = new BoxGeometry( ELECTRODE_SIZES.square, ELECTRODE_SIZES.square, ELECTRODE_SIZES.thickness );
 		const solid = ( color ) => new MeshStandardMaterial( { color, roughness: 0.5, metalness: 0.1, clippingPlanes } );
-		const ghost = ( color ) => new MeshBasicMaterial( { color, transparent: true, opacity: GHOST_OPACITY, depthTest: false, depthWrite: false, clippingPlanes } );
+		// CustomBlending (source alpha over) blends although `transparent` is false, which keeps the
+		// pass in the opaque queue, drawn before the skin whatever the skin's transparency.
+		const ghost = ( color ) => new MeshBasicMaterial( { color, opacity: GHOST_OPACITY, blending: CustomBlending, depthTest: false, depthWrite: false, clippingPlanes } );
 		this.dots = new InstancedMesh( dotGeometry, solid( ELECTRODE_COLORS.dot ), count );
 		this.squares = new InstancedMesh( squareGeometry, solid( ELECTRODE_COLORS.square ), count );
 		this.ghostDots = new InstancedMesh( dotGeometry, ghost( ELECTRODE_COLORS.dot ), count );
@@ -128,6 +138,28 @@ export class Electrodes {
 		this.ghostDots.visible = on;
 		this.ghostSquares.visible = on;
 		return true;
+
+	}
+
+	/**
+	 * What window.glasshead.electrodes reports: the see-through pass and where each electrode is on
+	 * the canvas (CSS pixels, from `viewer.screenRect`; null when behind the camera), its point in mm.
+	 */
+	probe( viewer ) {
+
+		const at = new Box3();
+		const points = [];
+		for ( let k = 0; k < this.count; k ++ ) {
+
+			at.min.fromArray( this.positions, 3 * k );
+			this.group.localToWorld( at.min );
+			at.max.copy( at.min );
+			const rect = viewer.screenRect( at );
+			points.push( { point: at.min.toArray(), x: rect?.x ?? null, y: rect?.y ?? null } );
+
+		}
+
+		return { xray: this.xray, colors: ELECTRODE_COLORS, points };
 
 	}
 

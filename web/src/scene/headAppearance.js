@@ -184,7 +184,9 @@ function applyLip( mesh, opacity, cutaway ) {
 
 	}
 
-	mesh.renderOrder = opacity < 1 ? LIP_RENDER_ORDER : 0;
+	// Opaque or not, after the markers drawn over the anatomy (the see-through electrodes, the
+	// contacts), which must not show through the lips.
+	mesh.renderOrder = LIP_RENDER_ORDER;
 	// Faded lips show only their outer surface (their inside would add clutter), unless the cut
 	// needs the inside to draw the section.
 	mesh.material.side = opacity < 1 && ! cutaway ? FrontSide : DoubleSide;

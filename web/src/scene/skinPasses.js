@@ -54,7 +54,7 @@ export function skinPassState( percent ) {
 /** How far the lips fade with the skin: at 100 % skin transparency they keep 1 - LIP_FADE. */
 export const LIP_FADE = 0.7;
 
-/** Render order of the lips when they fade: after the opaque anatomy, before the skin. */
+/** Render order of the lips: after the opaque anatomy and the markers over it, before the skin. */
 export const LIP_RENDER_ORDER = 9;
 
 /**
