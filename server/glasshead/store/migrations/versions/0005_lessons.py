@@ -13,7 +13,7 @@ import json
 from datetime import UTC, datetime
 
 import sqlalchemy as sa
-from alembic import op
+from alembic import context, op
 
 revision = "0005"
 down_revision = "0004"
@@ -106,22 +106,28 @@ def upgrade() -> None:
 
 
 def _insert_starter_lessons() -> None:
-    """The items as JSON text, which both backends' JSON columns take, and which renders as a
-    literal in ``alembic upgrade --sql``, as a JSON value would not."""
+    """Online, the items as JSON values; in ``alembic upgrade --sql`` (offline) as JSON text,
+    which renders as a literal (a JSON value does not) that both backends' JSON columns take."""
     from glasshead.lessons.starter import starter_lessons
 
+    offline = context.is_offline_mode()
     lessons = sa.table("lessons", sa.column("title", sa.String), sa.column("language", sa.String),
-                       sa.column("description", sa.String), sa.column("items", sa.Text),
+                       sa.column("description", sa.String),
+                       sa.column("items", sa.Text if offline else sa.JSON),
                        sa.column("version", sa.Integer),
                        sa.column("created_at", sa.DateTime(timezone=True)),
                        sa.column("updated_at", sa.DateTime(timezone=True)))
     now = datetime.now(UTC)
     op.bulk_insert(lessons, [
         {"title": lesson.title, "language": lesson.language, "description": lesson.description,
-         "items": json.dumps([item.model_dump(mode="json") for item in lesson.items],
-                             ensure_ascii=False),
+         "items": _json(lesson.items, offline),
          "version": 1, "created_at": now, "updated_at": now}
         for lesson in starter_lessons()])
+
+
+def _json(items, offline: bool):
+    values = [item.model_dump(mode="json") for item in items]
+    return json.dumps(values, ensure_ascii=False) if offline else values
 
 
 def downgrade() -> None:
