@@ -5,10 +5,18 @@
 // and link to it as `#/workbench`.
 
 import './styles.css';
+import './ui/nav.css';
 import { installDebug, registerDebug } from './debug.js';
 import { Router } from './ui/router.js';
+import { NavBar } from './ui/NavBar.js';
 
 installDebug( window );
+
+// The navigation between the views: its own row above the views' container, never inside it.
+const nav = new NavBar( { win: window } );
+document.body.classList.add( 'has-nav' );
+document.body.prepend( nav.element );
+nav.start();
 
 const router = new Router( document.getElementById( 'app' ) );
 

@@ -6,6 +6,8 @@ import { Vector3 } from 'three';
 import { VIEW_NAMES, viewPose } from '../scene/viewPresets.js';
 import { Controls, h } from './Controls.js';
 import { createHeadStage } from './headStage.js';
+import { createFirstRunHint } from './FirstRunHint.js';
+import './headTools.css';
 import { LabelLayer } from './LabelLayer.js';
 import { EyeMotion } from '../scene/Eyes.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
@@ -47,6 +49,8 @@ export class HeadView {
 		const stage = createHeadStage( this.stage, ( message ) => this.fail( message ) );
 		if ( ! stage ) return this;
 		( { viewer: this.viewer, head: this.head } = stage );
+		const hint = createFirstRunHint();
+		if ( hint ) this.stage.append( hint );
 		this.load();
 		return this;
 
@@ -106,6 +110,7 @@ export class HeadView {
 		if ( ! this.viewer ) return this.articulation?.dispose(); // unmounted while loading
 		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } ); // electrodes on the palate, live palatogram
 		await this.attachLabels();
+		await this.attachTargets();
 		// `?still` in the page's address: no blinks (tests that a still head draws nothing use it).
 		this.eyes = new EyeMotion( this.head, this.viewer, { blink: ! new URLSearchParams( location.search ).has( 'still' ) } );
 		this.head.setTransparency( this.state.transparency );
@@ -158,7 +163,7 @@ export class HeadView {
 
 			const document = await loadLandmarks( { api: this.api } );
 			if ( ! this.viewer ) return;
-			this.labels = new LabelLayer( { document, head: this.head, viewer: this.viewer, stage: this.stage, obstacles: () => [ this.controls.element ] } );
+			this.labels = new LabelLayer( { document, head: this.head, viewer: this.viewer, stage: this.stage, obstacles: () => [ this.controls.element, ...this.stage.querySelectorAll( '.first-run-hint' ) ] } );
 			this.labels.setVisible( this.state.labels );
 
 		} catch ( error ) {
@@ -166,6 +171,19 @@ export class HeadView {
 			console.warn( `Glasshead: no labels; the landmarks did not load: ${ error.message }` );
 
 		}
+
+	}
+
+	/** The chooser of saved poses and phoneme targets, when the tongue rig loaded. */
+	async attachTargets() {
+
+		if ( ! this.articulation ) return;
+		const { HeadTargets } = await import( './HeadTargets.js' );
+		if ( ! this.viewer ) return;
+		this.targets = new HeadTargets( { articulation: this.articulation, api: this.api, onChange: () => this.viewer?.requestRender() } );
+		this.controls.element.append( this.targets.element );
+		this.unregister.push( () => this.targets.dispose() );
+		this.targets.load(); // the lists fill in while the view is already in use
 
 	}
 
