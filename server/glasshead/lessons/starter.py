@@ -53,7 +53,7 @@ STARTER_LESSONS: tuple[dict, ...] = (
                     "where, and the lips.",
      "items": [_phoneme(p, _VOWEL) for p in ["i", "ɪ", "ɛ", "æ", "ʌ", "ɑ", "ɔ", "ʊ", "u"]]
      + [_word(w, _VOWEL, speed=0.4) for w in ["beat", "bit", "bet", "bat", "but", "father",
-                                             "caught", "book", "boot"]]},
+                                             "law", "book", "boot"]]},
 )
 
 
