@@ -5,7 +5,9 @@ profile, 64 MiB, 3 passes, a random 16-byte salt per hash); a hash made with wea
 replaced by a new one the next time its owner signs in. A token is 32 random bytes from
 ``secrets`` (256 bits, URL-safe base64, 43 characters); the database keeps only its SHA-256,
 which is enough because a random 256-bit value cannot be guessed, unlike a password, so it needs
-no slow hash. A token lasts TOKEN_LIFETIME, then its owner signs in again.
+no slow hash. A token lasts TOKEN_LIFETIME, then its owner signs in again. A child signs in
+with their class's join code and their own id (picked by name and avatar), for a token of the
+same kind that lasts CHILD_TOKEN_LIFETIME and names the child, not a user.
 
 An unknown username is checked against a dummy hash, so that it costs as long as a wrong
 password and both get the same answer: nobody learns which usernames exist by asking.
@@ -22,10 +24,13 @@ from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
 from glasshead.store.base import utc_now
-from glasshead.store.users import MAX_USERNAME_LENGTH, ROLES, AuthToken, User
+from glasshead.store.lessons import Child, SchoolClass
+from glasshead.store.users import MAX_USERNAME_LENGTH, ROLES, AuthToken, ChildToken, User
 
 #: How long a token from signing in lasts.
 TOKEN_LIFETIME = timedelta(hours=12)
+#: How long a child's token lasts: a school day.
+CHILD_TOKEN_LIFETIME = timedelta(hours=8)
 #: Random bytes in a token (256 bits).
 TOKEN_BYTES = 32
 #: Password length bounds, characters: long enough to resist guessing, short enough that hashing
@@ -49,6 +54,15 @@ class IssuedToken:
     token: str
     expires_at: datetime
     user: User
+
+
+@dataclass(frozen=True)
+class IssuedChildToken:
+    """A child's token as given once; only its hash is stored."""
+
+    token: str
+    expires_at: datetime
+    child: Child
 
 
 def hash_password(password: str) -> str:
@@ -143,7 +157,7 @@ def valid_token(session: Session, token: str) -> AuthToken | None:
     return record
 
 
-def revoke(record: AuthToken) -> None:
+def revoke(record: AuthToken | ChildToken) -> None:
     record.revoked_at = utc_now()
 
 
@@ -154,3 +168,29 @@ def revoke_all(session: Session, user: User) -> int:
     for record in live:
         record.revoked_at = now
     return len(live)
+
+
+def sign_in_child(session: Session, join_code: str, child_id: int) -> IssuedChildToken | None:
+    """A new token for child ``child_id`` when they are in the class with ``join_code`` (any
+    case, spaces ignored), committed; None otherwise."""
+    code = "".join(join_code.split()).upper()
+    child = session.scalar(select(Child).join(SchoolClass, Child.class_id == SchoolClass.id)
+                           .where(SchoolClass.join_code == code, Child.id == child_id))
+    if child is None:
+        return None
+    token = secrets.token_urlsafe(TOKEN_BYTES)
+    now = utc_now()
+    record = ChildToken(token_sha256=token_sha256(token), child=child, created_at=now,
+                        expires_at=now + CHILD_TOKEN_LIFETIME)
+    session.add(record)
+    session.commit()
+    return IssuedChildToken(token=token, expires_at=record.expires_at, child=child)
+
+
+def valid_child_token(session: Session, token: str) -> ChildToken | None:
+    """The stored child's token for ``token`` while neither expired nor revoked, else None."""
+    record = session.scalar(select(ChildToken)
+                            .where(ChildToken.token_sha256 == token_sha256(token)))
+    if record is None or record.revoked_at is not None or record.expires_at <= utc_now():
+        return None
+    return record

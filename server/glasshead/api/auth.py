@@ -4,6 +4,7 @@
 is missing, unknown, expired or revoked is a 401 with ``WWW-Authenticate: Bearer`` (RFC 6750
 section 3), and the same sentence for all four, so a caller learns nothing about other people's
 tokens. ``require_role(*roles)`` narrows it to those roles, with a 403 that names them.
+``CurrentChild`` is the same for a child signed in with their class's join code.
 
 Only the routes that manage users and sessions use these for now; the other routes stay open
 until each is given its roles (docs/auth.md).
@@ -14,9 +15,10 @@ from typing import Annotated
 from fastapi import Depends, HTTPException
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
-from glasshead.accounts import valid_token
+from glasshead.accounts import valid_child_token, valid_token
+from glasshead.store.lessons import Child
 from glasshead.store.session import SessionDep
-from glasshead.store.users import AuthToken, User
+from glasshead.store.users import AuthToken, ChildToken, User
 
 #: The security scheme in the OpenAPI document; a missing or malformed header is our own 401.
 bearer = HTTPBearer(auto_error=False, scheme_name="bearerToken",
@@ -73,3 +75,30 @@ def require_role(*roles: str):
 
 
 AdminUser = Annotated[User, Depends(require_role("admin"))]
+
+
+NOT_SIGNED_IN_CHILD = "not signed in as a child: send Authorization: Bearer <token> from " \
+                      "POST /auth/child-sessions; a token that has expired or was signed out " \
+                      "is refused too"
+
+
+def current_child_token(session: SessionDep,
+                        credentials: Annotated[HTTPAuthorizationCredentials | None,
+                                               Depends(bearer)]) -> ChildToken:
+    """The stored child's token the request came with; 401 when there is no valid one (a
+    user's token is not a child's)."""
+    record = valid_child_token(session, credentials.credentials) if credentials else None
+    if record is None:
+        raise HTTPException(status_code=401, detail=NOT_SIGNED_IN_CHILD,
+                            headers={"WWW-Authenticate": "Bearer"})
+    return record
+
+
+CurrentChildToken = Annotated[ChildToken, Depends(current_child_token)]
+
+
+def current_child(token: CurrentChildToken) -> Child:
+    return token.child
+
+
+CurrentChild = Annotated[Child, Depends(current_child)]

@@ -93,4 +93,4 @@ from glasshead.store.lessons import (  # noqa: E402, F401
     PracticeRecord,
     SchoolClass,
 )
-from glasshead.store.users import AuthToken, User  # noqa: E402, F401
+from glasshead.store.users import AuthToken, ChildToken, User  # noqa: E402, F401

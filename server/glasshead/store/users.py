@@ -5,6 +5,8 @@ of the password is stored (``glasshead.accounts``). Signing in gives a random op
 only its SHA-256 is stored, so a copy of the database lets nobody sign in as anyone. A token has
 an expiry and is revoked (not deleted) when its user signs out, so a revoked token is told apart
 from one that never existed in the logs of a later audit. Deleting a user deletes their tokens.
+Children sign in too, with their class's join code, and get tokens of their own
+(``child_tokens``, revision 0007).
 """
 
 from datetime import datetime
@@ -54,3 +56,23 @@ class AuthToken(Base):
     revoked_at: Mapped[datetime | None] = mapped_column(UtcDateTime(), nullable=True)
 
     user: Mapped[User] = relationship(back_populates="tokens")
+
+
+class ChildToken(Base):
+    """A child's sign-in with their class's join code: a token as ``AuthToken`` is, for a child.
+
+    Kept apart from ``auth_tokens`` so that a child's token can never pass for a user's: the
+    dependencies that look for a user do not read this table.
+    """
+
+    __tablename__ = "child_tokens"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    token_sha256: Mapped[str] = mapped_column(String(64), unique=True)
+    child_id: Mapped[int] = mapped_column(ForeignKey("children.id", ondelete="CASCADE"),
+                                          index=True)
+    created_at: Mapped[datetime] = mapped_column(UtcDateTime(), default=utc_now)
+    expires_at: Mapped[datetime] = mapped_column(UtcDateTime())
+    revoked_at: Mapped[datetime | None] = mapped_column(UtcDateTime(), nullable=True)
+
+    child: Mapped["Child"] = relationship()  # noqa: F821 (store.lessons, on the same Base)
