@@ -43,6 +43,11 @@ def test_classes_get_unique_unambiguous_join_codes_that_find_them_in_any_case(cl
     assert found["total"] == 1 and found["classes"][0]["id"] == classes[7]["id"]
     renamed = client.put(f"{API}/classes/{classes[7]['id']}", json={"name": "Owls"}).json()
     assert renamed["join_code"] == codes[7] and renamed["name"] == "Owls"
+    url, tag = f"{API}/classes/{classes[7]['id']}", f'"class-{classes[7]["id"]}-v2"'
+    patched = client.patch(url, json={"name": "Larks"}, headers={"If-Match": tag})
+    assert patched.status_code == 200 and patched.json()["join_code"] == codes[7]
+    assert client.patch(url, json={"name": "Wrens"}, headers={"If-Match": tag}).status_code == 412
+    assert client.get(url).json()["name"] == "Larks"
 
 
 def test_children_have_a_display_name_and_an_avatar_from_the_list_and_nothing_else(client,

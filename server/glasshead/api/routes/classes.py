@@ -58,6 +58,11 @@ class ClassIn(BaseModel):
     name: ClassName
 
 
+class ClassPatch(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: ClassName | None = None
+
+
 class ClassOut(BaseModel):
     model_config = ConfigDict(from_attributes=True)
     id: int
@@ -148,6 +153,17 @@ def replace_class(class_id: RecordId, body: ClassIn, session: SessionDep, respon
     record = get_or_404(session, SchoolClass, class_id, CLASS)
     check_if_match(if_match, CLASS, record, f"class {class_id}")
     record.name = body.name
+    conditional_write(session, response, CLASS, record, f"class {class_id}")
+    return record
+
+
+@router.patch("/classes/{class_id}", operation_id="updateClass", response_model=ClassOut,
+              responses=PRECONDITION)
+def update_class(class_id: RecordId, patch: ClassPatch, session: SessionDep, response: Response,
+                 if_match: IfMatch = None) -> SchoolClass:
+    record = get_or_404(session, SchoolClass, class_id, CLASS)
+    check_if_match(if_match, CLASS, record, f"class {class_id}")
+    apply_patch(record, patch)
     conditional_write(session, response, CLASS, record, f"class {class_id}")
     return record
 
