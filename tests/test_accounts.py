@@ -1,4 +1,5 @@
-"""Passwords and tokens (glasshead.accounts): argon2 hashes, signing in, expiry and revocation."""
+"""Passwords and tokens (glasshead.accounts): argon2 hashes, signing in, expiry and revocation,
+on SQLite and on a real PostgreSQL server (tests/postgres_support.py)."""
 
 from datetime import timedelta
 
@@ -9,14 +10,28 @@ from sqlalchemy.orm import Session
 from glasshead import accounts
 from glasshead.accounts import AccountError
 from glasshead.store.db import engine_for, upgrade_to_head
+from glasshead.store.lessons import Child, SchoolClass
 from glasshead.store.users import AuthToken
+from postgres_support import throwaway_postgres
 
 PASSWORD = "correct horse battery"
 
 
-@pytest.fixture
-def session(tmp_path):
-    engine = engine_for(f"sqlite:///{tmp_path / 'store.sqlite3'}")
+@pytest.fixture(scope="module")
+def postgres_server():
+    with throwaway_postgres() as server:
+        yield server
+
+
+@pytest.fixture(params=["sqlite", "postgresql"])
+def session(request, tmp_path):
+    """A session on a new, migrated database: a SQLite file, then a real PostgreSQL server."""
+    if request.param == "sqlite":
+        url = f"sqlite:///{tmp_path / 'store.sqlite3'}"
+    else:
+        server = request.getfixturevalue("postgres_server")
+        url = server.url(server.create_database())
+    engine = engine_for(url)
     upgrade_to_head(engine)
     with Session(engine, expire_on_commit=False) as session:
         yield session
@@ -94,3 +109,19 @@ def test_a_revoked_token_is_refused_and_others_of_the_user_are_not(session, ann)
 
 def test_an_unknown_token_is_refused(session, ann):
     assert accounts.valid_token(session, "x" * 43) is None
+
+
+def test_a_child_signs_in_only_with_their_own_class_code(session):
+    owls = SchoolClass(name="Owls", join_code="7KQ4MX")
+    session.add(owls)
+    session.flush()
+    mia = Child(class_id=owls.id, display_name="Mia", avatar="cat")
+    session.add(mia)
+    session.commit()
+    issued = accounts.sign_in_child(session, "7kq4mx", mia.id)
+    assert issued is not None and issued.child.id == mia.id
+    stored = accounts.valid_child_token(session, issued.token)
+    assert stored.expires_at - stored.created_at == timedelta(hours=8)
+    assert accounts.valid_token(session, issued.token) is None  # not a user's token
+    assert accounts.sign_in_child(session, "AAAAAA", mia.id) is None
+    assert accounts.sign_in_child(session, "7KQ4MX", mia.id + 1) is None
