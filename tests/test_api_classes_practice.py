@@ -156,3 +156,17 @@ def test_ids_of_deleted_children_and_practice_are_never_reused(client, setting):
     client.delete(f"{API}/practice/{first['id']}")
     assert post(client, "practice", {"child_id": cy["id"], "lesson_id": lesson["id"],
                                      "item_index": 1})["id"] == first["id"] + 1
+
+
+def test_the_documented_examples_are_accepted_in_order_on_a_new_database(client):
+    schemas = client.get(f"{API}/openapi.json").json()["components"]["schemas"]
+    for path, schema in (("lessons", "LessonContent"), ("classes", "ClassIn"),
+                         ("children", "ChildIn"), ("assignments", "AssignmentIn"),
+                         ("practice", "PracticeIn")):
+        examples = schemas[schema]["examples"]
+        assert examples, schema
+        for example in examples:
+            response = client.post(f"{API}/{path}", json=example)
+            assert response.status_code == 201, (schema, response.text)
+    rating = schemas["PracticePatch"]["examples"][0]
+    assert client.patch(f"{API}/practice/1", json=rating).json()["rated_by"] == "adult"

@@ -54,7 +54,7 @@ JoinCode = Annotated[str | None, Query(description="only the class with this joi
 
 
 class ClassIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [{"name": "Year 2"}]})
     name: ClassName
 
 
@@ -78,7 +78,8 @@ class ClassList(BaseModel):
 
 
 class ChildIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={
+        "examples": [{"class_id": 1, "display_name": "Ada", "avatar": "owl"}]})
     class_id: BodyId
     display_name: DisplayName
     avatar: Avatar

@@ -46,7 +46,8 @@ RatedBy = Literal["child", "adult"]
 
 
 class AssignmentIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={
+        "examples": [{"lesson_id": 1, "class_id": 1}, {"lesson_id": 2, "child_id": 1}]})
     lesson_id: BodyId
     class_id: BodyId | None = None
     child_id: BodyId | None = None
@@ -74,7 +75,9 @@ class AssignmentList(BaseModel):
 
 
 class PracticeIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={
+        "examples": [{"child_id": 1, "lesson_id": 1, "item_index": 2, "replays": 1,
+                      "rating": 3, "rated_by": "child"}]})
     child_id: BodyId
     lesson_id: BodyId
     item_index: ItemIndex
@@ -93,7 +96,8 @@ class PracticeIn(BaseModel):
 class PracticePatch(BaseModel):
     """A later rating (by an adult, say) or a corrected replay count."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={
+        "examples": [{"rating": 2, "rated_by": "adult"}]})
     replays: Replays | None = None
     rating: Rating | None = None
     rated_by: RatedBy | None = None
