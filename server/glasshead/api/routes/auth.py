@@ -22,8 +22,7 @@ from glasshead.api.auth import (
     CurrentUser,
 )
 from glasshead.api.lookups import MAX_ID
-from glasshead.api.routes.classes import ChildOut
-from glasshead.api.routes.users import UserOut
+from glasshead.api.people import ChildOut, UserOut
 from glasshead.store.session import SessionDep
 from glasshead.store.users import MAX_USERNAME_LENGTH
 

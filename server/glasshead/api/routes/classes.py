@@ -18,6 +18,7 @@ from sqlalchemy.exc import IntegrityError
 
 from glasshead.api.etags import PRECONDITION, check_if_match, set_etag
 from glasshead.api.lookups import Offset, RecordId
+from glasshead.api.people import ChildOut
 from glasshead.api.records import (
     BodyId,
     IdFilter,
@@ -90,16 +91,6 @@ class ChildPatch(BaseModel):
     class_id: BodyId | None = None
     display_name: DisplayName | None = None
     avatar: Avatar | None = None
-
-
-class ChildOut(BaseModel):
-    model_config = ConfigDict(from_attributes=True)
-    id: int
-    class_id: int
-    display_name: str
-    avatar: str
-    created_at: datetime
-    updated_at: datetime
 
 
 class ChildList(BaseModel):

@@ -6,8 +6,7 @@ another role (409), so the server always has someone who can manage it; ``glassh
 --role admin`` makes the first one.
 """
 
-from datetime import datetime
-from typing import Annotated, Literal
+from typing import Annotated
 
 from fastapi import APIRouter, Header, HTTPException, Query, Response, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
@@ -27,13 +26,13 @@ from glasshead.accounts import (
 from glasshead.api.auth import FORBIDDEN, UNAUTHENTICATED, AdminUser
 from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId
+from glasshead.api.people import Role, UserOut
 from glasshead.store.session import SessionDep
 from glasshead.store.users import MAX_DISPLAY_NAME_LENGTH, MAX_USERNAME_LENGTH, User
 
 router = APIRouter(tags=["users"])
 
 KIND = "user"
-Role = Literal["author", "teacher", "clinician", "admin"]
 Password = Annotated[str, Field(min_length=MIN_PASSWORD_LENGTH, max_length=MAX_PASSWORD_LENGTH)]
 DisplayName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1,
                                                max_length=MAX_DISPLAY_NAME_LENGTH)]
@@ -62,16 +61,6 @@ class UserPatch(BaseModel):
     role: Role | None = None
     password: Password | None = Field(None, description="a new password; signs the user out "
                                                         "everywhere")
-
-
-class UserOut(BaseModel):
-    model_config = ConfigDict(from_attributes=True)
-    id: int
-    username: str
-    display_name: str
-    role: Role
-    created_at: datetime
-    updated_at: datetime
 
 
 class UserList(BaseModel):
