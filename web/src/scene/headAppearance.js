@@ -113,6 +113,11 @@ export function applySkinAppearance( { back, front }, state, cutaway ) {
 
 	}
 
+	// Without the cut, the front faces are the nearest skin wherever they are: the inside need not
+	// write depth. When it did, it won against the front faces where they are seen edge-on (the
+	// outline, the crease where the face meets the head shell) and showed there as dark speckles.
+	back.depthWrite = state.depthWrite && cutaway;
+
 	// The inside of the skin: the cut tissue when cut away; a dark cavity behind the eye and
 	// nostril openings when the skin is opaque; shaded as skin when seen through the skin.
 	const inside = back.userData.section;
