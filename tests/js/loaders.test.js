@@ -103,6 +103,8 @@ test( 'the head view\'s collision tables are asked for only once the tongue leav
 		frame();
 		frame();
 		assert.equal( asked.filter( ( path ) => path === 'collision/tables' ).length, 0, 'at rest' );
+		// The watcher reports no change, or a still head would be drawn every frame.
+		assert.deepEqual( [ ...hooks ].map( ( fn ) => fn() ), [ false ] );
 		articulation.state.version = 5;
 		frame();
 		frame();

@@ -121,9 +121,10 @@ export function loadTablesWhenMoved( articulation, viewer, { api = pageApi } = {
 
 	const restVersion = articulation.state.version;
 	let live = true;
+	// The hook only watches: it returns false so that a still head draws no frames.
 	const stop = viewer.onFrame( () => {
 
-		if ( articulation.state.version === restVersion ) return;
+		if ( articulation.state.version === restVersion ) return false;
 		stop();
 		loadCollisionTables( { api } ).then( ( tables ) => {
 
@@ -138,6 +139,7 @@ export function loadTablesWhenMoved( articulation, viewer, { api = pageApi } = {
 			console.warn( `Glasshead: the tongue is not kept out of the palate; the collision tables did not load: ${ error.message }` );
 
 		} );
+		return false;
 
 	} );
 	articulation.unregister.push( () => {
