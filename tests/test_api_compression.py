@@ -152,3 +152,55 @@ def test_a_json_body_already_compressed_or_streamed_is_not_compressed_again():
     ("gzip;q=0, *", False), ("deflate, *;q=0.1", True), ("gzip;q=x", False)])
 def test_accept_encoding_allows_gzip_only_with_a_quality_above_zero(header, allowed):
     assert accepts_gzip(header) is allowed
+
+
+def test_a_large_answer_is_gzipped_off_the_event_loop(monkeypatch):
+    """A stream of large answers (tongue surfaces) once held /health up: gzip ran on the event
+    loop. A body from THREAD_SIZE on is compressed in a thread while the loop goes on."""
+    import time
+
+    from glasshead.api import compression
+
+    body = b'{"v": [' + b"1.25," * (compression.THREAD_SIZE // 5 + 10) + b"0]}"
+    slow_compress = gzip.compress
+
+    during = {}
+
+    def slow(data, **options):
+        during["ticks before"] = len(ticks)
+        time.sleep(0.3)  # as if the body were far larger
+        during["ticks after"] = len(ticks)
+        return slow_compress(data, **options)
+
+    monkeypatch.setattr(compression.gzip, "compress", slow)
+
+    async def large(scope, receive, send):
+        await send({"type": "http.response.start", "status": 200,
+                    "headers": [(b"content-type", b"application/json")]})
+        await send({"type": "http.response.body", "body": body})
+
+    ticks = []
+
+    async def both():
+        sent = []
+
+        async def receive():
+            return {"type": "http.request", "body": b"", "more_body": False}
+
+        async def send(message):
+            sent.append(message)
+
+        async def ticker():
+            for _ in range(40):
+                ticks.append(time.monotonic())
+                await asyncio.sleep(0.02)
+
+        scope = {"type": "http", "method": "GET", "path": "/",
+                 "headers": [(b"accept-encoding", b"gzip")]}
+        await asyncio.gather(CompressionMiddleware(large)(scope, receive, send), ticker())
+        return sent
+
+    sent = asyncio.run(both())
+    assert gzip.decompress(sent[1]["body"]) == body
+    # Ticks counted while gzip ran: none if it had run on the event loop.
+    assert during["ticks after"] > during["ticks before"], during

@@ -19,7 +19,9 @@ got it compressed, so that a cache never hands the gzipped body to a client that
 """
 
 import gzip
+from functools import partial
 
+import anyio
 from starlette.datastructures import Headers, MutableHeaders
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
@@ -28,6 +30,10 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 MINIMUM_SIZE = 1024
 #: zlib's level 6, its default: within a few per cent of level 9's size at a third of the time.
 LEVEL = 6
+#: Bodies from this size on are compressed in a worker thread (zlib lets go of the GIL), so that
+#: a stream of large answers (a tongue surface is about 300 kB of JSON, 5-10 ms to gzip) does not
+#: hold up /health and the cheap routes on the event loop.
+THREAD_SIZE = 64 * 1024
 #: Media types (without parameters) worth compressing; ``text/event-stream`` is a stream.
 COMPRESSIBLE_TYPES = frozenset({"application/json", "application/problem+json",
                                 "application/javascript", "text/javascript", "text/html",
@@ -94,7 +100,9 @@ class CompressionMiddleware:
             start, held = held, None
             body = message.get("body", b"")
             if not message.get("more_body", False) and len(body) >= self.minimum_size:
-                compressed = gzip.compress(body, compresslevel=self.level, mtime=0)
+                compress = partial(gzip.compress, body, compresslevel=self.level, mtime=0)
+                compressed = (await anyio.to_thread.run_sync(compress)
+                              if len(body) >= THREAD_SIZE else compress())
                 if len(compressed) < len(body):
                     headers = MutableHeaders(scope=start)
                     headers["Content-Encoding"] = "gzip"
