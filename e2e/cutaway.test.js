@@ -4,20 +4,11 @@
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
-import { decodePng } from './png.js';
+import { colourDistance as distance, pagePixel as pixel } from './png.js';
 import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
 
 /** [r, g, b] of '#rrggbb'. */
 const rgb = ( hex ) => [ 1, 3, 5 ].map( ( i ) => parseInt( hex.slice( i, i + 2 ), 16 ) );
-const distance = ( a, b ) => Math.hypot( a[ 0 ] - b[ 0 ], a[ 1 ] - b[ 1 ], a[ 2 ] - b[ 2 ] );
-
-/** The colour of the page at CSS pixel (x, y) (deviceScaleFactor 1). */
-async function pixel( page, x, y ) {
-
-	const image = decodePng( await page.screenshot( { clip: { x: Math.round( x ), y: Math.round( y ), width: 1, height: 1 } } ) );
-	return [ image.data[ 0 ], image.data[ 1 ], image.data[ 2 ] ];
-
-}
 
 describe( 'the cutaway shows air and the velum', { timeout: 300_000 }, () => {
 

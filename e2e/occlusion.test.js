@@ -5,22 +5,13 @@
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
-import { decodePng } from './png.js';
+import { colourDistance as distance, pagePixel as pixel } from './png.js';
 import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
-const distance = ( a, b ) => Math.hypot( a[ 0 ] - b[ 0 ], a[ 1 ] - b[ 1 ], a[ 2 ] - b[ 2 ] );
 /** RGB distance within which two renders of the same skin count as the same colour. */
 const SAME_COLOUR = 10;
 /** mm: electrodes this far into the kept half (z >= 0), clear of the cutting plane. */
 const KEPT_Z = 3;
-
-/** The colour of the page at CSS pixel (x, y) (deviceScaleFactor 1). */
-async function pixel( page, x, y ) {
-
-	const image = decodePng( await page.screenshot( { clip: { x: Math.round( x ), y: Math.round( y ), width: 1, height: 1 } } ) );
-	return [ image.data[ 0 ], image.data[ 1 ], image.data[ 2 ] ];
-
-}
 
 describe( 'nothing draws through opaque skin', { timeout: 240_000 }, () => {
 

@@ -118,3 +118,18 @@ export function compareImages( a, b, threshold = 24 ) {
 	return { meanDifference: sum / ( 3 * n ), changedFraction: changed / n };
 
 }
+
+/** Euclidean distance between two [r, g, b] colours. */
+export function colourDistance( a, b ) {
+
+	return Math.hypot( a[ 0 ] - b[ 0 ], a[ 1 ] - b[ 1 ], a[ 2 ] - b[ 2 ] );
+
+}
+
+/** The [r, g, b] colour of a playwright page at CSS pixel (x, y) (deviceScaleFactor 1). */
+export async function pagePixel( page, x, y ) {
+
+	const image = decodePng( await page.screenshot( { clip: { x: Math.round( x ), y: Math.round( y ), width: 1, height: 1 } } ) );
+	return [ image.data[ 0 ], image.data[ 1 ], image.data[ 2 ] ];
+
+}

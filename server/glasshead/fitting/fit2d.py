@@ -128,14 +128,21 @@ def fit_all(rig: TongueRig, observations, *, method="bobyqa", names=None,
             **options) -> list[FitReport]:
     """Fit every shape of an observations document (or those named), in its order."""
     section = MidSagittalSection(rig)
+    return [fit_shape(rig, s, method=method, section=section, **options)
+            for s in select_shapes(observations, names)]
+
+
+def select_shapes(observations, names=None) -> list[dict]:
+    """The shapes of an observations document named in ``names`` (all when None), in the
+    document's order; ValueError naming any that it lacks."""
     shapes = observations["shapes"]
-    if names is not None:
-        wanted = set(names)
-        missing = wanted - {s["name"] for s in shapes}
-        if missing:
-            raise ValueError(f"no such shapes: {', '.join(sorted(missing))}")
-        shapes = [s for s in shapes if s["name"] in wanted]
-    return [fit_shape(rig, s, method=method, section=section, **options) for s in shapes]
+    if names is None:
+        return list(shapes)
+    wanted = set(names)
+    missing = wanted - {s["name"] for s in shapes}
+    if missing:
+        raise ValueError(f"no such shapes: {', '.join(sorted(missing))}")
+    return [s for s in shapes if s["name"] in wanted]
 
 
 def load_inputs(assets_dir):

@@ -65,6 +65,7 @@ from glasshead.fitting.fit2d import (
     FitReport,
     jaw_opening_from_vtl,
     sagittal_parameters,
+    select_shapes,
 )
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection
 from glasshead.fitting.objective3d import RayError3D
@@ -376,14 +377,8 @@ def fit_all3d(rig: TongueRig, observations, *, method="bobyqa", names=None,
               **options) -> list[FitReport3D]:
     """Fit every shape of an observations document (or those named), in its order."""
     section = MidSagittalSection(rig)
-    shapes = observations["shapes"]
-    if names is not None:
-        wanted = set(names)
-        missing = wanted - {s["name"] for s in shapes}
-        if missing:
-            raise ValueError(f"no such shapes: {', '.join(sorted(missing))}")
-        shapes = [s for s in shapes if s["name"] in wanted]
-    return [fit_shape3d(rig, s, method=method, section=section, **options) for s in shapes]
+    return [fit_shape3d(rig, s, method=method, section=section, **options)
+            for s in select_shapes(observations, names)]
 
 
 def main(argv=None):
