@@ -11,6 +11,8 @@
 // a path from the site root ('/assets/build/maxilla.glb', as answers give them) or a full URL is
 // used as it is. Tests make their own client with createApi( { fetchImpl } ).
 
+import { currentToken } from './session.js';
+
 /** Where the API lives. */
 export const API_BASE = '/api/v1';
 
@@ -70,19 +72,22 @@ export function resolveUrl( path, base = API_BASE ) {
 
 /**
  * A client of the API.
- * @param {{ base?: string, fetchImpl?: Function }} options `fetchImpl` stands in for the browser's
- *   fetch (tests); the default is the global fetch at the time of each request
+ * @param {{ base?: string, fetchImpl?: Function, tokenSource?: Function }} options `fetchImpl`
+ *   stands in for the browser's fetch (tests); the default is the global fetch at the time of each
+ *   request. `tokenSource()` gives the bearer token to send with each request, or null for none
  * @returns {{ base: string, url: Function, get: Function, post: Function, put: Function,
  *   patch: Function, delete: Function, getBinary: Function }} every method returns a Promise and
  *   takes a last `{ signal }` option; get/post/put/patch/delete resolve to the parsed JSON answer
  *   (null for an empty one), getBinary to an ArrayBuffer
  */
-export function createApi( { base = API_BASE, fetchImpl = null } = {} ) {
+export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = null } = {} ) {
 
 	async function request( method, path, { body, binary = false, signal } = {} ) {
 
 		const url = resolveUrl( path, base );
 		const headers = { Accept: binary ? '*/*' : 'application/json' };
+		const token = tokenSource?.() ?? null;
+		if ( token ) headers.Authorization = `Bearer ${ token }`;
 		const init = { method, headers, signal };
 		if ( body !== undefined ) {
 
@@ -149,8 +154,8 @@ export function createApi( { base = API_BASE, fetchImpl = null } = {} ) {
 
 }
 
-/** The page's client. */
-export const api = createApi();
+/** The page's client: it sends the signed-in session's token (session.js) with every request. */
+export const api = createApi( { tokenSource: () => currentToken() } );
 
 /**
  * Check the shape of a `GET /anatomy` answer and return the meshes to put in the scene.
