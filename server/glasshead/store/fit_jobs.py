@@ -15,7 +15,7 @@ as JSON numbers, and the worker reads it back exactly.
 from datetime import datetime
 
 import numpy as np
-from sqlalchemy import JSON, Integer, LargeBinary, String, Text
+from sqlalchemy import JSON, ForeignKey, Integer, LargeBinary, String, Text
 from sqlalchemy.orm import Mapped, mapped_column
 
 from glasshead.store.base import Base, Timestamped, UtcDateTime
@@ -57,6 +57,9 @@ class FitJob(Timestamped, Base):
     report: Mapped[dict | None] = mapped_column(JSON)
     started_at: Mapped[datetime | None] = mapped_column(UtcDateTime())
     finished_at: Mapped[datetime | None] = mapped_column(UtcDateTime())
+    #: The user who uploaded the observation (None once removed, and for older fits).
+    owner_id: Mapped[int | None] = mapped_column(
+        ForeignKey("users.id", ondelete="SET NULL"), index=True)
 
     def set_observation(self, points: np.ndarray) -> None:
         points = np.ascontiguousarray(points, dtype=OBSERVATION_DTYPE)

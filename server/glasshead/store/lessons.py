@@ -31,6 +31,9 @@ class SchoolClass(Versioned, Timestamped, Base):
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     name: Mapped[str] = mapped_column(String(120))
     join_code: Mapped[str] = mapped_column(String(JOIN_CODE_LENGTH), unique=True)
+    #: The teacher or clinician who made it; only they (and admins) see it and its children.
+    owner_id: Mapped[int | None] = mapped_column(
+        ForeignKey("users.id", ondelete="SET NULL"), index=True)
 
 
 class Child(Versioned, Timestamped, Base):
@@ -55,6 +58,9 @@ class Lesson(Versioned, Timestamped, Base):
     language: Mapped[str] = mapped_column(String(35))
     description: Mapped[str] = mapped_column(String(2000), default="")
     items: Mapped[list] = mapped_column(JSON)
+    #: The author who made it; None for the starter lessons (and once the author is removed).
+    owner_id: Mapped[int | None] = mapped_column(
+        ForeignKey("users.id", ondelete="SET NULL"), index=True)
 
 
 class Assignment(Versioned, Timestamped, Base):

@@ -13,7 +13,7 @@ blob layouts are fixed and little-endian, so SQLite and PostgreSQL hold identica
 """
 
 import numpy as np
-from sqlalchemy import JSON, Float, Integer, LargeBinary, String, Text
+from sqlalchemy import JSON, Float, ForeignKey, Integer, LargeBinary, String, Text
 from sqlalchemy.orm import Mapped, mapped_column
 
 from glasshead.epg.sequence import EpgSequence, frames_to_raw, raw_to_frames
@@ -45,6 +45,12 @@ class EpgRecording(Versioned, Timestamped, Base):
     times: Mapped[bytes] = mapped_column(LargeBinary)
     #: Label, utterance, word, segment start_s/end_s and other fields the source file carried.
     meta: Mapped[dict] = mapped_column(JSON, default=dict)
+    #: The child it was recorded from (deleted with them); None for a reference recording.
+    child_id: Mapped[int | None] = mapped_column(
+        ForeignKey("children.id", ondelete="CASCADE"), index=True)
+    #: The user who imported it (None once that user is removed, and for older recordings).
+    uploaded_by: Mapped[int | None] = mapped_column(
+        ForeignKey("users.id", ondelete="SET NULL"), index=True)
 
     @classmethod
     def from_sequence(cls, sequence: EpgSequence, source_format: str) -> "EpgRecording":
@@ -81,6 +87,9 @@ class SavedPose(Versioned, Timestamped, Base):
     name: Mapped[str] = mapped_column(String(120), unique=True)
     description: Mapped[str] = mapped_column(Text, default="")
     params: Mapped[dict] = mapped_column(JSON)
+    #: The user who saved it (None once removed, and for poses saved before owners).
+    owner_id: Mapped[int | None] = mapped_column(
+        ForeignKey("users.id", ondelete="SET NULL"), index=True)
 
 
 # Tables kept in sibling modules, imported here so that every table is on Base.metadata.
@@ -93,4 +102,9 @@ from glasshead.store.lessons import (  # noqa: E402, F401
     PracticeRecord,
     SchoolClass,
 )
-from glasshead.store.users import AuthToken, ChildToken, User  # noqa: E402, F401
+from glasshead.store.users import (  # noqa: E402, F401
+    AuthToken,
+    ChildToken,
+    SignInAttempt,
+    User,
+)

@@ -6,7 +6,8 @@ only its SHA-256 is stored, so a copy of the database lets nobody sign in as any
 an expiry and is revoked (not deleted) when its user signs out, so a revoked token is told apart
 from one that never existed in the logs of a later audit. Deleting a user deletes their tokens.
 Children sign in too, with their class's join code, and get tokens of their own
-(``child_tokens``, revision 0007).
+(``child_tokens``, revision 0007). Failed sign-ins are kept a while in ``sign_in_attempts``
+(revision 0008) to limit guessing.
 """
 
 from datetime import datetime
@@ -76,3 +77,18 @@ class ChildToken(Base):
     revoked_at: Mapped[datetime | None] = mapped_column(UtcDateTime(), nullable=True)
 
     child: Mapped["Child"] = relationship()  # noqa: F821 (store.lessons, on the same Base)
+
+
+class SignInAttempt(Base):
+    """A failed sign-in, kept for a while to limit guessing (``glasshead.attempts``).
+
+    ``key`` says what failed: ``username:<name>``, ``address:<client address>``, or
+    ``child-address:<client address>`` for a child's join code. Kept in the database, not in a
+    worker's memory, so that every worker of a deployment counts the same attempts.
+    """
+
+    __tablename__ = "sign_in_attempts"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    key: Mapped[str] = mapped_column(String(300), index=True)
+    failed_at: Mapped[datetime] = mapped_column(UtcDateTime(), default=utc_now)
