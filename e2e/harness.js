@@ -47,7 +47,9 @@ export function freePort() {
 
 /**
  * Start `uvicorn glasshead.api.app:app` from the repository root and wait until
- * /api/v1/health answers. Returns { baseUrl, stop() }.
+ * /api/v1/health answers. Returns { baseUrl, databaseUrl, stop() }: `databaseUrl` is the server's
+ * own database (for e2e/accounts.js to create users in), null for a server started elsewhere
+ * unless GLASSHEAD_E2E_DATABASE_URL names it.
  */
 export async function startServer( { timeoutMs = 60_000 } = {} ) {
 
@@ -55,7 +57,7 @@ export async function startServer( { timeoutMs = 60_000 } = {} ) {
 
 		const baseUrl = process.env.GLASSHEAD_E2E_BASE_URL.replace( /\/+$/, '' );
 		await waitForHealth( baseUrl, timeoutMs, () => null );
-		return { baseUrl, stop: async () => {} };
+		return { baseUrl, databaseUrl: process.env.GLASSHEAD_E2E_DATABASE_URL ?? null, stop: async () => {} };
 
 	}
 
@@ -97,6 +99,7 @@ export async function startServer( { timeoutMs = 60_000 } = {} ) {
 
 	return {
 		baseUrl,
+		databaseUrl,
 		stop: () => new Promise( ( resolve ) => {
 
 			const done = () => {

@@ -24,6 +24,7 @@ router.register( '/', async ( container ) => ( await import( './ui/HeadView.js' 
 router.register( '/workbench', async ( container ) => ( await import( './ui/WorkbenchView.js' ) ).mountWorkbenchView( container ), { title: 'Glasshead workbench' } );
 router.register( '/clinician', async ( container ) => ( await import( './ui/ClinicianView.js' ) ).mountClinicianView( container ), { title: 'Glasshead clinician' } );
 router.register( '/speak', async ( container ) => ( await import( './ui/SpeechView.js' ) ).mountSpeechView( container ), { title: 'Glasshead: say it' } );
+router.register( '/signin', async ( container ) => ( await import( './ui/SignInView.js' ) ).mountSignInView( container ), { title: 'Glasshead: sign in' } );
 
 registerDebug( 'route', () => router.currentPath );
 registerDebug( 'routes', () => router.paths );

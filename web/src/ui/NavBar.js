@@ -6,10 +6,16 @@
 //   document.body.prepend( nav.element );   // before the views' container
 //   nav.start();                            // follows hashchange
 //
-// navItems( path ) is the pure part (what is listed, which one is current) and is what the unit
-// tests read; the class only turns it into elements. Its look is nav.css, which main.js imports.
+// At its end the bar names who is signed in, with a Sign out button (the token revoked on the
+// server, then forgotten), or offers a "Sign in" link that comes back to the view on screen.
+//
+// navItems( path ) and accountItem( session, hash ) are the pure parts (what is listed, which one
+// is current, who is named) and are what the unit tests read; the class only turns them into
+// elements. Its look is nav.css, which main.js imports.
 
+import { currentSession, onSessionChange } from '../session.js';
 import { routePath } from './router.js';
+import { signInHref, signOut, whoLabel } from './signIn.js';
 
 /** The views, in the bar's order: route path and the link's words. */
 export const NAV_VIEWS = Object.freeze( [
@@ -26,6 +32,20 @@ export const NAV_VIEWS = Object.freeze( [
 export function navItems( path, views = NAV_VIEWS ) {
 
 	return views.map( ( view ) => ( { ...view, href: `#${ view.path }`, current: view.path === path } ) );
+
+}
+
+/**
+ * The bar's account corner for `session` (session.js's, or null) on the page at `hash`:
+ * { signedIn: true, label } names who is signed in; { signedIn: false, href } links to the
+ * sign-in view, which comes back to `hash`.
+ */
+export function accountItem( session, hash ) {
+
+	const label = whoLabel( session );
+	if ( label ) return { signedIn: true, label };
+	const path = routePath( hash );
+	return { signedIn: false, href: path === '/signin' ? ( hash || '#/signin' ) : signInHref( hash || '#/' ) };
 
 }
 
@@ -59,11 +79,32 @@ export class NavBar {
 		const brand = document.createElement( 'span' );
 		brand.className = 'nav-brand';
 		brand.textContent = 'Glasshead';
+
+		// Who is signed in and Sign out, or Sign in: both made once, one of them hidden.
+		this.signInLink = document.createElement( 'a' );
+		this.signInLink.className = 'nav-link nav-signin';
+		this.signInLink.textContent = 'Sign in';
+		this.who = document.createElement( 'span' );
+		this.who.className = 'nav-who';
+		this.signOutButton = document.createElement( 'button' );
+		this.signOutButton.className = 'nav-signout';
+		this.signOutButton.setAttribute( 'type', 'button' );
+		this.signOutButton.textContent = 'Sign out';
+		this.signOutButton.onclick = () => signOut( { win: this.window } );
+		this.account = document.createElement( 'div' );
+		this.account.className = 'nav-account';
+		this.account.append( this.signInLink, this.who, this.signOutButton );
+
 		this.element = document.createElement( 'nav' );
 		this.element.className = 'nav-bar';
 		this.element.setAttribute( 'aria-label', 'Views' );
-		this.element.append( brand, list );
-		this.onHashChange = () => this.mark( routePath( this.window.location.hash ) );
+		this.element.append( brand, list, this.account );
+		this.onHashChange = () => {
+
+			this.mark( routePath( this.window.location.hash ) );
+			this.showAccount();
+
+		};
 
 	}
 
@@ -80,10 +121,26 @@ export class NavBar {
 
 	}
 
-	/** Follow the address: mark the current view now and on every hash change. */
+	/** Name who is signed in (from session.js, or `session` when given), or offer Sign in. */
+	showAccount( session = currentSession( { win: this.window } ) ) {
+
+		const item = accountItem( session, this.window.location.hash );
+		this.accountState = item;
+		this.signInLink.hidden = item.signedIn;
+		this.who.hidden = ! item.signedIn;
+		this.signOutButton.hidden = ! item.signedIn;
+		this.who.textContent = item.signedIn ? item.label : '';
+		this.element.classList?.toggle( 'signed-in', item.signedIn );
+		if ( item.signedIn ) this.who.setAttribute( 'title', `Signed in as ${ item.label }` );
+		else this.signInLink.href = item.href;
+
+	}
+
+	/** Follow the address and the session: mark the current view and who is signed in, now and on every change. */
 	start() {
 
 		this.window.addEventListener( 'hashchange', this.onHashChange );
+		this.stopSession = onSessionChange( ( session ) => this.showAccount( session ) );
 		this.onHashChange();
 		return this;
 
@@ -92,6 +149,7 @@ export class NavBar {
 	dispose() {
 
 		this.window.removeEventListener( 'hashchange', this.onHashChange );
+		this.stopSession?.();
 		this.element.remove();
 
 	}
