@@ -11,6 +11,7 @@ from sqlalchemy import inspect, text
 from sqlalchemy.orm import Session
 
 from glasshead import accounts
+from glasshead.epg.formats import CSV_ELECTRODES, CSV_MAGIC
 from glasshead.settings import get_settings
 from glasshead.store.db import engine_for, get_engine
 from postgres_support import throwaway_postgres
@@ -41,6 +42,23 @@ def post(client, path, body, headers=None):
     response = client.post(f"{API}/{path}", json=body, headers=headers or {})
     assert response.status_code == 201, response.text
     return response.json()
+
+
+def add_recording(engine, client, admin, child_id: int) -> int:
+    """An EPG recording of three frames imported (with an Idempotency-Key) and given to the
+    child; answers its id."""
+    contact = ",".join(["1"] * 8 + ["0"] * (len(CSV_ELECTRODES) - 8))
+    text_csv = "\n".join([CSV_MAGIC, ",".join(["t_s", *CSV_ELECTRODES]),
+                          *(f"{t},{contact}" for t in ("0.0", "0.01", "0.02"))]) + "\n"
+    made = client.post(f"{API}/epg/recordings", json={"format": "csv", "content": text_csv,
+                                                      "name": "ada-take-1"},
+                       headers={**admin, "Idempotency-Key": f"take-of-{child_id}"})
+    assert made.status_code == 201, made.text
+    recording_id = made.json()["recordings"][0]["id"]
+    with engine.begin() as connection:
+        connection.execute(text("UPDATE epg_recordings SET child_id = :child WHERE id = :id"),
+                           {"child": child_id, "id": recording_id})
+    return recording_id
 
 
 def make_setting(client, admin):
@@ -110,9 +128,6 @@ def child_rows(engine, child_id: int) -> dict[str, int]:
     counts = {}
     with engine.connect() as connection:
         for table, column in CHILD_COLUMNS.items():
-            if table == "epg_recordings" and column not in {
-                    c["name"] for c in inspect(engine).get_columns(table)}:
-                continue  # recordings do not name children in this schema
             assert table in tables, f"table {table} missing"
             counts[table] = connection.execute(
                 text(f"SELECT count(*) FROM {table} WHERE {column} = :id"),  # noqa: S608
@@ -155,10 +170,25 @@ def test_the_csv_is_refused_without_a_token_to_an_author_and_for_another_adults_
     assert theirs.json()["detail"].startswith("no child with id")
 
 
+def test_the_owner_of_the_childs_class_gets_the_csv_and_another_clinician_does_not(sqlite):
+    engine, client = sqlite
+    admin = bearer(client, "root")
+    school_class, ada, _, _ = make_setting(client, admin)
+    with engine.begin() as connection:
+        connection.execute(text("UPDATE classes SET owner_id = "
+                                "(SELECT id FROM users WHERE username = 'tess') WHERE id = :id"),
+                           {"id": school_class["id"]})
+    url = f"{API}/children/{ada['id']}/practice.csv"
+    owner = client.get(url, headers=bearer(client, "tess"))
+    assert owner.status_code == 200 and len(owner.text.strip().splitlines()) == 3
+    assert client.get(url, headers=bearer(client, "cleo")).status_code == 404
+
+
 def test_an_admin_export_holds_everything_stored_about_the_child_and_no_token_secret(sqlite):
-    _, client = sqlite
+    engine, client = sqlite
     admin = bearer(client, "root")
     school_class, ada, _, lesson = make_setting(client, admin)
+    recording_id = add_recording(engine, client, admin, ada["id"])
     answer = client.get(f"{API}/children/{ada['id']}/export", headers=admin)
     assert answer.status_code == 200
     body = answer.json()
@@ -174,7 +204,12 @@ def test_an_admin_export_holds_everything_stored_about_the_child_and_no_token_se
     assert len(body["tokens"]) == 1 and set(body["tokens"][0]) == {
         "created_at", "expires_at", "revoked_at"}
     assert "token_sha256" not in answer.text and "sha256" not in answer.text
-    assert isinstance(body["recordings"], list)
+    [recording] = body["recordings"]
+    assert recording["id"] == recording_id and recording["name"] == "ada-take-1"
+    assert recording["t_s"] == pytest.approx([0.0, 0.01, 0.02], abs=1e-9)
+    # The first 8 electrodes on: the front row's 6 (columns 2 to 7) and 2 of the next row.
+    assert recording["frames"][0][:3] == ["01111110", "11000000", "00000000"]
+    assert recording["export_url"] == f"/api/v1/epg/recordings/{recording_id}/export"
 
 
 @pytest.mark.parametrize("username", ["tess", "cleo", "ava"])
@@ -193,18 +228,21 @@ def test_only_an_admin_exports_or_deletes_a_child(sqlite, username):
 def forget_and_check(engine, client) -> None:
     admin = bearer(client, "root")
     school_class, ada, bo, lesson = make_setting(client, admin)
+    add_recording(engine, client, admin, ada["id"])
     before = child_rows(engine, ada["id"])
-    assert before["children"] == 1 and before["practice_records"] == 2
-    assert before["assignments"] == 1 and before["child_tokens"] == 1
+    assert before == {"children": 1, "practice_records": 2, "assignments": 1,
+                      "child_tokens": 1, "epg_recordings": 1}
     url = f"{API}/children/{ada['id']}/data"
     stale = client.delete(url, headers={**admin, "If-Match": f'"child-{ada["id"]}-v9"'})
     assert stale.status_code == 412 and child_rows(engine, ada["id"]) == before
     gone = client.delete(url, headers=admin)
     assert gone.status_code == 200, gone.text
     assert gone.json() == {"child_id": ada["id"], "children": 1, "practice_records": 2,
-                           "assignments": 1, "recordings": 0, "child_tokens": 1,
-                           "idempotency_keys": 0}
+                           "assignments": 1, "recordings": 1, "child_tokens": 1,
+                           "idempotency_keys": 1}
     assert set(child_rows(engine, ada["id"]).values()) == {0}
+    with engine.connect() as connection:  # nor the import's answer kept for its retries
+        assert connection.execute(text("SELECT count(*) FROM idempotency_keys")).scalar_one() == 0
     # The rest of the class is untouched: Bo, the class's assignment, the lesson.
     assert child_rows(engine, bo["id"])["practice_records"] == 1
     assert client.get(f"{API}/classes/{school_class['id']}", headers=admin).status_code == 200
