@@ -64,7 +64,10 @@ def test_a_childs_token_is_not_a_users_and_a_users_is_not_a_childs(children):
     user_token = client.post(f"{API}/auth/sessions", json={
         "username": "root", "password": "correct horse battery"}).json()["token"]
     assert client.get(f"{API}/auth/me", headers=child).status_code == 401
-    assert client.get(f"{API}/users", headers=child).status_code == 401
+    # A route for some roles of users: the child's token is valid, only not for this.
+    refused = client.get(f"{API}/users", headers=child)
+    assert refused.status_code == 403
+    assert refused.json()["detail"] == f"this needs the role admin; child {ids['mia']}"
     assert client.get(f"{API}/auth/child-sessions/current",
                       headers={"Authorization": f"Bearer {user_token}"}).status_code == 401
 

@@ -3,6 +3,7 @@ paging, and 422s that name the field."""
 
 import pytest
 
+from accounts_support import signed_in
 from glasshead.store.lessons import AVATARS, JOIN_CODE_ALPHABET, JOIN_CODE_LENGTH
 
 API = "/api/v1"
@@ -11,7 +12,9 @@ LOOK_ALIKES = set("0O1IL2Z5S8B")
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    """The app with an admin signed in (who reaches every record; tests/test_api_roles.py has
+    the other roles)."""
+    return signed_in(start_app()[1], "admin")
 
 
 def post(client, path, body):

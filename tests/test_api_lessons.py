@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from accounts_support import signed_in
 from glasshead.lessons.schema import json_schema
 from glasshead.lessons.starter import STARTER_LESSONS
 from glasshead.phonemes import lookup
@@ -22,7 +23,9 @@ N_STARTER = len(STARTER_LESSONS)
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    """The app with an admin signed in (who reaches every record; tests/test_api_roles.py has
+    the other roles)."""
+    return signed_in(start_app()[1], "admin")
 
 
 def create(client, lesson=SIP_SHIP):
@@ -135,7 +138,7 @@ def test_a_new_database_has_the_starter_lessons_and_a_restart_adds_none(start_ap
                                                                         monkeypatch):
     from glasshead.store.db import engine_for, upgrade_to_head
 
-    client = start_app()[1]
+    client = signed_in(start_app()[1], "admin")
     listing = client.get(f"{API}/lessons").json()
     titles = [lesson["title"] for lesson in listing["lessons"]]
     assert titles == ["/s/ and /ʃ/", "/t/ and /k/", "/r/ and /l/", "Nasals and their oral pairs",

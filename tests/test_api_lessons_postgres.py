@@ -5,6 +5,7 @@ SQLite (tests/test_api_lessons.py, tests/test_api_classes_practice.py)."""
 import pytest
 from fastapi.testclient import TestClient
 
+from accounts_support import signed_in
 from glasshead.lessons.starter import STARTER_LESSONS
 from glasshead.settings import get_settings
 from glasshead.store.db import engine_for, upgrade_to_head
@@ -23,7 +24,8 @@ def postgres_server():
 
 @pytest.fixture
 def database(postgres_server, tmp_path, monkeypatch):
-    """(url, client): the app on a fresh PostgreSQL database, started as the server starts."""
+    """(url, client): the app on a fresh PostgreSQL database, started as the server starts,
+    with an admin signed in."""
     from glasshead.api.app import create_app
 
     url = postgres_server.url(postgres_server.create_database())
@@ -32,7 +34,7 @@ def database(postgres_server, tmp_path, monkeypatch):
     get_settings.cache_clear()
     try:
         with TestClient(create_app()) as client:
-            yield url, client
+            yield url, signed_in(client, "admin")
     finally:
         get_settings.cache_clear()
         engine_for(url).dispose()

@@ -6,10 +6,13 @@ section 3), and the same sentence for all four, so a caller learns nothing about
 tokens. ``require_role(*roles)`` narrows it to those roles, with a 403 that names them.
 ``CurrentChild`` is the same for a child signed in with their class's join code.
 
-Only the routes that manage users and sessions use these for now; the other routes stay open
-until each is given its roles (docs/auth.md).
+``CurrentPerson`` takes either token: a user's or a child's, for the routes both may use, and
+``allow(*callers)`` narrows it to some roles and, with ``"child"``, to children (a 403 naming
+who may). Which record of a resource a caller may see or change is the business of
+``api/ownership.py``; the role table is docs/auth.md's.
 """
 
+from dataclasses import dataclass
 from typing import Annotated
 
 from fastapi import Depends, HTTPException
@@ -18,7 +21,7 @@ from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 from glasshead.accounts import valid_child_token, valid_token
 from glasshead.store.lessons import Child
 from glasshead.store.session import SessionDep
-from glasshead.store.users import AuthToken, ChildToken, User
+from glasshead.store.users import ROLES, AuthToken, ChildToken, User
 
 #: The security scheme in the OpenAPI document; a missing or malformed header is our own 401.
 bearer = HTTPBearer(auto_error=False, scheme_name="bearerToken",
@@ -58,25 +61,6 @@ def current_user(token: CurrentToken) -> User:
 CurrentUser = Annotated[User, Depends(current_user)]
 
 
-def require_role(*roles: str):
-    """A dependency giving the current user when their role is one of ``roles``, else 403."""
-    if not roles:
-        raise ValueError("require_role needs at least one role")
-
-    def user_with_role(user: CurrentUser) -> User:
-        if user.role not in roles:
-            raise HTTPException(status_code=403,
-                                detail=f"this needs the role {' or '.join(roles)}; "
-                                       f"{user.username} is {user.role}")
-        return user
-
-    user_with_role.__name__ = f"require_{'_or_'.join(roles)}"
-    return user_with_role
-
-
-AdminUser = Annotated[User, Depends(require_role("admin"))]
-
-
 NOT_SIGNED_IN_CHILD = "not signed in as a child: send Authorization: Bearer <token> from " \
                       "POST /auth/child-sessions; a token that has expired or was signed out " \
                       "is refused too"
@@ -102,3 +86,85 @@ def current_child(token: CurrentChildToken) -> Child:
 
 
 CurrentChild = Annotated[Child, Depends(current_child)]
+
+
+#: Every role of a user: any signed-in adult.
+ADULTS = ROLES
+#: Who may call a route: a user's role, or ``"child"`` for a child signed in with a join code.
+CALLERS = (*ROLES, "child")
+
+
+@dataclass(frozen=True)
+class Person:
+    """Who sent the request: a user or a child (exactly one)."""
+
+    user: User | None = None
+    child: Child | None = None
+
+    @property
+    def role(self) -> str:
+        return "child" if self.child is not None else self.user.role
+
+    @property
+    def is_admin(self) -> bool:
+        return self.user is not None and self.user.role == "admin"
+
+    def describe(self) -> str:
+        if self.child is not None:
+            return f"child {self.child.id}"
+        return f"{self.user.username} is {self.user.role}"
+
+
+def current_person(session: SessionDep,
+                   credentials: Annotated[HTTPAuthorizationCredentials | None,
+                                          Depends(bearer)]) -> Person:
+    """The user or the child whose token the request came with; 401 when there is neither."""
+    if credentials is not None:
+        if (token := valid_token(session, credentials.credentials)) is not None:
+            return Person(user=token.user)
+        if (child_token := valid_child_token(session, credentials.credentials)) is not None:
+            return Person(child=child_token.child)
+    raise HTTPException(status_code=401, detail=NOT_SIGNED_IN,
+                        headers={"WWW-Authenticate": "Bearer"})
+
+
+CurrentPerson = Annotated[Person, Depends(current_person)]
+
+
+def allow(*callers: str):
+    """A dependency giving the current person when they are one of ``callers`` (roles, and
+    ``"child"``), else 403 naming who may."""
+    unknown = set(callers) - set(CALLERS)
+    if not callers or unknown:
+        raise ValueError(f"allow needs callers from {CALLERS}, not {sorted(unknown)}")
+
+    def person_allowed(person: CurrentPerson) -> Person:
+        if person.role not in callers:
+            raise HTTPException(status_code=403,
+                                detail=f"this needs the role {' or '.join(callers)}; "
+                                       f"{person.describe()}")
+        return person
+
+    person_allowed.__name__ = f"allow_{'_or_'.join(callers)}"
+    return person_allowed
+
+
+def require_role(*roles: str):
+    """A dependency giving the current user when their role is one of ``roles``, else 403 (a
+    child's token too: it is valid, only not for this)."""
+    if not roles or set(roles) - set(ROLES):
+        raise ValueError(f"require_role needs roles from {ROLES}, not {roles}")
+    allowed = allow(*roles)
+
+    def user_with_role(person: Annotated[Person, Depends(allowed)]) -> User:
+        return person.user
+
+    user_with_role.__name__ = f"require_{'_or_'.join(roles)}"
+    return user_with_role
+
+
+AdminUser = Annotated[User, Depends(require_role("admin"))]
+
+
+#: Any signed-in adult (a user of any role).
+SignedInUser = Annotated[User, Depends(require_role(*ADULTS))]

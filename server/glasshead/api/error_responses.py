@@ -7,8 +7,10 @@ document declares that array (``HTTPValidationError``) and leaves out every othe
 ``install_error_responses`` has it rewritten once, when it is first asked for:
 
 - the one ``Error`` schema for every 4xx and 5xx it documents;
-- 400 on every operation (a Host not allowed, a body that cannot be parsed); 403 on every
-  write (a cross-site Origin, ``api/security.py``); 422 on every operation that takes a
+- 400 on every operation (a Host not allowed, a body that cannot be parsed); 401 on every
+  operation that needs a bearer token and 403 on every one limited to some roles
+  (``api/auth.py``'s dependencies); 403 on every write (a cross-site Origin,
+  ``api/security.py``); 422 on every operation that takes a
   parameter or a body; 404 on every operation with a path parameter (the id or name may name
   nothing); 413 on every operation with a body (past its limit, ``api/limits.py``); 503 on every
   operation that needs the built assets or the compute pool;
@@ -40,6 +42,8 @@ ERROR_SCHEMA = {
 DESCRIPTIONS = {
     "400": "the Host is not one the server answers to (GLASSHEAD_ALLOWED_HOSTS), or the body "
            "cannot be read as its media type (JSON that is not UTF-8, a broken multipart form)",
+    "401": "no valid bearer token: missing, unknown, expired or revoked (sign in with POST "
+           "/auth/sessions, or POST /auth/child-sessions for a child); WWW-Authenticate: Bearer",
     "403": "a write from another site: its Origin is not this server's (docs/api.md)",
     "404": "nothing has that id or name",
     "413": "the body is past the operation's size limit (docs/api.md), refused as it streams in",
@@ -55,6 +59,13 @@ UNAVAILABLE_DEPENDENCIES = frozenset({"get_asset_store", "get_compute_pool"})
 #: Operations that read the asset store without failing: /health reports a missing asset in its
 #: body, with 200.
 NEVER_UNAVAILABLE = frozenset({"getHealth"})
+#: Dependencies (by function name) that take a bearer token: their operations can answer 401.
+TOKEN_DEPENDENCIES = frozenset({"current_token", "current_child_token", "current_person"})
+#: The 403 of an operation limited to some roles (``allow`` and ``require_role`` name their
+#: dependencies allow_... and require_...).
+ROLE_FORBIDDEN = ("the signed-in caller's role may not do this (detail names who may), or the "
+                  "record is another's to change; on a write also: its Origin is not this "
+                  "server's (docs/api.md)")
 #: Methods that a cross-site request may not use (api/security.py answers 403).
 WRITE_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 #: FastAPI's validation-error schemas, replaced by ``Error``.
@@ -102,6 +113,10 @@ def _generic_errors(operation: dict, route: APIRoute | None) -> list[str]:
     parameters = operation.get("parameters", [])
     has_body = "requestBody" in operation
     errors = ["400"]  # any request: the Host allow-list (api/security.py)
+    if route is not None and _depends_on(route.dependant, TOKEN_DEPENDENCIES):
+        errors.append("401")
+    if route is not None and _limited_to_roles(route.dependant):
+        operation["responses"].setdefault("403", {"description": ROLE_FORBIDDEN})
     if route is not None and route.methods & WRITE_METHODS:
         errors.append("403")
     if any(p.get("in") == "path" for p in parameters):
@@ -119,6 +134,11 @@ def _generic_errors(operation: dict, route: APIRoute | None) -> list[str]:
 def _depends_on(dependant, names: frozenset[str]) -> bool:
     return any(getattr(d.call, "__name__", None) in names or _depends_on(d, names)
                for d in dependant.dependencies)
+
+
+def _limited_to_roles(dependant) -> bool:
+    return any(getattr(d.call, "__name__", "").startswith(("allow_", "require_"))
+               or _limited_to_roles(d) for d in dependant.dependencies)
 
 
 def allowed_methods(app: FastAPI, path: str) -> list[str]:

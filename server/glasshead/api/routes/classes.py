@@ -5,19 +5,31 @@ A class gets a join code when it is made: six characters from an alphabet withou
 class's name. Children are pseudonymous: a display name and one of a fixed list of avatars
 (``GET /children/avatars``), nothing that names them. Writes take If-Match (412 when stale);
 deleting a class deletes its children and their practice.
+
+A class is its owner's: the teacher, clinician or admin who made it. Only they and admins list,
+read and change it and its children; to anyone else another's class or child is a 404
+(``api/ownership.py``).
 """
 
 import secrets
 from datetime import datetime
 from typing import Annotated, Literal
 
-from fastapi import APIRouter, Query, Response, status
+from fastapi import APIRouter, Depends, Query, Response, status
 from pydantic import BaseModel, ConfigDict, StringConstraints
 from sqlalchemy import select
 from sqlalchemy.exc import IntegrityError
 
+from glasshead.api.auth import Person, require_role
 from glasshead.api.etags import PRECONDITION, check_if_match, set_etag
 from glasshead.api.lookups import Offset, RecordId
+from glasshead.api.ownership import (
+    check_class_reference,
+    child_of,
+    class_of,
+    visible_children,
+    visible_classes,
+)
 from glasshead.api.people import ChildOut
 from glasshead.api.records import (
     BodyId,
@@ -25,10 +37,8 @@ from glasshead.api.records import (
     IfMatch,
     Limit,
     apply_patch,
-    check_reference,
     conditional_write,
     delete_record,
-    get_or_404,
     page,
 )
 from glasshead.store.lessons import (
@@ -39,6 +49,7 @@ from glasshead.store.lessons import (
     SchoolClass,
 )
 from glasshead.store.session import SessionDep
+from glasshead.store.users import User
 
 router = APIRouter(tags=["classes"])
 
@@ -50,6 +61,8 @@ ClassName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1
 DisplayName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1,
                                                max_length=40)]
 Avatar = Literal[AVATARS]  # type: ignore[valid-type]
+#: Who keeps classes and children: teachers (a class), clinicians (a caseload) and admins.
+Keeper = Annotated[User, Depends(require_role("teacher", "clinician", "admin"))]
 JoinCode = Annotated[str | None, Query(description="only the class with this join code (any "
                                                    "case)", max_length=40)]
 
@@ -104,9 +117,11 @@ def new_join_code() -> str:
 
 @router.post("/classes", operation_id="createClass", status_code=status.HTTP_201_CREATED,
              response_model=ClassOut)
-def create_class(body: ClassIn, session: SessionDep, response: Response) -> SchoolClass:
+def create_class(body: ClassIn, session: SessionDep, user: Keeper,
+                 response: Response) -> SchoolClass:
+    """A new class owned by the caller, with a fresh join code."""
     for _ in range(JOIN_CODE_TRIES):
-        record = SchoolClass(name=body.name, join_code=new_join_code())
+        record = SchoolClass(name=body.name, join_code=new_join_code(), owner_id=user.id)
         session.add(record)
         try:
             session.commit()
@@ -120,10 +135,11 @@ def create_class(body: ClassIn, session: SessionDep, response: Response) -> Scho
 
 
 @router.get("/classes", operation_id="listClasses", response_model=ClassList)
-def list_classes(session: SessionDep, join_code: JoinCode = None, offset: Offset = 0,
-                 limit: Limit = 100) -> ClassList:
-    """Classes in id order; ``join_code`` finds the one class a child joins with it."""
-    query = select(SchoolClass)
+def list_classes(session: SessionDep, user: Keeper, join_code: JoinCode = None,
+                 offset: Offset = 0, limit: Limit = 100) -> ClassList:
+    """The caller's classes (an admin's: all) in id order; ``join_code`` finds one by its code
+    (a child finds theirs with the open POST /auth/class-roster)."""
+    query = visible_classes(select(SchoolClass), user)
     if join_code is not None:
         query = query.where(SchoolClass.join_code == join_code.strip().upper())
     records, total = page(session, query, SchoolClass.id, offset, limit)
@@ -131,18 +147,19 @@ def list_classes(session: SessionDep, join_code: JoinCode = None, offset: Offset
 
 
 @router.get("/classes/{class_id}", operation_id="getClass", response_model=ClassOut)
-def get_class(class_id: RecordId, session: SessionDep, response: Response) -> SchoolClass:
-    record = get_or_404(session, SchoolClass, class_id, CLASS)
+def get_class(class_id: RecordId, session: SessionDep, user: Keeper,
+              response: Response) -> SchoolClass:
+    record = class_of(session, user, class_id)
     set_etag(response, CLASS, record)
     return record
 
 
 @router.put("/classes/{class_id}", operation_id="replaceClass", response_model=ClassOut,
             responses=PRECONDITION)
-def replace_class(class_id: RecordId, body: ClassIn, session: SessionDep, response: Response,
-                  if_match: IfMatch = None) -> SchoolClass:
+def replace_class(class_id: RecordId, body: ClassIn, session: SessionDep, user: Keeper,
+                  response: Response, if_match: IfMatch = None) -> SchoolClass:
     """A new name; the join code stays."""
-    record = get_or_404(session, SchoolClass, class_id, CLASS)
+    record = class_of(session, user, class_id)
     check_if_match(if_match, CLASS, record, f"class {class_id}")
     record.name = body.name
     conditional_write(session, response, CLASS, record, f"class {class_id}")
@@ -151,9 +168,9 @@ def replace_class(class_id: RecordId, body: ClassIn, session: SessionDep, respon
 
 @router.patch("/classes/{class_id}", operation_id="updateClass", response_model=ClassOut,
               responses=PRECONDITION)
-def update_class(class_id: RecordId, patch: ClassPatch, session: SessionDep, response: Response,
-                 if_match: IfMatch = None) -> SchoolClass:
-    record = get_or_404(session, SchoolClass, class_id, CLASS)
+def update_class(class_id: RecordId, patch: ClassPatch, session: SessionDep, user: Keeper,
+                 response: Response, if_match: IfMatch = None) -> SchoolClass:
+    record = class_of(session, user, class_id)
     check_if_match(if_match, CLASS, record, f"class {class_id}")
     apply_patch(record, patch)
     conditional_write(session, response, CLASS, record, f"class {class_id}")
@@ -162,8 +179,9 @@ def update_class(class_id: RecordId, patch: ClassPatch, session: SessionDep, res
 
 @router.delete("/classes/{class_id}", operation_id="deleteClass",
                status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
-def delete_class(class_id: RecordId, session: SessionDep, if_match: IfMatch = None) -> Response:
-    record = get_or_404(session, SchoolClass, class_id, CLASS)
+def delete_class(class_id: RecordId, session: SessionDep, user: Keeper,
+                 if_match: IfMatch = None) -> Response:
+    record = class_of(session, user, class_id)
     delete_record(session, CLASS, record, f"class {class_id}", if_match)
     return Response(status_code=status.HTTP_204_NO_CONTENT)
 
@@ -176,8 +194,9 @@ def list_avatars() -> list[str]:
 
 @router.post("/children", operation_id="createChild", status_code=status.HTTP_201_CREATED,
              response_model=ChildOut)
-def create_child(body: ChildIn, session: SessionDep, response: Response) -> Child:
-    check_reference(session, SchoolClass, body.class_id, "class_id", CLASS)
+def create_child(body: ChildIn, session: SessionDep, user: Keeper, response: Response) -> Child:
+    """A child in one of the caller's classes."""
+    check_class_reference(session, user, body.class_id)
     record = Child(**body.model_dump())
     session.add(record)
     session.commit()
@@ -186,10 +205,10 @@ def create_child(body: ChildIn, session: SessionDep, response: Response) -> Chil
 
 
 @router.get("/children", operation_id="listChildren", response_model=ChildList)
-def list_children(session: SessionDep, class_id: IdFilter = None, offset: Offset = 0,
-                  limit: Limit = 100) -> ChildList:
-    """Children in id order, of one class with ``class_id``."""
-    query = select(Child)
+def list_children(session: SessionDep, user: Keeper, class_id: IdFilter = None,
+                  offset: Offset = 0, limit: Limit = 100) -> ChildList:
+    """Children of the caller's classes in id order, of one class with ``class_id``."""
+    query = visible_children(select(Child), user)
     if class_id is not None:
         query = query.where(Child.class_id == class_id)
     records, total = page(session, query, Child.id, offset, limit)
@@ -197,19 +216,20 @@ def list_children(session: SessionDep, class_id: IdFilter = None, offset: Offset
 
 
 @router.get("/children/{child_id}", operation_id="getChild", response_model=ChildOut)
-def get_child(child_id: RecordId, session: SessionDep, response: Response) -> Child:
-    record = get_or_404(session, Child, child_id, CHILD)
+def get_child(child_id: RecordId, session: SessionDep, user: Keeper,
+              response: Response) -> Child:
+    record = child_of(session, Person(user=user), child_id)
     set_etag(response, CHILD, record)
     return record
 
 
 @router.put("/children/{child_id}", operation_id="replaceChild", response_model=ChildOut,
             responses=PRECONDITION)
-def replace_child(child_id: RecordId, body: ChildIn, session: SessionDep, response: Response,
-                  if_match: IfMatch = None) -> Child:
-    record = get_or_404(session, Child, child_id, CHILD)
+def replace_child(child_id: RecordId, body: ChildIn, session: SessionDep, user: Keeper,
+                  response: Response, if_match: IfMatch = None) -> Child:
+    record = child_of(session, Person(user=user), child_id)
     check_if_match(if_match, CHILD, record, f"child {child_id}")
-    check_reference(session, SchoolClass, body.class_id, "class_id", CLASS)
+    check_class_reference(session, user, body.class_id)
     for field, value in body.model_dump().items():
         setattr(record, field, value)
     conditional_write(session, response, CHILD, record, f"child {child_id}")
@@ -218,11 +238,11 @@ def replace_child(child_id: RecordId, body: ChildIn, session: SessionDep, respon
 
 @router.patch("/children/{child_id}", operation_id="updateChild", response_model=ChildOut,
               responses=PRECONDITION)
-def update_child(child_id: RecordId, patch: ChildPatch, session: SessionDep, response: Response,
-                 if_match: IfMatch = None) -> Child:
-    record = get_or_404(session, Child, child_id, CHILD)
+def update_child(child_id: RecordId, patch: ChildPatch, session: SessionDep, user: Keeper,
+                 response: Response, if_match: IfMatch = None) -> Child:
+    record = child_of(session, Person(user=user), child_id)
     check_if_match(if_match, CHILD, record, f"child {child_id}")
-    check_reference(session, SchoolClass, patch.class_id, "class_id", CLASS)
+    check_class_reference(session, user, patch.class_id)
     apply_patch(record, patch)
     conditional_write(session, response, CHILD, record, f"child {child_id}")
     return record
@@ -230,8 +250,9 @@ def update_child(child_id: RecordId, patch: ChildPatch, session: SessionDep, res
 
 @router.delete("/children/{child_id}", operation_id="deleteChild",
                status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
-def delete_child(child_id: RecordId, session: SessionDep, if_match: IfMatch = None) -> Response:
-    """The child, their assignments and their practice records."""
-    record = get_or_404(session, Child, child_id, CHILD)
+def delete_child(child_id: RecordId, session: SessionDep, user: Keeper,
+                 if_match: IfMatch = None) -> Response:
+    """The child, their assignments, practice records and EPG recordings."""
+    record = child_of(session, Person(user=user), child_id)
     delete_record(session, CHILD, record, f"child {child_id}", if_match)
     return Response(status_code=status.HTTP_204_NO_CONTENT)

@@ -4,18 +4,25 @@ A lesson's body is the published lesson format (``glasshead.lessons.schema``, se
 ``GET /lessons/schema``); its items are validated whole, so an unknown phoneme symbol is a 422
 naming the item and the symbol. An export is exactly what an import takes, so a lesson moves
 between servers unchanged. Writes take If-Match (412 when stale).
+
+Every signed-in adult reads every lesson; a child reads only the lessons assigned to them or to
+their class (another is a 404). Authors and admins make lessons; a lesson is changed only by
+its author or an admin (403 otherwise). The starter lessons have no owner: admins change them,
+and an author who wants another version exports one and imports it as their own.
 """
 
 from datetime import datetime
 from typing import Annotated
 
-from fastapi import APIRouter, Response, status
+from fastapi import APIRouter, Depends, Response, status
 from pydantic import BaseModel, ConfigDict, Field
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
+from glasshead.api.auth import ADULTS, Person, SignedInUser, allow, require_role
 from glasshead.api.etags import PRECONDITION, check_if_match, set_etag
 from glasshead.api.lookups import Offset, RecordId
+from glasshead.api.ownership import check_owner, lesson_for, visible_lessons
 from glasshead.api.records import (
     IfMatch,
     Limit,
@@ -35,10 +42,15 @@ from glasshead.lessons.schema import (
 )
 from glasshead.store.lessons import Lesson
 from glasshead.store.session import SessionDep
+from glasshead.store.users import User
 
 router = APIRouter(tags=["lessons"])
 
 KIND = "lesson"
+#: Who writes lessons.
+Author = Annotated[User, Depends(require_role("author", "admin"))]
+#: Who reads them: any adult, and a child (their assigned lessons).
+Reader = Annotated[Person, Depends(allow(*ADULTS, "child"))]
 
 
 class LessonPatch(BaseModel):
@@ -81,9 +93,10 @@ def _items(lesson: LessonContent | LessonPatch) -> list[dict]:
     return [item.model_dump(mode="json") for item in lesson.items]
 
 
-def _create(lesson: LessonContent, session: Session, response: Response) -> LessonOut:
+def _create(lesson: LessonContent, session: Session, user: User,
+            response: Response) -> LessonOut:
     record = Lesson(title=lesson.title, language=lesson.language,
-                    description=lesson.description, items=_items(lesson))
+                    description=lesson.description, items=_items(lesson), owner_id=user.id)
     session.add(record)
     session.commit()
     set_etag(response, KIND, record)
@@ -92,14 +105,19 @@ def _create(lesson: LessonContent, session: Session, response: Response) -> Less
 
 @router.post("/lessons", operation_id="createLesson", status_code=status.HTTP_201_CREATED,
              response_model=LessonOut)
-def create_lesson(lesson: LessonContent, session: SessionDep, response: Response) -> LessonOut:
-    return _create(lesson, session, response)
+def create_lesson(lesson: LessonContent, session: SessionDep, user: Author,
+                  response: Response) -> LessonOut:
+    """A new lesson, owned by the caller."""
+    return _create(lesson, session, user, response)
 
 
 @router.get("/lessons", operation_id="listLessons", response_model=LessonList)
-def list_lessons(session: SessionDep, offset: Offset = 0, limit: Limit = 100) -> LessonList:
-    """Lessons in id order (the order they were made), without their items."""
-    records, total = page(session, select(Lesson), Lesson.id, offset, limit)
+def list_lessons(session: SessionDep, person: Reader, offset: Offset = 0,
+                 limit: Limit = 100) -> LessonList:
+    """Lessons in id order (the order they were made), without their items; a child's list
+    has only the lessons assigned to them or to their class."""
+    records, total = page(session, visible_lessons(select(Lesson), person), Lesson.id, offset,
+                          limit)
     return LessonList(total=total, lessons=[
         LessonSummary(id=r.id, title=r.title, language=r.language, description=r.description,
                       n_items=len(r.items), updated_at=r.updated_at) for r in records])
@@ -113,21 +131,24 @@ def get_lesson_schema() -> dict:
 
 @router.post("/lessons/import", operation_id="importLesson",
              status_code=status.HTTP_201_CREATED, response_model=LessonOut)
-def import_lesson(lesson: LessonContent, session: SessionDep, response: Response) -> LessonOut:
-    """A lesson as exported (by this server or another): stored as a new lesson."""
-    return _create(lesson, session, response)
+def import_lesson(lesson: LessonContent, session: SessionDep, user: Author,
+                  response: Response) -> LessonOut:
+    """A lesson as exported (by this server or another): stored as a new lesson, the caller's."""
+    return _create(lesson, session, user, response)
 
 
 @router.get("/lessons/{lesson_id}", operation_id="getLesson", response_model=LessonOut)
-def get_lesson(lesson_id: RecordId, session: SessionDep, response: Response) -> LessonOut:
-    record = get_or_404(session, Lesson, lesson_id, KIND)
+def get_lesson(lesson_id: RecordId, session: SessionDep, person: Reader,
+               response: Response) -> LessonOut:
+    record = lesson_for(session, person, lesson_id)
     set_etag(response, KIND, record)
     return _out(record)
 
 
 @router.get("/lessons/{lesson_id}/export", operation_id="exportLesson",
             response_model=LessonContent)
-def export_lesson(lesson_id: RecordId, session: SessionDep, response: Response) -> LessonContent:
+def export_lesson(lesson_id: RecordId, session: SessionDep, user: SignedInUser,
+                  response: Response) -> LessonContent:
     """The lesson in the published format, as a download that ``POST /lessons/import`` takes."""
     record = get_or_404(session, Lesson, lesson_id, KIND)
     set_etag(response, KIND, record)
@@ -139,8 +160,9 @@ def export_lesson(lesson_id: RecordId, session: SessionDep, response: Response) 
 @router.put("/lessons/{lesson_id}", operation_id="replaceLesson", response_model=LessonOut,
             responses=PRECONDITION)
 def replace_lesson(lesson_id: RecordId, lesson: LessonContent, session: SessionDep,
-                   response: Response, if_match: IfMatch = None) -> LessonOut:
+                   user: Author, response: Response, if_match: IfMatch = None) -> LessonOut:
     record = get_or_404(session, Lesson, lesson_id, KIND)
+    check_owner(user, record, KIND)
     check_if_match(if_match, KIND, record, f"lesson {lesson_id}")
     record.title, record.language = lesson.title, lesson.language
     record.description, record.items = lesson.description, _items(lesson)
@@ -150,9 +172,10 @@ def replace_lesson(lesson_id: RecordId, lesson: LessonContent, session: SessionD
 
 @router.patch("/lessons/{lesson_id}", operation_id="updateLesson", response_model=LessonOut,
               responses=PRECONDITION)
-def update_lesson(lesson_id: RecordId, patch: LessonPatch, session: SessionDep,
+def update_lesson(lesson_id: RecordId, patch: LessonPatch, session: SessionDep, user: Author,
                   response: Response, if_match: IfMatch = None) -> LessonOut:
     record = get_or_404(session, Lesson, lesson_id, KIND)
+    check_owner(user, record, KIND)
     check_if_match(if_match, KIND, record, f"lesson {lesson_id}")
     apply_patch(record, patch)
     if patch.items is not None:
@@ -163,8 +186,10 @@ def update_lesson(lesson_id: RecordId, patch: LessonPatch, session: SessionDep,
 
 @router.delete("/lessons/{lesson_id}", operation_id="deleteLesson",
                status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
-def delete_lesson(lesson_id: RecordId, session: SessionDep, if_match: IfMatch = None) -> Response:
+def delete_lesson(lesson_id: RecordId, session: SessionDep, user: Author,
+                  if_match: IfMatch = None) -> Response:
     """The lesson, its assignments and its practice records."""
     record = get_or_404(session, Lesson, lesson_id, KIND)
+    check_owner(user, record, KIND)
     delete_record(session, KIND, record, f"lesson {lesson_id}", if_match)
     return Response(status_code=status.HTTP_204_NO_CONTENT)

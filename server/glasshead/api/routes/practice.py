@@ -5,33 +5,47 @@ record is one go at one item of a lesson: the child, the lesson and the item's p
 the time, how many times the child replayed it, and a rating (1 not yet, 2 nearly, 3 got it)
 with who gave it (the child or an adult). A record names an item the lesson has (422 naming
 ``item_index`` otherwise). Writes take If-Match (412 when stale).
+
+Assignments and practice records are those of a class's owner (the teacher or clinician who
+made it) and of admins: another's is a 404, and a body naming another's class or child is a
+422, as for one that does not exist (``api/ownership.py``). A child signed in with their join
+code reads their own assignments and practice, and writes practice only for themselves and
+only on a lesson assigned to them.
 """
 
 from datetime import datetime
 from typing import Annotated, Literal
 
-from fastapi import APIRouter, HTTPException, Response, status
+from fastapi import APIRouter, Depends, HTTPException, Response, status
 from pydantic import AwareDatetime, BaseModel, ConfigDict, Field, model_validator
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
+from glasshead.api.auth import Person, allow
 from glasshead.api.etags import PRECONDITION, check_if_match, set_etag
 from glasshead.api.lookups import Offset, RecordId
+from glasshead.api.ownership import (
+    assignment_for,
+    check_child_reference,
+    check_class_reference,
+    lesson_for,
+    practice_for,
+    visible_assignments,
+    visible_practice,
+)
 from glasshead.api.records import (
     BodyId,
     IdFilter,
     IfMatch,
     Limit,
     apply_patch,
-    check_reference,
     conditional_write,
     delete_record,
-    get_or_404,
     page,
 )
 from glasshead.lessons.schema import MAX_ITEMS
 from glasshead.store.base import utc_now
-from glasshead.store.lessons import Assignment, Child, Lesson, PracticeRecord, SchoolClass
+from glasshead.store.lessons import Assignment, Lesson, PracticeRecord
 from glasshead.store.session import SessionDep
 
 router = APIRouter(tags=["practice"])
@@ -43,6 +57,10 @@ ItemIndex = Annotated[int, Field(ge=0, lt=MAX_ITEMS, description="the item's pos
 Replays = Annotated[int, Field(ge=0, le=MAX_REPLAYS)]
 Rating = Annotated[int, Field(ge=1, le=3, description="1 not yet, 2 nearly, 3 got it")]
 RatedBy = Literal["child", "adult"]
+#: Who keeps classes, and so their assignments and practice.
+Keeper = Annotated[Person, Depends(allow("teacher", "clinician", "admin"))]
+#: A class's keeper, or a child for themselves.
+KeeperOrChild = Annotated[Person, Depends(allow("teacher", "clinician", "admin", "child"))]
 
 
 class AssignmentIn(BaseModel):
@@ -128,18 +146,24 @@ class PracticeList(BaseModel):
     total: int
 
 
-def _check_assignment(session: Session, body: AssignmentIn) -> None:
-    check_reference(session, Lesson, body.lesson_id, "lesson_id", "lesson")
-    check_reference(session, SchoolClass, body.class_id, "class_id", "class")
-    check_reference(session, Child, body.child_id, "child_id", "child")
-
-
-def _check_practice(session: Session, body: PracticeIn) -> None:
-    check_reference(session, Child, body.child_id, "child_id", "child")
-    lesson = session.get(Lesson, body.lesson_id)
-    if lesson is None:
+def _check_assignment(session: Session, person: Person, body: AssignmentIn) -> None:
+    if session.get(Lesson, body.lesson_id) is None:
         raise HTTPException(status_code=422, detail=f"body.lesson_id: no lesson with id "
                                                     f"{body.lesson_id}")
+    check_class_reference(session, person.user, body.class_id)
+    check_child_reference(session, person, body.child_id)
+
+
+def _check_practice(session: Session, person: Person, body: PracticeIn) -> None:
+    if person.child is not None and body.child_id != person.child.id:
+        raise HTTPException(status_code=403, detail="a child records only their own practice: "
+                                                    f"body.child_id must be {person.child.id}")
+    check_child_reference(session, person, body.child_id)
+    try:
+        lesson = lesson_for(session, person, body.lesson_id)
+    except HTTPException:
+        raise HTTPException(status_code=422, detail=f"body.lesson_id: no lesson with id "
+                                                    f"{body.lesson_id}") from None
     if body.item_index >= len(lesson.items):
         raise HTTPException(status_code=422, detail=f"body.item_index: lesson {lesson.id} has "
                                                     f"{len(lesson.items)} items, numbered from 0")
@@ -147,8 +171,10 @@ def _check_practice(session: Session, body: PracticeIn) -> None:
 
 @router.post("/assignments", operation_id="createAssignment",
              status_code=status.HTTP_201_CREATED, response_model=AssignmentOut)
-def create_assignment(body: AssignmentIn, session: SessionDep, response: Response) -> Assignment:
-    _check_assignment(session, body)
+def create_assignment(body: AssignmentIn, session: SessionDep, person: Keeper,
+                      response: Response) -> Assignment:
+    """A lesson given to one of the caller's classes or to a child in one of them."""
+    _check_assignment(session, person, body)
     record = Assignment(**body.model_dump())
     session.add(record)
     session.commit()
@@ -157,11 +183,12 @@ def create_assignment(body: AssignmentIn, session: SessionDep, response: Respons
 
 
 @router.get("/assignments", operation_id="listAssignments", response_model=AssignmentList)
-def list_assignments(session: SessionDep, lesson_id: IdFilter = None, class_id: IdFilter = None,
-                     child_id: IdFilter = None, offset: Offset = 0,
+def list_assignments(session: SessionDep, person: KeeperOrChild, lesson_id: IdFilter = None,
+                     class_id: IdFilter = None, child_id: IdFilter = None, offset: Offset = 0,
                      limit: Limit = 100) -> AssignmentList:
-    """Assignments in id order, filtered by lesson, class or child."""
-    query = select(Assignment)
+    """Assignments of the caller's classes (a child's: their own and their class's) in id
+    order, filtered by lesson, class or child."""
+    query = visible_assignments(select(Assignment), person)
     for column, value in ((Assignment.lesson_id, lesson_id), (Assignment.class_id, class_id),
                           (Assignment.child_id, child_id)):
         if value is not None:
@@ -173,9 +200,9 @@ def list_assignments(session: SessionDep, lesson_id: IdFilter = None, class_id: 
 
 @router.get("/assignments/{assignment_id}", operation_id="getAssignment",
             response_model=AssignmentOut)
-def get_assignment(assignment_id: RecordId, session: SessionDep,
+def get_assignment(assignment_id: RecordId, session: SessionDep, person: KeeperOrChild,
                    response: Response) -> Assignment:
-    record = get_or_404(session, Assignment, assignment_id, ASSIGNMENT)
+    record = assignment_for(session, person, assignment_id)
     set_etag(response, ASSIGNMENT, record)
     return record
 
@@ -183,10 +210,11 @@ def get_assignment(assignment_id: RecordId, session: SessionDep,
 @router.put("/assignments/{assignment_id}", operation_id="replaceAssignment",
             response_model=AssignmentOut, responses=PRECONDITION)
 def replace_assignment(assignment_id: RecordId, body: AssignmentIn, session: SessionDep,
-                       response: Response, if_match: IfMatch = None) -> Assignment:
-    record = get_or_404(session, Assignment, assignment_id, ASSIGNMENT)
+                       person: Keeper, response: Response,
+                       if_match: IfMatch = None) -> Assignment:
+    record = assignment_for(session, person, assignment_id)
     check_if_match(if_match, ASSIGNMENT, record, f"assignment {assignment_id}")
-    _check_assignment(session, body)
+    _check_assignment(session, person, body)
     record.lesson_id, record.class_id, record.child_id = (body.lesson_id, body.class_id,
                                                           body.child_id)
     conditional_write(session, response, ASSIGNMENT, record, f"assignment {assignment_id}")
@@ -195,18 +223,19 @@ def replace_assignment(assignment_id: RecordId, body: AssignmentIn, session: Ses
 
 @router.delete("/assignments/{assignment_id}", operation_id="deleteAssignment",
                status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
-def delete_assignment(assignment_id: RecordId, session: SessionDep,
+def delete_assignment(assignment_id: RecordId, session: SessionDep, person: Keeper,
                       if_match: IfMatch = None) -> Response:
-    record = get_or_404(session, Assignment, assignment_id, ASSIGNMENT)
+    record = assignment_for(session, person, assignment_id)
     delete_record(session, ASSIGNMENT, record, f"assignment {assignment_id}", if_match)
     return Response(status_code=status.HTTP_204_NO_CONTENT)
 
 
 @router.post("/practice", operation_id="createPracticeRecord",
              status_code=status.HTTP_201_CREATED, response_model=PracticeOut)
-def create_practice_record(body: PracticeIn, session: SessionDep,
+def create_practice_record(body: PracticeIn, session: SessionDep, person: KeeperOrChild,
                            response: Response) -> PracticeRecord:
-    _check_practice(session, body)
+    """A go at an item: by a child for themselves, or by the keeper of the child's class."""
+    _check_practice(session, person, body)
     record = PracticeRecord(**body.model_dump(exclude={"practised_at"}),
                             practised_at=body.practised_at or utc_now())
     session.add(record)
@@ -216,11 +245,12 @@ def create_practice_record(body: PracticeIn, session: SessionDep,
 
 
 @router.get("/practice", operation_id="listPracticeRecords", response_model=PracticeList)
-def list_practice_records(session: SessionDep, child_id: IdFilter = None,
+def list_practice_records(session: SessionDep, person: KeeperOrChild, child_id: IdFilter = None,
                           lesson_id: IdFilter = None, offset: Offset = 0,
                           limit: Limit = 100) -> PracticeList:
-    """Practice records, newest first, of one child or one lesson."""
-    query = select(PracticeRecord)
+    """Practice records of the children of the caller's classes (a child's: their own),
+    newest first, of one child or one lesson."""
+    query = visible_practice(select(PracticeRecord), person)
     if child_id is not None:
         query = query.where(PracticeRecord.child_id == child_id)
     if lesson_id is not None:
@@ -233,9 +263,9 @@ def list_practice_records(session: SessionDep, child_id: IdFilter = None,
 
 @router.get("/practice/{record_id}", operation_id="getPracticeRecord",
             response_model=PracticeOut)
-def get_practice_record(record_id: RecordId, session: SessionDep,
+def get_practice_record(record_id: RecordId, session: SessionDep, person: KeeperOrChild,
                         response: Response) -> PracticeRecord:
-    record = get_or_404(session, PracticeRecord, record_id, "practice record")
+    record = practice_for(session, person, record_id)
     set_etag(response, PRACTICE, record)
     return record
 
@@ -243,8 +273,9 @@ def get_practice_record(record_id: RecordId, session: SessionDep,
 @router.patch("/practice/{record_id}", operation_id="updatePracticeRecord",
               response_model=PracticeOut, responses=PRECONDITION)
 def update_practice_record(record_id: RecordId, patch: PracticePatch, session: SessionDep,
-                           response: Response, if_match: IfMatch = None) -> PracticeRecord:
-    record = get_or_404(session, PracticeRecord, record_id, "practice record")
+                           person: KeeperOrChild, response: Response,
+                           if_match: IfMatch = None) -> PracticeRecord:
+    record = practice_for(session, person, record_id)
     check_if_match(if_match, PRACTICE, record, f"practice record {record_id}")
     apply_patch(record, patch)
     conditional_write(session, response, PRACTICE, record, f"practice record {record_id}")
@@ -253,8 +284,8 @@ def update_practice_record(record_id: RecordId, patch: PracticePatch, session: S
 
 @router.delete("/practice/{record_id}", operation_id="deletePracticeRecord",
                status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
-def delete_practice_record(record_id: RecordId, session: SessionDep,
+def delete_practice_record(record_id: RecordId, session: SessionDep, person: Keeper,
                            if_match: IfMatch = None) -> Response:
-    record = get_or_404(session, PracticeRecord, record_id, "practice record")
+    record = practice_for(session, person, record_id)
     delete_record(session, PRACTICE, record, f"practice record {record_id}", if_match)
     return Response(status_code=status.HTTP_204_NO_CONTENT)
