@@ -25,6 +25,8 @@ router.register( '/workbench', async ( container ) => ( await import( './ui/Work
 router.register( '/clinician', async ( container ) => ( await import( './ui/ClinicianView.js' ) ).mountClinicianView( container ), { title: 'Glasshead clinician' } );
 router.register( '/speak', async ( container ) => ( await import( './ui/SpeechView.js' ) ).mountSpeechView( container ), { title: 'Glasshead: say it' } );
 router.register( '/signin', async ( container ) => ( await import( './ui/SignInView.js' ) ).mountSignInView( container ), { title: 'Glasshead: sign in' } );
+router.register( '/teach', async ( container ) => ( await import( './ui/LessonRunner.js' ) ).mountLessonRunner( container ), { title: 'Glasshead: lessons' } );
+router.register( '/practice', async ( container ) => ( await import( './ui/ChildPractice.js' ) ).mountChildPractice( container ), { title: 'Glasshead: practise' } );
 
 registerDebug( 'route', () => router.currentPath );
 registerDebug( 'routes', () => router.paths );

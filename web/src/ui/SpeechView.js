@@ -25,11 +25,18 @@ const VOICED = 0.5;
 
 export class SpeechView {
 
-	/** @param {{ api?: object, audio?: HTMLAudioElement }} options */
-	constructor( { api = pageApi, audio = null } = {} ) {
+	/**
+	 * @param {{ api?: object, audio?: HTMLAudioElement, sayOnLoad?: boolean }} options
+	 *   `sayOnLoad`: say the example in the box once the head has loaded (the lesson runner and
+	 *   the child's practice say their own targets instead); `ready` resolves then, true when loaded
+	 */
+	constructor( { api = pageApi, audio = null, sayOnLoad = true } = {} ) {
 
 		this.api = api;
-		this.state = { loaded: false, error: null, skin: false, cutaway: true, hold: null };
+		this.sayOnLoad = sayOnLoad;
+		this.ready = new Promise( ( resolve ) => ( this.resolveReady = resolve ) );
+		/** Skin transparency when the skin is see-through, percent (a lesson item sets its own). */
+		this.state = { loaded: false, error: null, skin: false, transparency: 70, cutaway: true, hold: null };
 		this.utterance = null;
 		this.unregister = [];
 		this.audio = audio ?? Object.assign( document.createElement( 'audio' ), { preload: 'auto' } );
@@ -131,7 +138,7 @@ export class SpeechView {
 
 		if ( ! this.viewer ) return this.articulation.dispose();
 		this.unregister.push( () => this.articulation.dispose() );
-		await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } );
+		this.epg = await ( await import( './HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } );
 		if ( ! this.viewer ) return;
 		this.panels = new SpeechPanels( { head: this.head, viewer: this.viewer, articulation: this.articulation, landmarks: this.landmarks } );
 		this.unregister.push( () => this.panels.dispose() );
@@ -143,7 +150,8 @@ export class SpeechView {
 		this.state.loaded = true;
 		this.form.setBusy( false );
 		this.form.showStatus( '' );
-		this.form.submit(); // the example in the box, ready to play
+		if ( this.sayOnLoad ) this.form.submit(); // the example in the box, ready to play
+		this.resolveReady( true );
 
 	}
 
@@ -356,7 +364,7 @@ export class SpeechView {
 
 	apply() {
 
-		this.head.setTransparency( this.state.skin ? 70 : 0 );
+		this.head.setTransparency( this.state.skin ? this.state.transparency : 0 );
 		this.head.setCutaway( this.state.cutaway );
 		for ( const [ key, button ] of this.viewButtons ) button.setAttribute( 'aria-pressed', String( this.state[ key ] ) );
 		this.viewer.requestRender();
@@ -366,6 +374,7 @@ export class SpeechView {
 	fail( message ) {
 
 		this.state.error = message;
+		this.resolveReady( false );
 		this.form.showStatus( '' );
 		this.form.showError( message );
 		console.error( `Glasshead: ${ message }` );
@@ -374,6 +383,7 @@ export class SpeechView {
 
 	unmount() {
 
+		this.resolveReady( false );
 		this.clock.pause();
 		this.audio.removeAttribute( 'src' );
 		for ( const unregister of this.unregister ) unregister();

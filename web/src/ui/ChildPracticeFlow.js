@@ -1,0 +1,92 @@
+// The child's practice as plain data: a class code as the server takes it, and a round through a
+// lesson's items, one target at a time, counting how often the child heard the target again and
+// making the practice record (POST /practice) of each try. No DOM: ChildPractice.js shows it and
+// tests/js/childPractice.test.js reads it.
+
+/** The characters of a join code (docs/lessons.md): no 0/O, 1/I/L, 2/Z, 5/S, 8/B. */
+export const JOIN_CODE_PATTERN = /^[34679ACDEFGHJKMNPQRTUVWXY]{6}$/;
+
+/** What was typed as a class code, as the server compares it: capitals, no spaces or dashes. */
+export function normaliseJoinCode( typed ) {
+
+	return String( typed ?? '' ).toUpperCase().replace( /[\s-]+/g, '' );
+
+}
+
+/** Whether `code` (normalised) can be a class code, so the page asks the server only then. */
+export function looksLikeJoinCode( code ) {
+
+	return JOIN_CODE_PATTERN.test( code );
+
+}
+
+/** The screen of the practice: who signed in, and what there is to do. */
+export function practiceScreen( { session, roster, lessons, round } ) {
+
+	if ( session?.kind !== 'child' ) return roster ? 'roster' : 'code';
+	if ( round ) return round.done ? 'done' : 'practice';
+	return lessons && lessons.length === 1 ? 'practice' : 'lessons';
+
+}
+
+/** One pass through a lesson's items for one child. */
+export class PracticeRound {
+
+	/**
+	 * @param {{ id: number, items: Array<object> }} lesson the lesson with its items
+	 * @param {{ id: number }} child the signed-in child
+	 */
+	constructor( lesson, child ) {
+
+		if ( ! Array.isArray( lesson?.items ) || lesson.items.length === 0 ) throw new TypeError( 'a practice round needs a lesson with items' );
+		this.lesson = lesson;
+		this.child = child;
+		this.index = 0;
+		this.replays = 0;
+		this.records = [];
+
+	}
+
+	/** The item being practised, or null when the round is done. */
+	get item() {
+
+		return this.lesson.items[ this.index ] ?? null;
+
+	}
+
+	get done() {
+
+		return this.index >= this.lesson.items.length;
+
+	}
+
+	/** The target was played again (the replay button). */
+	replayed() {
+
+		this.replays += 1;
+
+	}
+
+	/**
+	 * The POST /practice body of the try at the current item: its replays, and the child's rating
+	 * (RATINGS: 1 not yet, 2 nearly, 3 got it) when the child chose a face.
+	 */
+	record( rating = null ) {
+
+		const body = { child_id: this.child.id, lesson_id: this.lesson.id, item_index: this.index, replays: this.replays };
+		if ( rating !== null ) Object.assign( body, { rating, rated_by: 'child' } );
+		return body;
+
+	}
+
+	/** The try was recorded as `saved` (the server's answer): on to the next target. */
+	next( saved ) {
+
+		this.records.push( saved );
+		this.index += 1;
+		this.replays = 0;
+		return this.item;
+
+	}
+
+}
