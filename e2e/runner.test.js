@@ -1,0 +1,151 @@
+// End-to-end, in Debian's Chromium at a projector's 1366 x 768: the teacher's lesson runner
+// (#/teach) on the starter lessons. Each item sets up the head as the lesson says (the /s/ lesson:
+// skin see-through, labels and the EPG card, its sounds held; the nasals: the cutaway and the 2D
+// diagram), the arrow keys move between items and the address follows, Space plays, S slows to a
+// quarter, F shows the head alone (no panel, toolbar or navigation bar) with the target in big
+// letters, and Esc comes back. Read from window.glasshead; e2e/screenshots/runner-1366x768.png
+// and runner-present-1366x768.png are for a person to look at.
+
+import assert from 'node:assert/strict';
+import { after, before, describe, test } from 'node:test';
+import { apiSession, authHeaders, signIn } from './accounts.js';
+import { launchBrowser, openPage, readDebug, saveScreenshot, startServer } from './harness.js';
+
+const SIZE = Object.freeze( { width: 1366, height: 768 } );
+
+describe( 'the lesson runner', { timeout: 600_000 }, () => {
+
+	let server, browser, page, lessons;
+
+	const runner = async () => ( await readDebug( page ) ).runner;
+	const visible = ( selector ) => page.locator( selector ).first().isVisible();
+	/** Wait until item `item` of lesson `lesson` is set up on the head. */
+	const ready = ( lesson, item ) => page.waitForFunction( ( [ l, i ] ) => {
+
+		const r = window.glasshead.runner;
+		return ( r?.lesson === l && r.item === i && r.ready === true ) || Boolean( window.glasshead.error );
+
+	}, [ lesson, item ], { timeout: 180_000, polling: 200 } );
+
+	before( async () => {
+
+		server = await startServer();
+		browser = await launchBrowser();
+		const teacher = await apiSession( server, 'teacher' );
+		lessons = ( await ( await fetch( `${ server.baseUrl }/api/v1/lessons`, { headers: authHeaders( teacher ) } ) ).json() ).lessons;
+		page = await openPage( browser, SIZE );
+		await signIn( page, server, 'teacher' );
+
+	} );
+
+	after( async () => {
+
+		await browser?.close();
+		await server?.stop();
+
+	} );
+
+	test( 'the list links every lesson the teacher may read to its first item', async () => {
+
+		await page.goto( `${ server.baseUrl }/#/teach` );
+		const list = page.getByRole( 'list', { name: 'Lessons' } );
+		await list.getByRole( 'link' ).first().waitFor( { timeout: 60_000 } );
+		const hrefs = await list.getByRole( 'link' ).evaluateAll( ( links ) => links.map( ( link ) => link.getAttribute( 'href' ) ) );
+		assert.ok( lessons.length >= 5, `${ lessons.length } starter lessons` );
+		assert.deepEqual( hrefs, lessons.map( ( lesson ) => `#/teach?lesson=${ lesson.id }&item=0` ) );
+
+	} );
+
+	test( 'an item of the /s/ lesson shows the skin see-through, the labels and the EPG card, and holds its sound', async () => {
+
+		const lesson = lessons.find( ( l ) => l.title === '/s/ and /ʃ/' );
+		await page.getByRole( 'link', { name: /^\/s\/ and \/ʃ\// } ).click();
+		await ready( lesson.id, 0 );
+		const state = await readDebug( page );
+		assert.equal( state.error ?? null, null );
+		assert.deepEqual( [ state.runner.target, state.runner.settings.transparency, state.runner.settings.hold ], [ '/s/', 80, true ] );
+		assert.equal( state.speech.hold, 'S', 'the target of /s/ is held' );
+		assert.equal( state.labels.visible, true );
+		assert.ok( await visible( '.epg-overlay' ), 'the EPG card is shown' );
+		assert.ok( state.epg.contacted > 0, `the held /s/ touches the palate: ${ state.epg.rows.join( ' ' ) }` );
+		assert.equal( await page.locator( '.lr-dot[aria-current="step"]' ).getAttribute( 'aria-label' ), 'Item 1: /s/' );
+		await saveScreenshot( page, 'runner-1366x768' );
+
+	} );
+
+	test( 'the arrow keys move between items and the address follows; the first and last items stay put', async () => {
+
+		const { lesson, items } = await runner();
+		await page.locator( 'body' ).press( 'ArrowRight' );
+		await ready( lesson, 1 );
+		assert.equal( ( await runner() ).target, '/ʃ/' );
+		assert.equal( await page.evaluate( () => location.hash ), `#/teach?lesson=${ lesson }&item=1` );
+		await page.keyboard.press( 'ArrowLeft' );
+		await ready( lesson, 0 );
+		await page.keyboard.press( 'ArrowLeft' );
+		await page.waitForTimeout( 300 );
+		assert.equal( ( await runner() ).item, 0 );
+		await page.goto( `${ server.baseUrl }/#/teach?lesson=${ lesson }&item=${ items - 1 }` );
+		await ready( lesson, items - 1 );
+		await page.keyboard.press( 'ArrowRight' );
+		await page.waitForTimeout( 300 );
+		assert.equal( ( await runner() ).item, items - 1 );
+
+	} );
+
+	test( 'a word is spoken at the lesson\'s half speed; S slows it to a quarter and back, and Space plays and pauses', async () => {
+
+		const { lesson } = await runner();
+		await page.goto( `${ server.baseUrl }/#/teach?lesson=${ lesson }&item=2` );
+		await ready( lesson, 2 );
+		let state = await readDebug( page );
+		assert.deepEqual( [ state.runner.target, state.runner.settings.hold, state.speech.speed, state.speech.hold ], [ 'sip', false, 0.5, null ] );
+		await page.keyboard.press( 's' );
+		state = await readDebug( page );
+		assert.deepEqual( [ state.runner.slow, state.speech.speed ], [ true, 0.25 ] );
+		assert.equal( await page.getByRole( 'button', { name: 'Slow (S)' } ).getAttribute( 'aria-pressed' ), 'true' );
+		await page.keyboard.press( ' ' );
+		await page.waitForFunction( () => window.glasshead.speech.playing === true && window.glasshead.speech.time > 0, null, { timeout: 30_000 } );
+		await page.keyboard.press( ' ' );
+		await page.waitForFunction( () => window.glasshead.speech.playing === false, null, { timeout: 30_000 } );
+		await page.keyboard.press( 'S' );
+		assert.equal( ( await readDebug( page ) ).speech.speed, 0.5 );
+
+	} );
+
+	test( 'F shows the head alone with the target in big letters and the item dots; Esc comes back', async () => {
+
+		await page.keyboard.press( 'f' );
+		await page.waitForFunction( () => window.glasshead.runner.presenting === true, null, { timeout: 10_000 } );
+		await page.waitForTimeout( 500 ); // the new size is drawn in the next frames
+		for ( const selector of [ '.nav-bar', '.lr-panel', '.lr-toolbar', '.sp-bottom' ] ) assert.equal( await visible( selector ), false, `${ selector } is hidden` );
+		const viewport = page.viewportSize();
+		const stage = await page.locator( '.sp-stage' ).boundingBox();
+		assert.ok( stage.width >= viewport.width - 1 && stage.height >= 0.9 * viewport.height, `the head is ${ stage.width } x ${ stage.height } of ${ viewport.width } x ${ viewport.height }` );
+		const fontPx = await page.locator( '.lr-target-text' ).evaluate( ( element ) => parseFloat( getComputedStyle( element ).fontSize ) );
+		assert.ok( fontPx >= 72, `the target is ${ fontPx } px` );
+		assert.ok( await visible( '.lr-dots' ), 'the item dots stay' );
+		await saveScreenshot( page, 'runner-present-1366x768' );
+		// Esc leaves full screen (when the browser gave it) and so presentation mode.
+		await page.keyboard.press( 'Escape' );
+		await page.waitForTimeout( 300 );
+		if ( ( await runner() ).presenting ) await page.keyboard.press( 'Escape' );
+		await page.waitForFunction( () => window.glasshead.runner.presenting === false, null, { timeout: 10_000 } );
+		assert.ok( await visible( '.lr-panel' ) && await visible( '.nav-bar' ) );
+
+	} );
+
+	test( 'an item of the nasals lesson shows the cutaway and the 2D diagram, and no EPG card', async () => {
+
+		const lesson = lessons.find( ( l ) => l.title === 'Nasals and their oral pairs' );
+		await page.goto( `${ server.baseUrl }/#/teach?lesson=${ lesson.id }&item=0` );
+		await ready( lesson.id, 0 );
+		const { runner: state } = await readDebug( page );
+		assert.deepEqual( [ state.target, state.settings.cutaway, state.settings.diagram, state.settings.epg ], [ '/m/', true, true, false ] );
+		assert.ok( await visible( '.sp-diagram-section' ), 'the diagram is shown' );
+		assert.equal( await visible( '.epg-overlay' ), false, 'the EPG card is hidden' );
+		assert.deepEqual( page.problems, [] );
+
+	} );
+
+} );
