@@ -23,9 +23,10 @@ from pydantic import BaseModel
 from sqlalchemy import delete, or_, select
 from sqlalchemy.orm import Session
 
-from glasshead.api.auth import FORBIDDEN, UNAUTHENTICATED, AdminUser, require_role
+from glasshead.api.auth import FORBIDDEN, UNAUTHENTICATED, AdminUser, Person, require_role
 from glasshead.api.etags import PRECONDITION, check_if_match, etag
 from glasshead.api.lookups import RecordId
+from glasshead.api.ownership import child_of
 from glasshead.api.people import ChildOut
 from glasshead.api.records import IfMatch
 from glasshead.epg.sequence import rows_to_strings
@@ -84,21 +85,6 @@ class DeletedCounts(BaseModel):
     idempotency_keys: int
 
 
-def owns_class(user: User, school_class: SchoolClass) -> bool:
-    """Whether ``user`` may see ``school_class``'s children: an admin, or its owner."""
-    if user.role == "admin":
-        return True
-    return school_class.owner_id is not None and school_class.owner_id == user.id
-
-
-def followed_child(session: Session, child_id: int, user: User) -> Child:
-    """The child ``child_id`` when ``user`` may follow them; 404 otherwise (theirs or absent)."""
-    child = session.get(Child, child_id)
-    if child is None or not owns_class(user, session.get(SchoolClass, child.class_id)):
-        raise HTTPException(status_code=404, detail=f"no child with id {child_id}")
-    return child
-
-
 def _cell(value) -> str:
     text = "" if value is None else str(value)
     return "'" + text if text.startswith(FORMULA_STARTS) else text
@@ -137,7 +123,7 @@ def practice_rows(session: Session, child: Child) -> list[list[str]]:
 def export_child_practice(child_id: RecordId, session: SessionDep, user: Follower) -> Response:
     """The child's practice history as CSV (UTF-8, a header row, oldest first): the item's
     target, when, replays and rating, for a spreadsheet or a report."""
-    child = followed_child(session, child_id, user)
+    child = child_of(session, Person(user=user), child_id)
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\r\n")
     writer.writerow(CSV_COLUMNS)
