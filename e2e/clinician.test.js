@@ -9,7 +9,8 @@
 import assert from 'node:assert/strict';
 import { join, resolve } from 'node:path';
 import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openLoaded, readDebug, REPO, SCREENSHOT_DIR, settle, startServer } from './harness.js';
+import { apiSession, authHeaders, openSignedIn } from './accounts.js';
+import { launchBrowser, readDebug, REPO, SCREENSHOT_DIR, settle, startServer } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const EMUR = join( DATA_DIR, 'epg', 'emur-engassim.json' );
@@ -21,12 +22,13 @@ const LONG_NAME = `velar closure with the lips rounded and the velum lowered, ${
 
 describe( 'the clinician view', { timeout: 300_000 }, () => {
 
-	let server, browser, page, pose, sliders, recordingIds;
+	let server, browser, page, pose, sliders, recordingIds, session;
 
+	/** A request of the test itself, made as the clinician. */
 	const api = async ( method, path, body ) => {
 
 		const response = await fetch( `${ server.baseUrl }/api/v1${ path }`, {
-			method, headers: body ? { 'Content-Type': 'application/json' } : {}, body: body ? JSON.stringify( body ) : undefined,
+			method, headers: authHeaders( session, body ? { 'Content-Type': 'application/json' } : {} ), body: body ? JSON.stringify( body ) : undefined,
 		} );
 		const text = await response.text();
 		return { status: response.status, body: text ? JSON.parse( text ) : null };
@@ -47,7 +49,9 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
+		// A clinician saves the pose and reads the recordings.
+		page = await openSignedIn( browser, server, 'clinician', `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
+		session = await apiSession( server, 'clinician' );
 
 	} );
 

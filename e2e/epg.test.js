@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { after, before, describe, test } from 'node:test';
+import { apiSession, authHeaders, signIn } from './accounts.js';
 import { launchBrowser, openPage, readDebug, REPO, SCREENSHOT_DIR, startServer, waitForLoaded } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
@@ -24,10 +25,12 @@ describe( 'synthetic EPG and the clinician view', { timeout: 300_000 }, () => {
 	before( async () => {
 
 		server = await startServer();
+		// Recordings and saved poses are a clinician's: the test's requests and the page are one's.
+		const session = await apiSession( server, 'clinician' );
 		api = async ( method, path, body ) => {
 
 			const response = await fetch( `${ server.baseUrl }/api/v1${ path }`, {
-				method, headers: body ? { 'Content-Type': 'application/json' } : {}, body: body ? JSON.stringify( body ) : undefined,
+				method, headers: authHeaders( session, body ? { 'Content-Type': 'application/json' } : {} ), body: body ? JSON.stringify( body ) : undefined,
 			} );
 			const text = await response.text();
 			return { status: response.status, body: text ? JSON.parse( text ) : null };
@@ -49,6 +52,7 @@ describe( 'synthetic EPG and the clinician view', { timeout: 300_000 }, () => {
 
 		browser = await launchBrowser();
 		page = await openPage( browser, { width: 1400, height: 1020 } );
+		await signIn( page, server, 'clinician' );
 
 	} );
 

@@ -5,6 +5,7 @@
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
+import { openSignedIn } from './accounts.js';
 import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
 
 const VIEWS = [
@@ -25,7 +26,8 @@ describe( 'finding one\'s way', { timeout: 1_200_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openLoaded( browser, `${ server.baseUrl }/#/`, { width: 1366, height: 768 } );
+		// A clinician: the clinician view and saving poses need one signed in.
+		page = await openSignedIn( browser, server, 'clinician', `${ server.baseUrl }/#/`, { width: 1366, height: 768 } );
 
 	} );
 
@@ -47,10 +49,10 @@ describe( 'finding one\'s way', { timeout: 1_200_000 }, () => {
 
 	}
 
-	/** The nav's links as { label, href, current, height, width }, in order. */
+	/** The nav's links to views as { label, href, current, height, width }, in order. */
 	function readNav( target ) {
 
-		return target.evaluate( () => [ ...document.querySelectorAll( 'nav[aria-label="Views"] a' ) ].map( ( link ) => {
+		return target.evaluate( () => [ ...document.querySelectorAll( 'nav[aria-label="Views"] .nav-list a' ) ].map( ( link ) => {
 
 			const box = link.getBoundingClientRect();
 			return { label: link.textContent, href: link.getAttribute( 'href' ), current: link.getAttribute( 'aria-current' ), height: box.height, width: box.width };

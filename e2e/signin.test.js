@@ -6,7 +6,8 @@
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { account, apiSession, signIn } from './accounts.js';
-import { launchBrowser, openPage, saveScreenshot, startServer } from './harness.js';
+import { axeViolations } from './axe.js';
+import { launchBrowser, openLoaded, openPage, readDebug, saveScreenshot, startServer, waitForLoaded } from './harness.js';
 
 /** Smallest touch target, CSS pixels. */
 const TOUCH_PX = 44;
@@ -70,6 +71,7 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 
 			}
 
+			assert.deepEqual( await axeViolations( page ), [], `the sign-in view at ${ size.join( 'x' ) }` );
 			await saveScreenshot( page, `signin-form-${ size.join( 'x' ) }` );
 			await page.keyboard.type( teacher.username );
 			await page.keyboard.press( 'Tab' );
@@ -84,6 +86,11 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 			assert.equal( me.status, 200, 'the stored token is good on the server' );
 			const who = nav( page ).getByText( 'E2E Teacher (teacher)' );
 			await who.waitFor( { timeout: 10_000 } );
+			assert.deepEqual( await axeViolations( page, { include: 'nav' } ), [], `the bar signed in at ${ size.join( 'x' ) }` );
+			const signOut = await nav( page ).getByRole( 'button', { name: 'Sign out' } ).boundingBox();
+			assert.ok( signOut.height >= TOUCH_PX && signOut.width >= TOUCH_PX, `Sign out is ${ signOut.width } x ${ signOut.height } px` );
+			const bar = await nav( page ).boundingBox();
+			assert.ok( bar.height <= 60, `the bar signed in is ${ bar.height } px tall at ${ size.join( 'x' ) }: one row` );
 			await saveScreenshot( page, `signin-nav-${ size.join( 'x' ) }` );
 			assert.deepEqual( page.problems, [] );
 			await page.context().close();
@@ -104,6 +111,7 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 		assert.equal( await alert.textContent(), 'That username and password do not match. Check them and try again.' );
 		assert.equal( await storedSession( page ), null );
 		assert.equal( await page.evaluate( () => window.glasshead.route ), '/signin', 'still on the sign-in view' );
+		assert.deepEqual( await axeViolations( page ), [], 'the sign-in view with its message' );
 		await saveScreenshot( page, 'signin-wrong-password' );
 		// The browser logs the refused request itself; nothing else may go wrong.
 		assert.deepEqual( page.problems.filter( ( problem ) => ! problem.includes( '401' ) ), [] );
@@ -139,6 +147,79 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 		const view = page.locator( '.signin-view' );
 		assert.match( await view.getByRole( 'status' ).textContent(), /You are signed in as E2E Teacher \(teacher\)\./ );
 		assert.equal( await view.getByRole( 'link', { name: 'Continue' } ).getAttribute( 'href' ), '#/speak' );
+		assert.deepEqual( page.problems, [] );
+		await page.context().close();
+
+	} );
+
+	test( 'signed out, the clinician view asks to sign in and comes back after; a teacher is told whose view it is', async () => {
+
+		const page = await openPage( browser, { width: 1366, height: 768 } );
+		await page.goto( `${ server.baseUrl }/#/clinician` );
+		await page.waitForFunction( () => window.glasshead?.clinician?.signIn === 'needed', null, { timeout: 30_000 } );
+		const prompt = page.locator( '#app .signin-prompt' );
+		assert.equal( await prompt.textContent(), 'Please sign in as a clinician to read EPG recordings.Sign in' );
+		assert.equal( await page.locator( '#app [role="alert"]' ).count(), 0, 'no error shown' );
+		assert.deepEqual( await axeViolations( page ), [], 'the clinician view signed out' );
+		await saveScreenshot( page, 'signin-clinician-prompt' );
+		await prompt.getByRole( 'link', { name: 'Sign in' } ).click();
+		await page.waitForFunction( () => window.glasshead?.signIn?.ready === true, null, { timeout: 30_000 } );
+		assert.equal( await page.evaluate( () => window.glasshead.signIn.next ), '#/clinician' );
+
+		const teacher = await account( server, 'teacher' );
+		await page.getByLabel( 'Username' ).fill( teacher.username );
+		await page.getByLabel( 'Password' ).fill( teacher.password );
+		await page.getByRole( 'button', { name: 'Sign in' } ).click();
+		await page.waitForFunction( () => window.glasshead?.clinician?.signIn === 'role', null, { timeout: 30_000 } );
+		assert.match( await page.locator( '#app .signin-prompt' ).textContent(), /^The clinician view is for clinicians and admins\. You are signed in as E2E Teacher \(teacher\)\./ );
+
+		// Signing in as a clinician from there shows the view itself.
+		await nav( page ).getByRole( 'button', { name: 'Sign out' } ).click();
+		await page.waitForFunction( () => window.glasshead?.clinician?.signIn === 'needed', null, { timeout: 30_000 } );
+		await signIn( page, server, 'clinician' );
+		await page.waitForFunction( () => window.glasshead?.clinician?.loaded === true, null, { timeout: 90_000, polling: 200 } );
+		assert.equal( ( await readDebug( page ) ).clinician.error, null );
+		assert.deepEqual( page.problems, [] );
+		await page.context().close();
+
+	} );
+
+	test( 'a token the server refuses (401) turns the clinician view into "Please sign in" and is forgotten', async () => {
+
+		const page = await openPage( browser, { width: 1366, height: 768 } );
+		await signIn( page, server, 'clinician' );
+		// The server answers as it does for an expired or revoked token.
+		await page.route( '**/api/v1/epg/recordings?limit=1000', ( route ) => route.fulfill( {
+			status: 401, contentType: 'application/json', headers: { 'WWW-Authenticate': 'Bearer' },
+			body: JSON.stringify( { detail: 'the token is missing, unknown, expired or revoked' } ),
+		} ) );
+		await page.goto( `${ server.baseUrl }/#/clinician?recording=3` );
+		await page.waitForFunction( () => window.glasshead?.clinician?.signIn === 'needed', null, { timeout: 60_000 } );
+		const prompt = page.locator( '#app .signin-prompt' );
+		assert.equal( await prompt.count(), 1, 'one prompt, in place of the view' );
+		assert.match( await prompt.textContent(), /^Please sign in as a clinician to read EPG recordings\./ );
+		assert.equal( await storedSession( page ), null, 'the session is forgotten' );
+		assert.equal( await prompt.getByRole( 'link', { name: 'Sign in' } ).getAttribute( 'href' ), `#/signin?next=${ encodeURIComponent( '#/clinician?recording=3' ) }` );
+		await nav( page ).getByRole( 'link', { name: 'Sign in' } ).waitFor( { timeout: 10_000 } );
+		assert.deepEqual( page.problems.filter( ( problem ) => ! problem.includes( '401' ) ), [] );
+		await page.context().close();
+
+	} );
+
+	test( 'signed out, the workbench offers signing in instead of Save, and the head lists phoneme targets but no saved poses', async () => {
+
+		const page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
+		assert.equal( ( await readDebug( page ) ).workbench.poseSaving, 'signIn' );
+		assert.equal( await page.getByRole( 'button', { name: 'Save pose' } ).isVisible(), false );
+		const prompt = page.locator( '.wb-pose .signin-prompt' );
+		assert.equal( await prompt.textContent(), 'Please sign in to save poses.Sign in' );
+		await saveScreenshot( page, 'signin-workbench-signed-out' );
+
+		await page.goto( `${ server.baseUrl }/#/` );
+		await waitForLoaded( page );
+		await page.waitForFunction( () => document.querySelector( '#head-target option[value="phoneme:T"]' ) !== null, null, { timeout: 30_000 } );
+		const groups = await page.locator( '#head-target optgroup' ).evaluateAll( ( nodes ) => nodes.map( ( node ) => node.label ) );
+		assert.deepEqual( groups, [ 'Phoneme targets' ] );
 		assert.deepEqual( page.problems, [] );
 		await page.context().close();
 

@@ -10,7 +10,8 @@
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { join, resolve } from 'node:path';
-import { launchBrowser, openLoaded, openPage, readDebug, REPO, saveScreenshot, settle, startServer } from './harness.js';
+import { openSignedIn, signIn } from './accounts.js';
+import { launchBrowser, openPage, readDebug, REPO, saveScreenshot, settle, startServer } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 /** Recordings for the clinician view, imported through its file input (the first time only). */
@@ -82,6 +83,7 @@ describe( 'every view on a tablet', { timeout: 900_000 }, () => {
 
 			// The clinician view has no 3D head to wait for: it has loaded when its lists have.
 			const page = await openPage( browser, size );
+			await signIn( page, server, 'clinician' );
 			await page.goto( `${ server.baseUrl }/${ view.hash }` );
 			await page.waitForFunction( () => window.glasshead.clinician?.loaded === true, null, { timeout: 90_000, polling: 200 } );
 			if ( ! imported ) {
@@ -101,7 +103,8 @@ describe( 'every view on a tablet', { timeout: 900_000 }, () => {
 
 		}
 
-		const page = await openLoaded( browser, `${ server.baseUrl }/${ view.hash }`, size );
+		// Signed in as a clinician, as the clinician view needs: the workbench offers saving.
+		const page = await openSignedIn( browser, server, 'clinician', `${ server.baseUrl }/${ view.hash }`, size );
 		if ( view.name === 'speak' ) await page.waitForFunction( () => window.glasshead.speech?.id && ! window.glasshead.speech.busy, null, { timeout: 60_000 } );
 		await settle( page );
 		return page;

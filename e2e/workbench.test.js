@@ -5,7 +5,8 @@
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { compareImages, decodePng } from './png.js';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { authHeaders, openSignedIn } from './accounts.js';
+import { launchBrowser, readDebug, saveScreenshot, settle, startServer } from './harness.js';
 
 /** Poses of the screenshots (rig parameter names, mm and degrees). */
 const POSES = Object.freeze( {
@@ -18,7 +19,7 @@ const POSES = Object.freeze( {
 
 describe( 'the workbench', { timeout: 300_000 }, () => {
 
-	let server, browser, page, rig;
+	let server, browser, page, rig, author;
 
 	before( async () => {
 
@@ -27,7 +28,9 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		assert.equal( response.status, 200, `GET /api/v1/tongue/rig answered ${ response.status }` );
 		rig = await response.json();
 		browser = await launchBrowser();
-		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench` );
+		// Saving poses needs an author (or a clinician or admin) signed in.
+		page = await openSignedIn( browser, server, 'author', `${ server.baseUrl }/#/workbench` );
+		author = JSON.parse( await page.evaluate( () => window.localStorage.getItem( 'glasshead.session' ) ) );
 
 	} );
 
@@ -241,7 +244,7 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 10_000 } );
 		let state = await readDebug( page );
 		assert.deepEqual( state.workbench.poseStatus, { ok: true, message: `Saved the pose "${ name }".` } );
-		const saved = await ( await fetch( `${ server.baseUrl }/api/v1/poses?name=${ encodeURIComponent( name ) }` ) ).json();
+		const saved = await ( await fetch( `${ server.baseUrl }/api/v1/poses?name=${ encodeURIComponent( name ) }`, { headers: authHeaders( author ) } ) ).json();
 		assert.equal( saved.total, 1 );
 		assert.equal( saved.poses[ 0 ].params.tip_height, state.params.tip_height );
 

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { SESSION_KEY, currentSession } from '../../web/src/session.js';
 import { ApiError } from '../../web/src/api.js';
 import {
-	hasRole, isForbidden, isSignedOut, nextFromHash, retryAfterSeconds, safeNext, signIn, signInHref,
+	hasRole, isForbidden, isSignedOut, nextFromHash, retryAfterSeconds, rolesWords, safeNext, signIn, signInHref,
 	signInMessage, signOut, waitWords, whoLabel,
 } from '../../web/src/ui/signIn.js';
 
@@ -111,6 +111,9 @@ test( 'roles are checked on adults only, and the bar names the person and their 
 	assert.equal( whoLabel( session ), 'Ann Reed (clinician)' );
 	assert.equal( whoLabel( { kind: 'child', token: 't', child: { id: 1, display_name: 'Fox' } } ), 'Fox' );
 	assert.equal( whoLabel( null ), null );
+	assert.equal( rolesWords( [ 'clinician', 'admin' ] ), 'clinicians and admins' );
+	assert.equal( rolesWords( [ 'author', 'clinician', 'admin' ] ), 'authors, clinicians and admins' );
+	assert.equal( rolesWords( [ 'admin' ] ), 'admins' );
 
 } );
 

@@ -5,8 +5,13 @@
 //
 // The URL holds the selection (#/clinician?recording=12&target=pose:3&frame=40, clinicianUrl.js),
 // restored on load; a bad value there is said in words. Recordings can be imported by choosing or
-// dropping a file (clinicianImport.js). Playback starts at a tenth of real time. Keys: left and
-// right arrows step, Home and End jump, space plays and pauses.
+// dropping a file (clinicianImport.js), from a child of the clinician's caseload or as a reference.
+// Playback starts at a tenth of real time. Keys: left and right arrows step, Home and End jump,
+// space plays and pauses.
+//
+// Recordings are a clinician's (or an admin's): signed out, or signed in with another role, the
+// view is a sign-in prompt (SignInPrompt.js); a token the server stops taking (401) turns the
+// view into that prompt too.
 
 import { api as pageApi } from '../api.js';
 import { registerDebug } from '../debug.js';
@@ -19,7 +24,12 @@ import { missingChoiceMessage, SelectionUrl } from './clinicianUrl.js';
 import { renderClinician } from './clinicianRender.js';
 import { PlaybackClock } from './playbackClock.js';
 import { TargetPalate3D } from './TargetPalate3D.js';
+import { mountForRoles, signedOutPrompt } from './SignInPrompt.js';
 import './epg.css';
+import './signin.css';
+
+/** Who may use the view: the roles that read EPG recordings. */
+export const CLINICIAN_ROLES = Object.freeze( [ 'clinician', 'admin' ] );
 
 export class ClinicianView {
 
@@ -55,7 +65,7 @@ export class ClinicianView {
 			lastFrame: () => this.setFrame( this.frameCount() - 1 ),
 			togglePlay: () => this.togglePlay(),
 		};
-		this.importer = new RecordingImport( { onImported: ( body ) => this.imported( body ) } );
+		this.importer = new RecordingImport( { onImported: ( body ) => this.imported( body ), onError: ( error ) => this.failWith( error, { quiet: true } ) } );
 		Object.assign( this, clinicianLayout( actions, { importBox: this.importer.element } ) );
 		container.append( this.root );
 
@@ -97,7 +107,25 @@ export class ClinicianView {
 
 		} catch ( error ) {
 
-			this.fail( error.message );
+			this.failWith( error );
+
+		}
+
+		await this.loadChildren();
+
+	}
+
+	/** The children the import box offers (the caseload, GET /children); without them, reference only. */
+	async loadChildren() {
+
+		try {
+
+			const body = await this.api.get( 'children?limit=1000' );
+			this.importer.setChildren( body.children );
+
+		} catch ( error ) {
+
+			if ( ! this.failWith( error, { quiet: true } ) ) console.warn( `Glasshead: the import box lists no children: ${ error.message }` );
 
 		}
 
@@ -179,7 +207,7 @@ export class ClinicianView {
 
 			} catch ( error ) {
 
-				return this.fail( error.message );
+				return this.failWith( error );
 
 			}
 
@@ -224,7 +252,7 @@ export class ClinicianView {
 
 			} catch ( error ) {
 
-				return this.fail( error.message );
+				return this.failWith( error );
 
 			}
 
@@ -364,6 +392,28 @@ export class ClinicianView {
 
 	}
 
+	/**
+	 * Show `error`: a 401 (the token is gone) turns the view into "Please sign in" and returns
+	 * true; anything else is the view's error, unless `quiet`, and returns false.
+	 */
+	failWith( error, { quiet = false } = {} ) {
+
+		const prompt = signedOutPrompt( error, { reason: 'to read EPG recordings', win: this.window, className: 'signin-page' } );
+		if ( prompt ) {
+
+			this.pause();
+			this.loadVersion ++;
+			this.state.error = 'Please sign in';
+			this.root.replaceChildren( prompt );
+			return true;
+
+		}
+
+		if ( ! quiet ) this.fail( error.message );
+		return false;
+
+	}
+
 	hideError() {
 
 		this.state.error = null;
@@ -386,9 +436,12 @@ export class ClinicianView {
 
 }
 
-/** Route entry for the view registry. */
-export function mountClinicianView( container ) {
+/** Route entry for the view registry: the view for clinicians and admins, else a sign-in prompt. */
+export function mountClinicianView( container, { win = globalThis.window } = {} ) {
 
-	return new ClinicianView().mount( container );
+	return mountForRoles( container, {
+		roles: CLINICIAN_ROLES, reason: 'as a clinician to read EPG recordings', title: 'The clinician view', debugName: 'clinician', win,
+		mount: ( box ) => new ClinicianView( { win } ).mount( box ),
+	} );
 
 }

@@ -4,10 +4,25 @@
 //
 // The lists come from the clinician's target sources (targets.js), so a new kind of target shows
 // here as well once it is added there. Parameters of a rig the head has not loaded are left out.
+//
+// Phoneme targets are open to everyone; saved poses are the school's own and are listed only to
+// an adult signed in (sourceShown), the lists made again when someone signs in or out.
 
 import { registerDebug } from '../debug.js';
+import { clearSession, currentSession, onSessionChange } from '../session.js';
 import { h } from './Controls.js';
+import { isSignedOut } from './signIn.js';
 import { PhonemeTargets, SavedPoseTargets } from './targets.js';
+
+/** Kinds of target that only a signed-in adult may list. */
+export const SIGNED_IN_KINDS = Object.freeze( [ 'pose' ] );
+
+/** Whether the chooser lists the source of `kind` to `session` (session.js's, or null). */
+export function sourceShown( kind, session ) {
+
+	return ! SIGNED_IN_KINDS.includes( kind ) || session?.kind === 'user';
+
+}
 
 /** The chooser's value for the rest posture. */
 export const REST = '';
@@ -26,7 +41,7 @@ export class HeadTargets {
 	 * @param {{ articulation: import('../scene/Articulation.js').Articulation, api?: object,
 	 *   sources?: object[], onChange?: Function }} options `sources` as targets.js's
 	 */
-	constructor( { articulation, api, sources = [ new SavedPoseTargets( { api } ), new PhonemeTargets( { api } ) ], onChange = () => {} } ) {
+	constructor( { articulation, api, sources = [ new SavedPoseTargets( { api } ), new PhonemeTargets( { api } ) ], onChange = () => {}, win = globalThis.window } ) {
 
 		this.articulation = articulation;
 		this.sources = sources;
@@ -41,14 +56,24 @@ export class HeadTargets {
 			this.status,
 		);
 		this.unregister = registerDebug( 'headTarget', () => ( { ...this.current } ) );
+		this.window = win;
+		this.stopSession = onSessionChange( () => this.load() );
 
 	}
 
-	/** Fill the chooser; a source that cannot be listed is left out with a word in the status line. */
+	/**
+	 * Fill the chooser (again) with what the signed-in person may see; a source that cannot be
+	 * listed is left out with a word in the status line.
+	 */
 	async load() {
 
+		const loading = this.loading = ( this.loading ?? 0 ) + 1;
+		const session = currentSession( { win: this.window } );
+		const lists = [];
 		const missing = [];
 		for ( const source of this.sources ) {
+
+			if ( ! sourceShown( source.kind, session ) ) continue;
 
 			let entries;
 			try {
@@ -57,6 +82,8 @@ export class HeadTargets {
 
 			} catch ( error ) {
 
+				// A token the server no longer takes: forgotten, and the lists made again without it.
+				if ( isSignedOut( error ) ) return clearSession( { win: this.window } ) ?? this;
 				missing.push( source.title.toLowerCase() );
 				console.warn( `Glasshead: the head view lists no ${ source.title.toLowerCase() }: ${ error.message }` );
 				continue;
@@ -66,10 +93,16 @@ export class HeadTargets {
 			if ( entries.length === 0 ) continue;
 			const group = h( 'optgroup', { label: source.title } );
 			for ( const entry of entries ) group.append( h( 'option', { value: `${ source.kind }:${ entry.id }` }, entry.label ) );
-			this.select.append( group );
+			lists.push( group );
 
 		}
 
+		if ( loading !== this.loading ) return this; // signed in or out meanwhile: a newer list comes
+		const chosen = this.select.value;
+		for ( const group of [ ...this.select.querySelectorAll( 'optgroup' ) ] ) group.remove();
+		this.select.append( ...lists );
+		this.select.value = chosen;
+		if ( this.select.value !== chosen ) this.choose( REST ); // a saved pose shown to someone who signed out
 		this.status.textContent = missing.length ? `Could not list the ${ missing.join( ' or ' ) }.` : '';
 		return this;
 
@@ -120,6 +153,7 @@ export class HeadTargets {
 	dispose() {
 
 		this.unregister();
+		this.stopSession();
 
 	}
 

@@ -2,10 +2,20 @@
 // explained inline and changes nothing), and save the parameters as a named pose
 // (POST /api/v1/poses). What saving says appears right under the Save button and is scrolled
 // into view, in plain words (poseMessages.js), so that a click on Save never seems to do nothing.
+//
+// Saving needs an author, clinician or admin signed in: for anyone else the name and Save give
+// way to a sign-in link (SignInPrompt.js), following the session as it changes; a token the
+// server no longer takes (401) on saving turns into the same link.
 
 import { api as pageApi, ApiError } from '../api.js';
+import { currentSession, onSessionChange } from '../session.js';
 import { h } from './Controls.js';
 import { poseSaveMessage } from './poseMessages.js';
+import { hasRole, isForbidden, rolesWords } from './signIn.js';
+import { signedOutPrompt, signInPrompt } from './SignInPrompt.js';
+
+/** Who may save poses. */
+export const POSE_ROLES = Object.freeze( [ 'author', 'clinician', 'admin' ] );
 
 /**
  * Save `params` as the pose `name` (POST /poses). Resolves to the created pose; rejects with an
@@ -38,9 +48,10 @@ export class PoseBox {
 	 * @param {{ api?: object, clipboard?: { writeText( text: string ): Promise<void> } | null }} options
 	 *   `api`: the HTTP client poses are saved through
 	 */
-	constructor( state, { api = pageApi, clipboard = globalThis.navigator?.clipboard ?? null } = {} ) {
+	constructor( state, { api = pageApi, clipboard = globalThis.navigator?.clipboard ?? null, win = globalThis.window } = {} ) {
 
 		this.state = state;
+		this.window = win;
 		this.api = api;
 		this.clipboard = clipboard;
 		this.pasteError = null;
@@ -58,15 +69,20 @@ export class PoseBox {
 		this.saveButton = h( 'button', { type: 'button', onClick: () => this.save() }, 'Save pose' );
 		this.status = h( 'p', { className: 'status wb-inline', role: 'status', 'aria-live': 'polite' } );
 		this.saveError = h( 'p', { className: 'error wb-inline', role: 'alert', hidden: '' } );
+		this.saveRow = h( 'div', { className: 'wb-buttons' }, this.name, this.saveButton );
+		this.access = h( 'div', { className: 'wb-save-access', hidden: '' } );
 
 		this.element = h( 'section', { className: 'wb-pose', 'aria-label': 'Pose' },
 			h( 'div', { className: 'wb-buttons' }, this.resetButton, this.copyButton, this.pasteButton ),
 			this.text,
 			this.error,
-			h( 'div', { className: 'wb-buttons' }, this.name, this.saveButton ),
+			this.saveRow,
+			this.access,
 			this.status,
 			this.saveError,
 		);
+		this.stopSession = onSessionChange( ( session ) => this.showAccess( session ) );
+		this.showAccess( currentSession( { win } ) );
 
 	}
 
@@ -114,6 +130,21 @@ export class PoseBox {
 
 	}
 
+	/**
+	 * Offer the name and Save to `session` when its role may save poses; else say how to: sign in
+	 * (nobody signed in), or which roles may (someone else signed in). `saving` says which.
+	 */
+	showAccess( session ) {
+
+		this.saving = hasRole( session, POSE_ROLES ) ? 'allowed' : session ? 'role' : 'signIn';
+		this.saveRow.hidden = this.saving !== 'allowed';
+		this.access.hidden = this.saving === 'allowed';
+		if ( this.saving === 'signIn' ) this.access.replaceChildren( signInPrompt( { reason: 'to save poses', win: this.window } ) );
+		else if ( this.saving === 'role' ) this.access.replaceChildren( h( 'p', { className: 'status wb-inline' }, `Only ${ rolesWords( POSE_ROLES ) } can save poses.` ) );
+		else this.access.replaceChildren();
+
+	}
+
 	async save() {
 
 		this.saveButton.disabled = true;
@@ -125,7 +156,10 @@ export class PoseBox {
 
 		} catch ( error ) {
 
-			this.showSave( null, error.message );
+			// A token the server no longer takes: the session is forgotten, and the box offers
+			// signing in again instead of an error.
+			if ( signedOutPrompt( error, { win: this.window } ) ) return;
+			this.showSave( null, isForbidden( error ) ? `Only ${ rolesWords( POSE_ROLES ) } can save poses.` : error.message );
 
 		} finally {
 
@@ -145,6 +179,12 @@ export class PoseBox {
 		// Where the person is looking: the message sits under the button and is brought on screen.
 		const shown = error ? this.saveError : status ? this.status : null;
 		shown?.scrollIntoView?.( { block: 'nearest' } );
+
+	}
+
+	dispose() {
+
+		this.stopSession();
 
 	}
 

@@ -9,9 +9,10 @@
 //   }
 //   box.replaceChildren( signInPrompt( { reason: 'to save poses' } ) );  // nobody signed in
 
-import { clearSession } from '../session.js';
+import { registerDebug } from '../debug.js';
+import { clearSession, currentSession, onSessionChange } from '../session.js';
 import { h } from './Controls.js';
-import { isSignedOut, signInHref } from './signIn.js';
+import { hasRole, isSignedOut, rolesWords, signInHref } from './signIn.js';
 
 /**
  * An element saying "Please sign in <reason>." with a link to `#/signin?next=<here>`; `here` is
@@ -39,5 +40,78 @@ export function signedOutPrompt( error, options = {} ) {
 	if ( ! isSignedOut( error ) ) return null;
 	clearSession( { win: options.win ?? globalThis.window } );
 	return signInPrompt( options );
+
+}
+
+/**
+ * Mount a view that needs an adult of one of `roles` signed in: `mount( container )` when one is,
+ * else a page-sized "Please sign in <reason>" (or, for someone whose role may not, who they are
+ * and a link to sign in as someone else). Follows the session: signing out swaps the view for the
+ * prompt, signing in the prompt for the view. `debugName` names the window.glasshead field that
+ * reports { loaded: false, signIn: 'needed'|'role' } while the prompt shows.
+ * Returns { unmount() } as the router wants.
+ */
+export async function mountForRoles( container, { roles, reason, mount, debugName, win = globalThis.window, title = 'This view' } ) {
+
+	let view = null;
+	let prompt = null;
+	let unregister = null;
+	let showing = null;
+
+	function showPrompt( session ) {
+
+		const role = session?.kind === 'user' ? session.user?.role : null;
+		prompt = role
+			? h( 'div', { className: 'signin-prompt signin-page', role: 'status' },
+				h( 'span', {}, `${ title } is for ${ rolesWords( roles ) }. You are signed in as ${ session.user.display_name || session.user.username } (${ role }).` ),
+				h( 'a', { className: 'signin-link', href: signInHref( win.location.hash ) }, 'Sign in as someone else' ) )
+			: signInPrompt( { reason, win, className: 'signin-page' } );
+		container.append( prompt );
+		unregister = debugName ? registerDebug( debugName, () => ( { loaded: false, signIn: role ? 'role' : 'needed' } ) ) : null;
+
+	}
+
+	function hidePrompt() {
+
+		prompt?.remove();
+		prompt = null;
+		unregister?.();
+		unregister = null;
+
+	}
+
+	async function show( session ) {
+
+		// The view, or the prompt for nobody or for this person: made again only when that changes.
+		const allowed = hasRole( session, roles );
+		const state = allowed ? 'view' : `prompt ${ session?.kind === 'user' ? session.user?.id : '' }`;
+		if ( state === showing ) return;
+		showing = state;
+		hidePrompt();
+		if ( allowed ) {
+
+			view = await mount( container );
+
+		} else {
+
+			view?.unmount?.();
+			view = null;
+			showPrompt( session );
+
+		}
+
+	}
+
+	const stop = onSessionChange( ( session ) => show( session ) );
+	await show( currentSession( { win } ) );
+	return {
+		unmount() {
+
+			stop();
+			view?.unmount?.();
+			hidePrompt();
+
+		},
+	};
 
 }

@@ -18,6 +18,7 @@ import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from '
 import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, sectionStations } from './SectionsPanel.js';
 import './workbench.css';
 import './observation.css';
+import './signin.css';
 import { createHeadStage } from './headStage.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from './loaders.js';
 import { DiagramSection } from '../scene/DiagramSection.js';
@@ -79,7 +80,7 @@ export class WorkbenchView {
 			view: () => this.state.view,
 			workbench: () => ( {
 				skin: this.state.skin, jaw: this.state.jaw, palate: this.state.palate, tongue: this.state.tongue, cutaway: this.state.cutaway, liner: this.state.liner, voxels: this.state.voxels,
-				contacts: this.state.contacts, pasteError: this.poseBox?.pasteError ?? null, poseStatus: this.poseBox?.poseStatus ?? null,
+				contacts: this.state.contacts, pasteError: this.poseBox?.pasteError ?? null, poseStatus: this.poseBox?.poseStatus ?? null, poseSaving: this.poseBox?.saving ?? null,
 				linerSegments: this.liner?.segmentCount ?? 0, voxelCounts: this.voxels?.counts ?? null,
 				tablesError: this.articulation?.tablesError ?? null, panelDraws: this.panelDraws ?? 0,
 				diagramDraws: this.diagramDraws ?? 0, landmarksError: this.landmarksError ?? null,
@@ -191,6 +192,7 @@ export class WorkbenchView {
 		this.unregister.push( state.onChange( () => this.viewer.requestRender() ) );
 		this.left.append( this.parameters.element );
 		this.poseBox = new PoseBox( state, { api: this.api } );
+		this.unregister.push( () => this.poseBox.dispose() );
 
 		const canvas = ( [ width, height ], label ) => {
 

@@ -206,3 +206,11 @@ export async function signOut( { fetchImpl = null, win = globalThis.window } = {
 	}
 
 }
+
+/** Roles in words, as people: [ 'clinician', 'admin' ] -> 'clinicians and admins'. */
+export function rolesWords( roles ) {
+
+	const people = roles.map( ( role ) => `${ role }s` );
+	return people.length < 2 ? people.join( '' ) : `${ people.slice( 0, - 1 ).join( ', ' ) } and ${ people.at( - 1 ) }`;
+
+}
