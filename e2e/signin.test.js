@@ -119,6 +119,30 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 
 	} );
 
+	test( 'after five wrong passwords the form says too many attempts and when to try again, even for the right one', async () => {
+
+		// The admin's account, which no other test here signs in with: it stays refused for 15 minutes.
+		const admin = await account( server, 'admin' );
+		const page = await openSignIn( SIZES[ 0 ] );
+		const submit = async ( password ) => {
+
+			await page.getByLabel( 'Username' ).fill( admin.username );
+			await page.getByLabel( 'Password' ).fill( password );
+			await page.getByRole( 'button', { name: 'Sign in' } ).click();
+			await page.waitForFunction( () => window.glasshead.signIn.busy === false && window.glasshead.signIn.message !== null, null, { timeout: 60_000 } );
+			return page.evaluate( () => window.glasshead.signIn.message );
+
+		};
+		for ( let k = 0; k < 5; k ++ ) assert.equal( await submit( `wrong ${ k }` ), 'That username and password do not match. Check them and try again.' );
+		assert.equal( await submit( admin.password ), 'Too many attempts to sign in. Try again in 15 minutes.' );
+		assert.equal( await page.getByRole( 'alert' ).filter( { hasText: 'Too many attempts' } ).isVisible(), true );
+		assert.equal( await storedSession( page ), null );
+		await saveScreenshot( page, 'signin-too-many' );
+		assert.deepEqual( page.problems.filter( ( problem ) => ! /401|429/.test( problem ) ), [] );
+		await page.context().close();
+
+	} );
+
 	test( 'Sign out in the bar revokes the token on the server and the bar offers Sign in again', async () => {
 
 		const page = await openPage( browser, { width: 1366, height: 768 } );
