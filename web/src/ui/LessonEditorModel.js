@@ -1,0 +1,299 @@
+// The author's lesson editor as plain data: the draft of a lesson being written, its items added,
+// moved, changed and removed, the body a save sends, the server's 422 turned into messages beside
+// the fields they name, a lesson file read for an import, and the editor's address
+// (#/author, #/author?lesson=ID, #/author?lesson=new). No DOM and no requests: LessonEditor.js
+// shows it and tests/js/lessonEditor.test.js reads it. The format is the server's
+// (server/glasshead/lessons/schema.py, docs/lessons.md).
+
+/** The editor's route. */
+export const AUTHOR_PATH = '/author';
+/** The lesson format's version, as exports carry it. */
+export const FORMAT_VERSION = 1;
+/** Most items in a lesson (the schema's MAX_ITEMS). */
+export const MAX_ITEMS = 200;
+
+export const TARGET_KINDS = Object.freeze( [
+	Object.freeze( { value: 'phoneme', label: 'Sound (phoneme)' } ),
+	Object.freeze( { value: 'syllable', label: 'Open syllable' } ),
+	Object.freeze( { value: 'word', label: 'Word' } ),
+	Object.freeze( { value: 'phrase', label: 'Phrase' } ),
+] );
+export const PRESENTATIONS = Object.freeze( [
+	Object.freeze( { value: 'dynamic', label: 'Dynamic: spoken' } ),
+	Object.freeze( { value: 'static', label: 'Static: the target held' } ),
+] );
+export const AUDIO_KINDS = Object.freeze( [
+	Object.freeze( { value: 'natural', label: 'Natural' } ),
+	Object.freeze( { value: 'lowpass', label: 'Low-pass (muffled)' } ),
+	Object.freeze( { value: 'vocoded', label: 'Vocoded' } ),
+	Object.freeze( { value: 'articulatory', label: 'Articulatory synthesis' } ),
+	Object.freeze( { value: 'none', label: 'No sound' } ),
+] );
+/** The on/off views of an item, in the form's order. */
+export const VIEW_SWITCHES = Object.freeze( [
+	Object.freeze( { key: 'cutaway', label: 'Cutaway' } ),
+	Object.freeze( { key: 'diagram', label: '2D diagram' } ),
+	Object.freeze( { key: 'cues', label: 'Cues' } ),
+	Object.freeze( { key: 'labels', label: 'Labels' } ),
+	Object.freeze( { key: 'epg', label: 'EPG panel' } ),
+] );
+/** The schema's defaults for what an item leaves out. */
+export const DEFAULT_VIEWS = Object.freeze( {
+	skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false,
+} );
+/** Ranges the server accepts (schema.py): [low, high]. */
+export const RANGES = Object.freeze( {
+	speed: Object.freeze( [ 0.1, 1 ] ),
+	cutoff_hz: Object.freeze( [ 100, 8000 ] ),
+	channels: Object.freeze( [ 1, 16 ] ),
+	skin_transparency: Object.freeze( [ 0, 1 ] ),
+} );
+
+/** What a stale save says, in plain words. */
+export const CONFLICT_MESSAGE = 'Someone else changed this lesson since you opened it. Your changes are still here: reload to see their version (your changes are dropped), or overwrite it with yours.';
+
+/** A new item: `text` said as a `kind` target, with the schema's defaults. */
+export function newItem( kind = 'phoneme', text = 's' ) {
+
+	return normaliseItem( { target: { kind, text } } );
+
+}
+
+/** A new lesson's draft. */
+export function blankLesson() {
+
+	return { title: '', language: 'en-US', description: '', items: [ newItem() ] };
+
+}
+
+/** `item` with every field present (the schema's defaults filled in), as a new object. */
+export function normaliseItem( item = {} ) {
+
+	const audio = item.audio ?? {};
+	return {
+		target: { kind: item.target?.kind ?? 'phoneme', text: item.target?.text ?? '' },
+		presentation: item.presentation ?? 'dynamic',
+		audio: { kind: audio.kind ?? 'natural', cutoff_hz: audio.cutoff_hz ?? null, channels: audio.channels ?? null },
+		views: { ...DEFAULT_VIEWS, ...( item.views ?? {} ) },
+		speed: item.speed ?? 1,
+	};
+
+}
+
+/** The editable draft of a lesson read from the server (or an import): a deep copy. */
+export function draftOf( lesson ) {
+
+	return {
+		title: lesson?.title ?? '',
+		language: lesson?.language ?? 'en-US',
+		description: lesson?.description ?? '',
+		items: ( lesson?.items ?? [] ).map( normaliseItem ),
+	};
+
+}
+
+/**
+ * What a save or an export sends: the lesson format, with only the audio options that apply
+ * (the low-pass cut-off for lowpass, the channels for vocoded) and no empty ones.
+ */
+export function lessonBody( draft ) {
+
+	return {
+		format_version: FORMAT_VERSION,
+		title: draft.title,
+		language: draft.language,
+		description: draft.description,
+		items: draft.items.map( ( item ) => {
+
+			const audio = { kind: item.audio.kind };
+			if ( item.audio.kind === 'lowpass' && item.audio.cutoff_hz !== null ) audio.cutoff_hz = item.audio.cutoff_hz;
+			if ( item.audio.kind === 'vocoded' && item.audio.channels !== null ) audio.channels = item.audio.channels;
+			return { target: { ...item.target }, presentation: item.presentation, audio, views: { ...item.views }, speed: item.speed };
+
+		} ),
+	};
+
+}
+
+/** Whether `draft` differs from `saved` in what a save would send. */
+export function isDirty( draft, saved ) {
+
+	return JSON.stringify( lessonBody( draft ) ) !== JSON.stringify( lessonBody( saved ) );
+
+}
+
+/** `items` with the item at `from` moved to `to` (both kept inside the list), as a new list. */
+export function moveItem( items, from, to ) {
+
+	const result = items.slice();
+	if ( from < 0 || from >= items.length ) return result;
+	const target = Math.min( Math.max( to, 0 ), items.length - 1 );
+	const [ moved ] = result.splice( from, 1 );
+	result.splice( target, 0, moved );
+	return result;
+
+}
+
+/** `items` without the item at `index`, as a new list. */
+export function removeItem( items, index ) {
+
+	return items.filter( ( _, k ) => k !== index );
+
+}
+
+/** `items` with `item` inserted at `index` (the end when past it), as a new list. */
+export function insertItem( items, index, item ) {
+
+	const result = items.slice();
+	result.splice( Math.min( Math.max( index, 0 ), items.length ), 0, item );
+	return result;
+
+}
+
+/** `item` with the field at `path` ('speed', 'target.text', 'views.cutaway') set, as a new item. */
+export function setField( item, path, value ) {
+
+	const [ head, ...rest ] = path.split( '.' );
+	if ( rest.length === 0 ) return { ...item, [ head ]: value };
+	return { ...item, [ head ]: setField( item[ head ] ?? {}, rest.join( '.' ), value ) };
+
+}
+
+/** A number typed into a field: a finite number, or null for an empty or unreadable one. */
+export function readNumber( text ) {
+
+	const trimmed = String( text ?? '' ).trim();
+	if ( trimmed === '' ) return null;
+	const value = Number( trimmed );
+	return Number.isFinite( value ) ? value : null;
+
+}
+
+/**
+ * The server's 422 detail as messages by field: 'body.items.1.speed: Input should be …; body.title:
+ * …' -> Map { 'items.1.speed' => 'Input should be …', 'title' => '…' }. A message that names no
+ * field is kept under '' (shown at the top). FastAPI's list form is read too.
+ */
+export function fieldErrors( detail ) {
+
+	const errors = new Map();
+	const add = ( where, message ) => {
+
+		const key = where.replace( /^body\.?/, '' );
+		const text = String( message ).replace( /^Value error, /, '' ).trim();
+		errors.set( key, errors.has( key ) ? `${ errors.get( key ) } ${ text }` : text );
+
+	};
+
+	if ( Array.isArray( detail ) ) {
+
+		for ( const entry of detail ) add( ( entry?.loc ?? [] ).join( '.' ), entry?.msg ?? JSON.stringify( entry ) );
+		return errors;
+
+	}
+
+	if ( typeof detail !== 'string' || detail === '' ) return errors;
+	// Messages are joined with '; ' and each starts with where it is ('body.…: '); split only
+	// there, since a message may hold '; ' itself.
+	for ( const part of detail.split( /;\s+(?=body[.:])/ ) ) {
+
+		const match = /^(body(?:\.[^\s:]+)?):\s*(.*)$/s.exec( part.trim() );
+		if ( match ) add( match[ 1 ], match[ 2 ] );
+		else add( '', part.trim() );
+
+	}
+
+	return errors;
+
+}
+
+/**
+ * The messages of item `index` by its field ('target', 'target.text', 'speed', 'views.cutaway', …),
+ * from fieldErrors(); a message about the whole item is under ''.
+ */
+export function itemErrors( errors, index ) {
+
+	const prefix = `items.${ index }`;
+	const result = new Map();
+	for ( const [ key, message ] of errors ) {
+
+		if ( key === prefix ) result.set( '', message );
+		else if ( key.startsWith( `${ prefix }.` ) ) result.set( key.slice( prefix.length + 1 ), message );
+
+	}
+
+	return result;
+
+}
+
+/** The items that have a message (their indices, in order). */
+export function itemsWithErrors( errors ) {
+
+	const found = new Set();
+	for ( const key of errors.keys() ) {
+
+		const match = /^items\.(\d+)(\.|$)/.exec( key );
+		if ( match ) found.add( Number( match[ 1 ] ) );
+
+	}
+
+	return [ ...found ].sort( ( a, b ) => a - b );
+
+}
+
+/**
+ * Read a lesson file chosen for an import: its JSON, which must be an object with items. Throws
+ * an Error whose message says in plain words what is wrong; the server checks the rest.
+ */
+export function parseLessonFile( text ) {
+
+	let value;
+	try {
+
+		value = JSON.parse( text );
+
+	} catch ( error ) {
+
+		throw new Error( `This file is not JSON (${ error.message }). Choose a lesson exported from Glasshead.`, { cause: error } );
+
+	}
+
+	if ( ! value || typeof value !== 'object' || Array.isArray( value ) || ! Array.isArray( value.items ) ) {
+
+		throw new Error( 'This file is JSON but not a lesson: a lesson has a title and a list of items.' );
+
+	}
+
+	return value;
+
+}
+
+/** The editor's address for lesson `id` ('new' for a new one; null for the list). */
+export function authorHref( id = null ) {
+
+	return id === null ? `#${ AUTHOR_PATH }` : `#${ AUTHOR_PATH }?lesson=${ id }`;
+
+}
+
+/** The lesson an editor address names: a whole number from 1, 'new', or null for the list. */
+export function parseAuthorHash( hash ) {
+
+	const query = new URLSearchParams( ( hash ?? '' ).split( '?' ).slice( 1 ).join( '?' ) );
+	const lesson = query.get( 'lesson' );
+	if ( lesson === 'new' ) return { lesson: 'new' };
+	return { lesson: /^\d+$/.test( lesson ?? '' ) && Number( lesson ) >= 1 ? Number( lesson ) : null };
+
+}
+
+/** An item's one-line summary in the list: 'Word "ship", static, 0.5x'. */
+export function itemSummary( item ) {
+
+	const kind = TARGET_KINDS.find( ( k ) => k.value === item.target.kind )?.label.split( ' ' )[ 0 ] ?? item.target.kind;
+	const text = item.target.kind === 'phoneme' ? `/${ item.target.text }/` : `"${ item.target.text }"`;
+	const parts = [ `${ kind } ${ text }` ];
+	if ( item.presentation === 'static' ) parts.push( 'held' );
+	if ( item.speed !== 1 ) parts.push( `${ item.speed }x` );
+	if ( item.audio.kind !== 'natural' ) parts.push( item.audio.kind === 'none' ? 'no sound' : item.audio.kind );
+	return parts.join( ', ' );
+
+}
