@@ -27,6 +27,8 @@ router.register( '/speak', async ( container ) => ( await import( './ui/SpeechVi
 router.register( '/signin', async ( container ) => ( await import( './ui/SignInView.js' ) ).mountSignInView( container ), { title: 'Glasshead: sign in' } );
 router.register( '/teach', async ( container ) => ( await import( './ui/LessonRunner.js' ) ).mountLessonRunner( container ), { title: 'Glasshead: lessons' } );
 router.register( '/practice', async ( container ) => ( await import( './ui/ChildPractice.js' ) ).mountChildPractice( container ), { title: 'Glasshead: practise' } );
+router.register( '/author', async ( container ) => ( await import( './ui/LessonEditor.js' ) ).mountLessonEditor( container ), { title: 'Glasshead: write lessons' } );
+router.register( '/admin', async ( container ) => ( await import( './ui/AdminView.js' ) ).mountAdminView( container ), { title: 'Glasshead: privacy' } );
 
 registerDebug( 'route', () => router.currentPath );
 registerDebug( 'routes', () => router.paths );

@@ -20,6 +20,7 @@ import { clinicianEpgReport, clinicianReport } from './clinicianReport.js';
 import { frameCount, frameTimes, targetFrameAt } from './clinicianFrames.js';
 import { clinicianLayout, DEFAULT_SPEED, fillChoices, keyHandler, offers } from './clinicianLayout.js';
 import { RecordingImport } from './clinicianImport.js';
+import { ChildHistory } from './clinicianChild.js';
 import { missingChoiceMessage, SelectionUrl } from './clinicianUrl.js';
 import { renderClinician } from './clinicianRender.js';
 import { PlaybackClock } from './playbackClock.js';
@@ -67,6 +68,10 @@ export class ClinicianView {
 		};
 		this.importer = new RecordingImport( { onImported: ( body ) => this.imported( body ), onError: ( error ) => this.failWith( error, { quiet: true } ) } );
 		Object.assign( this, clinicianLayout( actions, { importBox: this.importer.element } ) );
+		// A child of the caseload: their practice and recordings; Compare opens a recording here.
+		this.childHistory = new ChildHistory( { api: this.api, onOpen: ( id ) => this.imported( { recordings: [ { id } ] } ) } );
+		this.main.append( this.childHistory.element );
+		this.unregister.push( registerDebug( 'clinicianChild', () => this.childHistory.report() ) );
 		container.append( this.root );
 
 		this.onKey = keyHandler( actions );
@@ -112,6 +117,7 @@ export class ClinicianView {
 		}
 
 		await this.loadChildren();
+		await this.childHistory.load();
 
 	}
 

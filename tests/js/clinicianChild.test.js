@@ -1,0 +1,60 @@
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { childChoices, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinicianChildRows.js';
+import { downloadFile } from '../../web/src/ui/download.js';
+
+test( 'the chooser groups the caseload’s children by class, classes by name, and leaves out empty classes', () => {
+
+	const classes = [ { id: 2, name: 'Year 3' }, { id: 1, name: 'Caseload A' }, { id: 5, name: 'Empty' } ];
+	const children = [ { id: 9, class_id: 2, display_name: 'Bo', avatar: 'frog' }, { id: 4, class_id: 1, display_name: 'Ada', avatar: 'owl' }, { id: 7, class_id: 2, display_name: 'Cy', avatar: 'cat' } ];
+	assert.deepEqual( childChoices( classes, children ), [
+		{ label: 'Caseload A', children: [ { value: '4', label: 'Ada (owl)' } ] },
+		{ label: 'Year 3', children: [ { value: '9', label: 'Bo (frog)' }, { value: '7', label: 'Cy (cat)' } ] },
+	] );
+
+} );
+
+test( 'practice rows name the lesson, the item from 1 and its target, and say the rating in words', () => {
+
+	const lessons = new Map( [ [ 3, { title: 'sip, ship', items: [ { target: { kind: 'phoneme', text: 's' } }, { target: { kind: 'word', text: 'ship' } } ] } ] ] );
+	const records = [
+		{ lesson_id: 3, item_index: 1, practised_at: '2026-03-02T09:30:12Z', replays: 2, rating: 3, rated_by: 'adult' },
+		{ lesson_id: 3, item_index: 0, practised_at: '2026-03-01T09:00:00.5+00:00', replays: 0, rating: null, rated_by: null },
+		{ lesson_id: 8, item_index: 0, practised_at: '2026-03-01T08:00:00Z', replays: 1, rating: 1, rated_by: 'child' },
+	];
+	assert.deepEqual( practiceRows( records, lessons ), [
+		{ when: '2026-03-02 09:30', lesson: 'sip, ship', item: 2, target: 'ship', replays: 2, rating: '3, got it (adult)' },
+		{ when: '2026-03-01 09:00', lesson: 'sip, ship', item: 1, target: '/s/', replays: 0, rating: '' },
+		{ when: '2026-03-01 08:00', lesson: 'lesson 8', item: 1, target: '', replays: 1, rating: '1, not yet (child)' },
+	] );
+	assert.equal( ratingWords( 2, null ), '2, nearly' );
+	assert.equal( recordingExportPath( 12, 'emur-json' ), 'epg/recordings/12/export?format=emur-json' );
+
+} );
+
+test( 'a download sends the token, saves under the server’s file name, and a refusal is an error with its status', async () => {
+
+	const calls = [];
+	const saved = [];
+	const answer = ( status, headers, body ) => ( {
+		ok: status < 300, status, statusText: '', headers: { get: ( name ) => headers[ name.toLowerCase() ] ?? null },
+		blob: async () => body, json: async () => JSON.parse( body ),
+	} );
+	const fetchImpl = async ( url, init ) => {
+
+		calls.push( { url, init } );
+		return calls.length === 1
+			? answer( 200, { 'content-disposition': 'attachment; filename="child-3-practice.csv"' }, 'practice_id,child_id\r\n' )
+			: answer( 404, {}, JSON.stringify( { detail: 'no child with id 4' } ) );
+
+	};
+	const options = { fetchImpl, tokenSource: () => 'tok', save: ( content, name ) => saved.push( [ content, name ] ) };
+	assert.equal( await downloadFile( 'children/3/practice.csv', 'x.csv', options ), 'child-3-practice.csv' );
+	assert.equal( calls[ 0 ].url, '/api/v1/children/3/practice.csv' );
+	assert.equal( calls[ 0 ].init.headers.Authorization, 'Bearer tok' );
+	assert.deepEqual( saved, [ [ 'practice_id,child_id\r\n', 'child-3-practice.csv' ] ] );
+	const refused = await downloadFile( 'children/4/practice.csv', 'x.csv', options ).catch( ( error ) => error );
+	assert.equal( refused.status, 404 );
+	assert.match( refused.message, /no child with id 4/ );
+
+} );
