@@ -88,7 +88,7 @@ def test_the_skin_ends_where_the_lips_begin(meshes, build_report, built_assets):
     assert 0.0 < report["lip_border_moved_max_mm"] <= 3.0
     lips = trimesh.util.concatenate([meshes["upper_lip"], meshes["lower_lip"]])
     _, gap, _ = trimesh.proximity.closest_point(lips, skin.vertices[node_ids < 0])
-    assert gap.max() < 1e-3
+    assert gap.max() < 4e-3  # on a lip, up to the GLB lattice's 0.0034 mm
 
 
 def test_closed_meshes_have_outward_normals(meshes):

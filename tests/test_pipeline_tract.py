@@ -81,9 +81,9 @@ def test_the_three_velum_poses_keep_one_topology_and_vertex_order_in_their_glbs(
     for name in sources.VELUM_POSES:
         pose = tract[name]
         np.testing.assert_array_equal(pose.faces, rest.faces)
-        # Vertex k of each GLB is vertex k of its source (float32 rounding: ~1e-5 mm).
+        # Vertex k of each GLB is vertex k of its source (on the GLB lattice: within 0.002 mm).
         source = sources.read_tract_mesh(data_dir, name)[0]
-        np.testing.assert_allclose(pose.vertices, source, atol=1e-3)
+        np.testing.assert_allclose(pose.vertices, source, atol=2e-3)
         assert entries[name]["pose_set"] == "velum"
         assert entries[name]["poses"] == list(sources.VELUM_POSES)
 

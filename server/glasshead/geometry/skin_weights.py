@@ -20,8 +20,9 @@ from scipy.spatial import cKDTree
 HEX_EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
              (0, 4), (1, 5), (2, 6), (3, 7))
 
-#: Two points closer than this (mm) are the same point (surface vertex on a face node).
-COINCIDENT_MM = 1e-3
+#: Two points closer than this (mm) are the same point (surface vertex on a face node): built
+#: meshes lie on a 2^-8 mm lattice (pipeline/quantized_glb.py), within 0.0034 mm of a node.
+COINCIDENT_MM = 1e-2
 
 #: Shortest edge length (mm) used in 1 / length weights, so a degenerate edge cannot dominate.
 MIN_EDGE_MM = 1e-3

@@ -41,7 +41,7 @@ ANATOMY_SOURCES = ["constants.py", "geometry/frame.py", "geometry/meshio.py", "p
                    "pipeline/anatomy.py", "pipeline/face_skin.py", "pipeline/head_shell.py",
                    "pipeline/register_cbct.py", "pipeline/maxilla_lods.py",
                    "pipeline/surface_distance.py", "pipeline/tract.py", "pipeline/tract_checks.py",
-                   "pipeline/larynx.py"]
+                   "pipeline/larynx.py", "pipeline/quantized_glb.py"]
 
 
 def inputs_digest(data_dir, package_files=None):

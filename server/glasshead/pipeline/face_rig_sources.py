@@ -29,8 +29,9 @@ MANIFEST = MANIFEST_FILE
 #: Meshes taken from the build when it has them: the rig's own meshes and the two bones.
 SCENE_MESHES = ("face_skin", "upper_lip", "lower_lip", "head_shell", "mandible", "maxilla")
 
-#: A skin vertex lies on a face node when closer than this, mm (GLB positions are float32).
-ON_NODE_MM = 1e-3
+#: A skin vertex lies on a face node when closer than this, mm (GLB positions lie on a 2^-8 mm
+#: lattice, within 0.0034 mm of the node; nodes are millimetres apart).
+ON_NODE_MM = 1e-2
 #: Largest share of skin vertices on no node (those laid onto the lips at the skin's border).
 OFF_NODE_SHARE = 0.05
 

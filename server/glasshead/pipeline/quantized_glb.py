@@ -4,10 +4,14 @@ The meshes of ``/`` are 1.86 MB as trimesh writes them (float32 positions and no
 indices), 1.14 MB gzipped: floats compress poorly. Quantised, as here, the same meshes are
 0.93 MB, 0.72 MB gzipped (measured over the 17 scene meshes of the build):
 
-- positions: uint16 on a uniform grid over the mesh's bounding box (the node's ``scale`` is the
-  grid step, its ``translation`` the box's corner), padded to 8 bytes a vertex as the extension
-  requires; the step is the largest extent / 65535, 0.004 mm for a 250 mm head, so no vertex
-  moves by more than half of that (``max_error_mm``);
+- positions: uint16 on one lattice shared by every mesh, padded to 8 bytes a vertex as the
+  extension requires: the step is ``STEP_MM`` (2^-8 mm, 0.0039 mm) and the node's
+  ``translation`` a multiple of it, so no vertex moves by more than half a step along an axis
+  (0.00195 mm; ``max_error_mm``), and a point two meshes share (the skin's rim on the head
+  shell, the lips' corners) lands on the same lattice point in both, exactly: a power of two
+  times an integer below 2^24 is exact in float32 as in float64, so readers that apply the
+  node's transform get the same number for it in every file. A mesh wider than 65535 steps
+  (256 mm) takes the next power of two that fits it (none of the head's do);
 - normals: int8, normalized (the extension's form for them), about 0.5 degree;
 - indices: uint16 when the mesh has fewer than 65536 vertices (plain glTF), uint32 otherwise.
 
@@ -15,10 +19,9 @@ Khronos, KHR_mesh_quantization (glTF 2.0 extension), the attribute types and the
 transform that restores the positions. Other readers must apply the node's transform: three's
 GLTFLoader does, and web/src/scene/gltfGeometry.js bakes ``matrixWorld`` into the geometry
 (checked on the airway: positions within 0.0009 mm of the float32 file, normals within 0.8
-degree); trimesh does too, so ``asset_store.read_glb_mesh`` reads both forms. The anatomy build
-still writes trimesh's float32 export (``pipeline/anatomy.py`` ``write_glb``); writing this
-instead changes every mesh by up to half a grid step, and so needs a rebuild of the anatomy and
-of what is built from it.
+degree); trimesh does too, so ``asset_store.read_glb_mesh`` and every build step that reads a
+built mesh get the quantised positions, the ones the browser draws. The anatomy build writes
+every mesh this way (``pipeline/anatomy.py`` ``write_glb``).
 """
 
 import json
@@ -30,8 +33,10 @@ MAGIC, VERSION = 0x46546C67, 2  # "glTF", version 2
 JSON_CHUNK, BIN_CHUNK = 0x4E4F534A, 0x004E4942
 UNSIGNED_SHORT, UNSIGNED_INT, BYTE = 5123, 5125, 5120
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
-#: Positions become integers 0..GRID_MAX along the box's largest extent.
+#: Positions become integers 0..GRID_MAX on the lattice.
 GRID_MAX = 65535
+#: The lattice step, mm: a power of two, so that lattice points are exact in float32.
+STEP_MM = 2.0 ** -8
 
 
 def _pad(data: bytes, fill: bytes) -> bytes:
@@ -56,8 +61,12 @@ def quantized_glb(vertices, faces, normals) -> tuple[bytes, float]:
         raise ValueError(f"normals must be {vertices.shape}, not {normals.shape}")
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise ValueError("faces index vertices that do not exist")
-    low = vertices.min(axis=0)
-    step = float((vertices.max(axis=0) - low).max()) / GRID_MAX or 1.0
+    step = STEP_MM
+    while True:
+        low = np.floor(vertices.min(axis=0) / step) * step
+        if np.rint((vertices - low) / step).max() <= GRID_MAX:
+            break
+        step *= 2.0
     grid = np.rint((vertices - low) / step).astype(np.uint16)
     error = float(np.abs(grid * step + low - vertices).max())
     positions = np.zeros((len(vertices), 4), dtype=np.uint16)
