@@ -1,6 +1,6 @@
 // End-to-end, in Debian's Chromium, the walk-through of README's "A first lesson in a minute":
-// an author writes a lesson (POST /lessons); a teacher makes a class with two children and, in the
-// lesson runner (#/teach), gives the lesson to the class; a child on a 768 x 1024 touch screen
+// an author writes a lesson (POST /lessons); a teacher, in the lesson runner (#/teach), makes a
+// class, adds two children and gives the lesson to the class; a child on a 768 x 1024 touch screen
 // types the class code, taps their own picture, hears the first target again and taps "I tried
 // it" and a face (#/practice); the teacher sees that try in the runner's practice list; a
 // clinician imports a real EPG recording (the emuR engassim set) for the child of their caseload
@@ -68,17 +68,7 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 
 	} );
 
-	test( 'a teacher makes a class with two children and gives it the lesson in the runner', async () => {
-
-		schoolClass = ( await api( sessions.teacher, 'POST', 'classes', { name: 'Class 3B' } ) ).body;
-		children = [];
-		for ( const [ display_name, avatar ] of [ [ 'Ada', 'owl' ], [ 'Bo', 'cat' ] ] ) {
-
-			const made = await api( sessions.teacher, 'POST', 'children', { class_id: schoolClass.id, display_name, avatar } );
-			assert.equal( made.status, 201, JSON.stringify( made.body ) );
-			children.push( made.body );
-
-		}
+	test( 'a teacher makes a class with two children and gives it the lesson, all in the runner', async () => {
 
 		teacherPage = await openPage( browser, { width: 1366, height: 768 } );
 		await signIn( teacherPage, server, 'teacher' );
@@ -86,8 +76,24 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		await teacherPage.getByRole( 'link', { name: new RegExp( `^${ LESSON.title.replace( /[/()]/g, '\\$&' ) }` ) } ).click();
 		await teacherPage.waitForFunction( () => window.glasshead.runner?.ready === true || Boolean( window.glasshead.error ), null, { timeout: 180_000, polling: 200 } );
 		let runner = ( await readDebug( teacherPage ) ).runner;
-		assert.deepEqual( [ runner.lesson, runner.item, runner.target ], [ lesson.id, 0, '/t/' ] );
-		await teacherPage.getByRole( 'combobox', { name: 'Class' } ).selectOption( { label: 'Class 3B' } );
+		assert.deepEqual( [ runner.lesson, runner.item, runner.target, runner.panel.classes ], [ lesson.id, 0, '/t/', [] ] );
+		// No class yet: the forms are open.
+		await teacherPage.getByRole( 'textbox', { name: 'Class name' } ).fill( 'Class 3B' );
+		await teacherPage.getByRole( 'button', { name: 'Make class' } ).click();
+		await teacherPage.waitForFunction( () => window.glasshead.runner.panel?.classes.includes( 'Class 3B' ), null, { timeout: 30_000 } );
+		for ( const [ name, avatar ] of [ [ 'Ada', 'owl' ], [ 'Bo', 'cat' ] ] ) {
+
+			await teacherPage.getByRole( 'textbox', { name: 'Child\'s name' } ).fill( name );
+			await teacherPage.getByRole( 'combobox', { name: 'Avatar' } ).selectOption( avatar );
+			await teacherPage.getByRole( 'button', { name: 'Add child' } ).click();
+			await teacherPage.getByText( `Added ${ name }.` ).waitFor( { timeout: 30_000 } );
+
+		}
+
+		await teacherPage.getByText( 'In the class: Ada, Bo.' ).waitFor( { timeout: 30_000 } );
+		schoolClass = ( await api( sessions.teacher, 'GET', 'classes' ) ).body.classes[ 0 ];
+		children = ( await api( sessions.teacher, 'GET', `children?class_id=${ schoolClass.id }` ) ).body.children;
+		assert.deepEqual( children.map( ( c ) => [ c.display_name, c.avatar ] ), [ [ 'Ada', 'owl' ], [ 'Bo', 'cat' ] ] );
 		await teacherPage.getByRole( 'button', { name: 'Assign to this class' } ).click();
 		await teacherPage.waitForFunction( () => window.glasshead.runner.panel?.assigned === true, null, { timeout: 30_000 } );
 		runner = ( await readDebug( teacherPage ) ).runner;
@@ -95,6 +101,9 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		const assignments = ( await api( sessions.teacher, 'GET', `assignments?lesson_id=${ lesson.id }` ) ).body;
 		assert.deepEqual( assignments.assignments.map( ( a ) => [ a.lesson_id, a.class_id ] ), [ [ lesson.id, schoolClass.id ] ] );
 		assert.match( await teacherPage.locator( '.lr-code' ).textContent(), new RegExp( `#/practice with the class code ${ schoolClass.join_code }` ) );
+		// Back to the list while the child practises: one head drawing at a time on the test machine.
+		await teacherPage.getByRole( 'link', { name: 'All lessons' } ).click();
+		await teacherPage.waitForFunction( () => window.glasshead.runner?.screen === 'list', null, { timeout: 30_000 } );
 
 	} );
 
@@ -114,7 +123,7 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		assert.ok( await childPage.getByRole( 'group', { name: 'Who are you?' } ).getByRole( 'img' ).count() === 0, 'the pictures are inside named buttons' );
 		await childPage.getByRole( 'button', { name: 'Ada', exact: true } ).tap();
 		// One lesson is assigned: it starts at once, and the head says its first target.
-		await childPage.waitForFunction( () => window.glasshead.practice?.ready === true || Boolean( window.glasshead.error ), null, { timeout: 180_000, polling: 200 } );
+		await childPage.waitForFunction( () => window.glasshead.practice?.ready === true || Boolean( window.glasshead.error ), null, { timeout: 300_000, polling: 200 } );
 		let practice = ( await readDebug( childPage ) ).practice;
 		assert.equal( practice.child.id, children[ 0 ].id );
 		assert.deepEqual( [ practice.lessons, practice.lesson, practice.item, practice.items ], [ [ lesson.id ], lesson.id, 0, 2 ] );
@@ -147,6 +156,8 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 
 	test( 'the teacher sees the child\'s try in the runner\'s practice list', async () => {
 
+		await teacherPage.getByRole( 'link', { name: new RegExp( `^${ LESSON.title.replace( /[/()]/g, '\\$&' ) }` ) } ).click();
+		await teacherPage.waitForFunction( () => window.glasshead.runner.panel?.records.length === 1, null, { timeout: 60_000 } );
 		await teacherPage.getByRole( 'button', { name: 'Refresh' } ).click();
 		await teacherPage.waitForFunction( () => window.glasshead.runner.panel.records.length === 1, null, { timeout: 30_000 } );
 		const { records } = ( await readDebug( teacherPage ) ).runner.panel;
@@ -154,6 +165,7 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		const row = teacherPage.getByRole( 'list', { name: 'Practice records' } ).getByRole( 'listitem' );
 		assert.match( await row.textContent(), /Ada\s*\/t\// );
 		assert.ok( await row.getByRole( 'img', { name: 'Got it (child)' } ).isVisible() );
+		await teacherPage.waitForFunction( () => window.glasshead.runner.ready === true, null, { timeout: 180_000, polling: 200 } );
 		await saveScreenshot( teacherPage, 'walkthrough-runner-1366x768' );
 		assert.deepEqual( teacherPage.problems, [] );
 		await teacherPage.context().close();

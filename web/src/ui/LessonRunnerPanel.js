@@ -6,6 +6,7 @@
 import { h } from './Controls.js';
 import { picture, RATINGS } from './ChildPracticePictures.js';
 import { targetLabel } from './LessonRunnerItems.js';
+import { LessonRunnerRoster } from './LessonRunnerRoster.js';
 
 /** Records listed per child at most (the newest). */
 const PER_CHILD = 50;
@@ -64,12 +65,14 @@ export class LessonRunnerPanel {
 		this.assignButton = h( 'button', { type: 'button', className: 'lr-assign', onClick: () => this.assign() }, 'Assign to this class' );
 		this.assignedNote = h( 'p', { className: 'lr-note', role: 'status', 'aria-live': 'polite' } );
 		this.codeNote = h( 'p', { className: 'lr-note lr-code' } );
+		this.childrenNote = h( 'p', { className: 'lr-note lr-children' } );
+		this.roster = new LessonRunnerRoster( { api, classId: () => this.classId, onClass: ( made ) => this.loadClasses( made.id ), onChild: () => this.refresh() } );
 		this.refreshButton = h( 'button', { type: 'button', onClick: () => this.refresh() }, 'Refresh' );
 		this.table = h( 'ul', { className: 'lr-records', 'aria-label': 'Practice records' } );
 		this.error = h( 'p', { className: 'error', role: 'alert', hidden: '' } );
 		this.element = h( 'aside', { className: 'lr-panel', 'aria-label': 'Class and practice' },
 			h( 'label', { className: 'field-label', for: 'lr-class' }, 'Class' ), this.classSelect,
-			this.assignButton, this.assignedNote, this.codeNote,
+			this.assignButton, this.assignedNote, this.codeNote, this.childrenNote, this.roster.element,
 			h( 'div', { className: 'lr-records-head' }, h( 'h2', { className: 'lr-heading' }, 'Practice' ), this.refreshButton ),
 			this.table, this.error );
 
@@ -79,6 +82,13 @@ export class LessonRunnerPanel {
 	async setLesson( lesson ) {
 
 		this.lesson = lesson;
+		await this.loadClasses();
+
+	}
+
+	/** The teacher's classes in the chooser (`chosen` chosen, else the one chosen before), then the practice. */
+	async loadClasses( chosen = this.classSelect.value ) {
+
 		try {
 
 			this.classes = ( await this.api.get( 'classes?limit=100' ) ).classes ?? [];
@@ -90,13 +100,13 @@ export class LessonRunnerPanel {
 
 		}
 
-		const chosen = this.classSelect.value;
 		this.classSelect.replaceChildren( ...this.classes.map( ( c ) => h( 'option', { value: String( c.id ) }, c.name ) ) );
-		if ( this.classes.some( ( c ) => String( c.id ) === chosen ) ) this.classSelect.value = chosen;
+		if ( this.classes.some( ( c ) => String( c.id ) === String( chosen ) ) ) this.classSelect.value = String( chosen );
 		const none = this.classes.length === 0;
 		this.classSelect.disabled = none;
 		this.assignButton.disabled = none;
-		if ( none ) this.assignedNote.textContent = 'You have no classes yet.';
+		if ( none ) this.assignedNote.textContent = 'You have no classes yet: make one below.';
+		this.roster.load( ! none );
 		await this.refresh();
 
 	}
@@ -113,7 +123,14 @@ export class LessonRunnerPanel {
 		const lesson = this.lesson;
 		const classId = this.classId;
 		const load = ++ this.loads;
-		if ( ! lesson || classId === null ) return this.show( [] );
+		if ( ! lesson || classId === null ) {
+
+			this.codeNote.textContent = '';
+			this.childrenNote.textContent = '';
+			return this.show( [] );
+
+		}
+
 		this.showError( '' );
 		try {
 
@@ -128,6 +145,7 @@ export class LessonRunnerPanel {
 			const chosen = this.classes.find( ( c ) => c.id === classId );
 			const name = chosen?.name ?? 'this class';
 			this.codeNote.textContent = chosen ? `Children practise at ${ practiceAddress() } with the class code ${ chosen.join_code }.` : '';
+			this.childrenNote.textContent = kids.length ? `In the class: ${ kids.map( ( kid ) => kid.display_name ).join( ', ' ) }.` : 'No children in this class yet.';
 			this.assignedNote.textContent = this.assigned.length > 0 ? `${ name } has this lesson.` : `${ name } does not have this lesson yet.`;
 			this.assignButton.disabled = this.assigned.length > 0;
 			this.show( practiceRows( lists.flatMap( ( list ) => list.records ?? [] ), kids, lesson.items ) );
