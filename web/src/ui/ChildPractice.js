@@ -251,7 +251,7 @@ export class ChildPractice {
 			bigButton( 'next', 'Next', () => this.record( null ), { className: 'cp-button cp-face' } ) );
 		this.setScreen( 'practice', h( 'div', { className: 'cp-stage' }, this.headBox, this.target, this.dots ), this.actions, this.faces );
 		this.speech = new SpeechView( { api: this.api, sayOnLoad: false } ).mount( this.headBox );
-		this.presenter = new ItemPresenter( this.speech );
+		this.presenter = new ItemPresenter( this.speech, { obstacles: () => [ this.target ] } );
 		this.presentItem();
 
 	}

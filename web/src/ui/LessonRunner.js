@@ -172,18 +172,17 @@ export class LessonRunner {
 		this.slowButton = button( 'Slow (S)', () => this.act( 'slow' ), { 'aria-pressed': 'false' } );
 		this.toolbar = h( 'div', { className: 'lr-toolbar', role: 'group', 'aria-label': 'Lesson' },
 			h( 'a', { className: 'lr-link', href: runnerHref() }, 'All lessons' ),
-			h( 'h1', { className: 'lr-title' }, lesson.title ),
 			button( 'Previous', () => this.act( 'previous' ) ), this.playButton, button( 'Next', () => this.act( 'next' ) ),
 			this.slowButton, button( 'Present', () => this.setPresenting( true ) ), button( 'Full screen (F)', () => this.act( 'fullscreen' ) ) );
 		this.kind = h( 'span', { className: 'lr-kind' } );
 		this.target = h( 'span', { className: 'lr-target-text' } );
 		this.targetBox = h( 'div', { className: 'lr-target', role: 'status', 'aria-live': 'polite' }, this.kind, this.target );
-		this.dotStrip = h( 'nav', { className: 'lr-dots', 'aria-label': 'Items' }, ...this.dots );
+		this.dotStrip = h( 'div', { className: 'lr-itembar' }, h( 'h1', { className: 'lr-title' }, lesson.title ), h( 'nav', { className: 'lr-dots', 'aria-label': 'Items' }, ...this.dots ) );
 		this.headBox = h( 'div', { className: 'lr-head' } );
 		this.panel = new LessonRunnerPanel( { api: this.api } );
 		this.root.append( this.toolbar, this.dotStrip, h( 'div', { className: 'lr-main' }, this.headBox, this.targetBox ), this.panel.element );
 		this.speech = new SpeechView( { api: this.api, sayOnLoad: false } ).mount( this.headBox );
-		this.presenter = new ItemPresenter( this.speech );
+		this.presenter = new ItemPresenter( this.speech, { obstacles: () => [ this.targetBox ] } );
 		this.unwatch = this.speech.viewer?.onFrame( () => this.syncPlay() );
 		this.panel.setLesson( lesson );
 

@@ -21,10 +21,15 @@ export function firstSpokenPhone( phones ) {
 
 export class ItemPresenter {
 
-	/** @param {object} view a mounted SpeechView */
-	constructor( view ) {
+	/**
+	 * @param {object} view a mounted SpeechView
+	 * @param {{ obstacles?: () => Array<Element|null> }} options what lies over the head that the
+	 *   labels keep off (the target in big letters)
+	 */
+	constructor( view, { obstacles = () => [] } = {} ) {
 
 		this.view = view;
+		this.obstacles = obstacles;
 		this.settings = null;
 		this.item = null;
 		this.presenting = 0;
@@ -88,7 +93,7 @@ export class ItemPresenter {
 
 		if ( settings.labels && ! this.labels && view.landmarks ) {
 
-			this.labels = new LabelLayer( { document: view.landmarks, head: view.head, viewer: view.viewer, stage: view.stage } );
+			this.labels = new LabelLayer( { document: view.landmarks, head: view.head, viewer: view.viewer, stage: view.stage, obstacles: this.obstacles } );
 			view.unregister.push( () => this.labels.dispose() );
 
 		}
