@@ -127,3 +127,25 @@ test( 'the head view poses only the parameters its rigs know, and only with fini
 	assert.deepEqual( knownParams( null, [ 'tip_height' ] ), {} );
 
 } );
+
+test( 'the editor and privacy links show only while an author or an admin is signed in, and are marked when on screen', () => {
+
+	const win = fakeWindow( '#/author' );
+	const nav = new NavBar( { win } );
+	assert.deepEqual( nav.roleLinks.map( ( link ) => link.href ), [ '#/author', '#/admin' ] );
+	const shown = () => nav.roleItems.map( ( item ) => ! item.hidden );
+	assert.deepEqual( shown(), [ false, false ], 'nobody signed in' );
+	const as = ( role ) => ( { kind: 'user', token: 't', user: { id: 1, username: role, display_name: role, role } } );
+	nav.showAccount( as( 'author' ) );
+	assert.deepEqual( shown(), [ true, false ] );
+	nav.showAccount( as( 'admin' ) );
+	assert.deepEqual( shown(), [ true, true ] );
+	nav.showAccount( as( 'teacher' ) );
+	assert.deepEqual( shown(), [ false, false ] );
+	nav.showAccount( { kind: 'child', token: 't', child: { id: 3 } } );
+	assert.deepEqual( shown(), [ false, false ] );
+	nav.mark( '/author' );
+	assert.deepEqual( nav.roleLinks.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ 'page', null ] );
+	assert.deepEqual( nav.links.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ null, null, null, null ] );
+
+} );

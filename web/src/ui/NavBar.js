@@ -15,7 +15,7 @@
 
 import { currentSession, onSessionChange } from '../session.js';
 import { routePath } from './router.js';
-import { signInHref, signOut, whoLabel } from './signIn.js';
+import { hasRole, signInHref, signOut, whoLabel } from './signIn.js';
 
 /** The views, in the bar's order: route path and the link's words. */
 export const NAV_VIEWS = Object.freeze( [
@@ -23,6 +23,15 @@ export const NAV_VIEWS = Object.freeze( [
 	Object.freeze( { path: '/workbench', label: 'Workbench' } ),
 	Object.freeze( { path: '/clinician', label: 'Clinician' } ),
 	Object.freeze( { path: '/speak', label: 'Speak' } ),
+] );
+
+/**
+ * Views listed after those only while someone who uses them is signed in: the lesson editor for
+ * authors (and admins), the privacy page for admins.
+ */
+export const ROLE_VIEWS = Object.freeze( [
+	Object.freeze( { path: '/author', label: 'Write', roles: Object.freeze( [ 'author', 'admin' ] ) } ),
+	Object.freeze( { path: '/admin', label: 'Privacy', roles: Object.freeze( [ 'admin' ] ) } ),
 ] );
 
 /**
@@ -52,12 +61,13 @@ export function accountItem( session, hash ) {
 export class NavBar {
 
 	/** @param {{ win?: Window, views?: Array<{ path: string, label: string }> }} options */
-	constructor( { win = globalThis.window, views = NAV_VIEWS } = {} ) {
+	constructor( { win = globalThis.window, views = NAV_VIEWS, roleViews = ROLE_VIEWS } = {} ) {
 
 		this.window = win;
 		this.views = views;
+		this.roleViews = roleViews;
 		const document = win.document;
-		this.links = views.map( ( view ) => {
+		const makeLink = ( view ) => {
 
 			const link = document.createElement( 'a' );
 			link.className = 'nav-link';
@@ -65,16 +75,23 @@ export class NavBar {
 			link.textContent = view.label;
 			return link;
 
-		} );
+		};
+		this.links = views.map( makeLink );
+		this.roleLinks = roleViews.map( makeLink );
 		const list = document.createElement( 'ul' );
 		list.className = 'nav-list';
-		for ( const link of this.links ) {
+		const listItem = ( link ) => {
 
 			const item = document.createElement( 'li' );
 			item.append( link );
-			list.append( item );
+			return item;
 
-		}
+		};
+		for ( const link of this.links ) list.append( listItem( link ) );
+		// Out of the list until someone of their roles signs in (showAccount).
+		this.list = list;
+		this.roleItems = this.roleLinks.map( listItem );
+		for ( const item of this.roleItems ) item.hidden = true;
 
 		const brand = document.createElement( 'span' );
 		brand.className = 'nav-brand';
@@ -118,6 +135,12 @@ export class NavBar {
 			else this.links[ k ].removeAttribute( 'aria-current' );
 
 		} );
+		this.roleViews.forEach( ( view, k ) => {
+
+			if ( view.path === path ) this.roleLinks[ k ].setAttribute( 'aria-current', 'page' );
+			else this.roleLinks[ k ].removeAttribute( 'aria-current' );
+
+		} );
 
 	}
 
@@ -126,6 +149,14 @@ export class NavBar {
 
 		const item = accountItem( session, this.window.location.hash );
 		this.accountState = item;
+		this.roleViews.forEach( ( view, k ) => {
+
+			const item = this.roleItems[ k ];
+			item.hidden = ! hasRole( session, view.roles );
+			if ( item.hidden ) item.remove();
+			else this.list.append( item ); // in ROLE_VIEWS' order, after the views for everyone
+
+		} );
 		this.signInLink.hidden = item.signedIn;
 		this.who.hidden = ! item.signedIn;
 		this.signOutButton.hidden = ! item.signedIn;
