@@ -3,8 +3,9 @@
 // skin see-through, labels and the EPG card, its sounds held; the nasals: the cutaway and the 2D
 // diagram), the arrow keys move between items and the address follows, Space plays, S slows to a
 // quarter, F shows the head alone (no panel, toolbar or navigation bar) with the target in big
-// letters, and Esc comes back. Read from window.glasshead; e2e/screenshots/runner-1366x768.png
-// and runner-present-1366x768.png are for a person to look at.
+// letters, and Esc comes back; an author runs lessons without classes. Read from
+// window.glasshead; e2e/screenshots/runner-1366x768.png and runner-present-1366x768.png are for
+// a person to look at.
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
@@ -144,7 +145,20 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		assert.deepEqual( [ state.target, state.settings.cutaway, state.settings.diagram, state.settings.epg ], [ '/m/', true, true, false ] );
 		assert.ok( await visible( '.sp-diagram-section' ), 'the diagram is shown' );
 		assert.equal( await visible( '.epg-overlay' ), false, 'the EPG card is hidden' );
-		assert.deepEqual( page.problems, [] );
+
+	} );
+
+	test( 'an author runs a lesson too, and the panel says that classes are kept by others instead of failing', async () => {
+
+		await signIn( page, server, 'author' );
+		const lesson = lessons[ 0 ];
+		await page.goto( `${ server.baseUrl }/#/teach?lesson=${ lesson.id }&item=0` );
+		await ready( lesson.id, 0 );
+		assert.ok( await page.getByText( 'Teachers, clinicians and admins give lessons to their classes here.' ).isVisible() );
+		for ( const name of [ 'Class', 'Assign to this class', 'Refresh' ] ) assert.equal( await page.getByRole( /^Class$/.test( name ) ? 'combobox' : 'button', { name, exact: true } ).isVisible(), false, name );
+		assert.equal( await visible( '.lr-panel [role="alert"]' ), false, 'no error' );
+		// The browser logs the refused GET /classes itself; nothing else went wrong.
+		assert.deepEqual( page.problems.filter( ( problem ) => ! /status of 403.*\/api\/v1\/classes/.test( problem ) ), [] );
 
 	} );
 

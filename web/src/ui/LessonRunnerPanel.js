@@ -7,6 +7,7 @@ import { h } from './Controls.js';
 import { picture, RATINGS } from './ChildPracticePictures.js';
 import { targetLabel } from './LessonRunnerItems.js';
 import { LessonRunnerRoster } from './LessonRunnerRoster.js';
+import { isForbidden } from './signIn.js';
 
 /** Records listed per child at most (the newest). */
 const PER_CHILD = 50;
@@ -70,11 +71,11 @@ export class LessonRunnerPanel {
 		this.refreshButton = h( 'button', { type: 'button', onClick: () => this.refresh() }, 'Refresh' );
 		this.table = h( 'ul', { className: 'lr-records', 'aria-label': 'Practice records' } );
 		this.error = h( 'p', { className: 'error', role: 'alert', hidden: '' } );
+		this.classLabel = h( 'label', { className: 'field-label', for: 'lr-class' }, 'Class' );
+		this.recordsHead = h( 'div', { className: 'lr-records-head' }, h( 'h2', { className: 'lr-heading' }, 'Practice' ), this.refreshButton );
 		this.element = h( 'aside', { className: 'lr-panel', 'aria-label': 'Class and practice' },
-			h( 'label', { className: 'field-label', for: 'lr-class' }, 'Class' ), this.classSelect,
-			this.assignButton, this.assignedNote, this.codeNote, this.childrenNote, this.roster.element,
-			h( 'div', { className: 'lr-records-head' }, h( 'h2', { className: 'lr-heading' }, 'Practice' ), this.refreshButton ),
-			this.table, this.error );
+			this.classLabel, this.classSelect, this.assignButton, this.assignedNote, this.codeNote, this.childrenNote, this.roster.element,
+			this.recordsHead, this.table, this.error );
 
 	}
 
@@ -95,8 +96,17 @@ export class LessonRunnerPanel {
 
 		} catch ( error ) {
 
-			this.showError( `Your classes could not be loaded: ${ error.message }` );
 			this.classes = [];
+			if ( isForbidden( error ) ) {
+
+				// An author: lessons to run, but no classes to give them to.
+				for ( const element of [ this.classLabel, this.classSelect, this.assignButton, this.roster.element, this.recordsHead, this.table ] ) element.hidden = true;
+				this.assignedNote.textContent = 'Teachers, clinicians and admins give lessons to their classes here.';
+				return;
+
+			}
+
+			this.showError( `Your classes could not be loaded: ${ error.message }` );
 
 		}
 
