@@ -128,3 +128,29 @@ def test_build_definition_checks_the_shapes_it_is_given(definition):
     assert built["surface"]["vertex_count"] == rig.vertex_count
     front = built["coronal"]["ratios"]["front"]
     assert all(v == 0 for k, v in enumerate(front) if k in POLE_CONTROLS)
+
+
+@pytest.mark.parametrize("name, value", [("back_dorsum_height", -16.0),
+                                         ("back_dorsum_height", 20.0),
+                                         ("root_advancement", 24.0)])
+def test_the_back_dorsum_and_the_root_move_along_the_hubs_rays_so_no_point_turns(definition,
+                                                                                 name, value):
+    rig = TongueRig(definition)
+    values = rig.neutral.copy()
+    values[rig.parameter_names.index(name)] = value
+    rest, hub, _, _ = rig.control_points(rig.neutral)
+    posed, _, _, _ = rig.control_points(values)
+    moved = np.linalg.norm(posed - rest, axis=1) > 1.0
+    assert moved.sum() >= 3, name
+    turn = np.degrees(np.arctan2(*(posed - hub).T[::-1]) - np.arctan2(*(rest - hub).T[::-1]))
+    np.testing.assert_allclose(turn, 0.0, atol=1e-4)
+    inward = np.linalg.norm(posed - hub, axis=1) < np.linalg.norm(rest - hub, axis=1)
+    # Raising the back of the dorsum takes it away from the hub; the root comes toward it.
+    assert (inward[moved] == (value < 0 if name == "back_dorsum_height" else True)).all()
+
+
+def test_the_root_comes_forward_and_the_raised_back_of_the_dorsum_goes_up():
+    root = {m["point"]: m["by"] for m in moves_of("root_advancement")}
+    back = {m["point"]: m["by"] for m in moves_of("back_dorsum_height")}
+    assert root["K"][0] > 0.95 and root["L"][0] > 0.95
+    assert back["I"][1] > 0.7 and back["H"][1] > 0.4

@@ -112,6 +112,18 @@ POLE_CONTROLS = (0, 1, 13, 14)
 STATIONS = 96
 PAGE_SAMPLES = 31
 
+
+def _along_rays(weights):
+    """Sagittal moves along each point's ray from the hub (outward per unit for a positive
+    weight): the ray's direction is fixed in ``SAGITTAL_POINTS`` (the rest-shape fit moves the
+    points along it), so these moves are table data. A move along its ray leaves the point's page
+    angle as it is; only the moves across the rays of the other parameters can fold the pages."""
+    angles = {name: angle for name, _role, angle, _jaw, _blend in SAGITTAL_POINTS}
+    return tuple((name, (round(w * math.cos(math.radians(angles[name])), 6),
+                         round(w * math.sin(math.radians(angles[name])), 6)))
+                 for name, w in weights)
+
+
 # --- The articulation parameters -------------------------------------------------------------
 # (name, unit, min, max, description, moves); neutral is 0 for every tongue parameter (values
 # are displacements from the rest shape, so the table stays valid when the rest shape is refit).
@@ -119,11 +131,14 @@ PAGE_SAMPLES = 31
 # per unit along the control's page direction, given for one section and applied to each.
 #
 # The sagittal ranges cover what the mid-sagittal fits to VocalTractLab's JD3 shapes reach for
-# (docs/fitting.md): the root comes 18 mm forward for /i/-like shapes, the tip drops 18 mm and
-# thins for the back rounded vowels and /i/, the back of the dorsum drops 10 mm where the root
-# comes forward. Each range is as wide as it can be while every corner of the sagittal and jaw
-# ranges still keeps the pages in order (tests/test_tongue_surface.py): the dorsum and blade
-# advancements, the blade height and the back dorsum height are held there, not by the shapes.
+# (docs/fitting.md): the root comes up to 24 mm toward the hub for /i/-like shapes, the tip drops
+# 18 mm and thins for the back rounded vowels and /i/, the back of the dorsum drops 16 mm toward
+# the hub where the root comes forward and rises 20 mm up and back for /o/ and the uvulars. The
+# back of the dorsum and the root move along the hub's rays (``_along_rays``): moved straight up
+# and forward they turned round the hub toward each other and folded the pages at 10 and 18 mm.
+# Each range is as wide as it can be while every corner of the sagittal and jaw ranges still
+# keeps the pages in order (tests/test_tongue_surface.py): the dorsum and blade advancements,
+# the blade height and the back dorsum's drop are held there, not by the shapes.
 
 SAGITTAL_PARAMETERS = (
     ("tip_advancement", "mm", -4.0, 14.0, "Moves the tip pair (A, B) forward.",
@@ -144,10 +159,12 @@ SAGITTAL_PARAMETERS = (
       ("H", (0.5, 0.0)))),
     ("dorsum_height", "mm", -6.0, 12.0, "Raises the centre of the dorsum (E to H).",
      (("E", (0.0, 0.4)), ("F", (0.0, 1.0)), ("G", (0.0, 1.0)), ("H", (0.0, 0.5)))),
-    ("back_dorsum_height", "mm", -10.0, 10.0, "Raises the back of the dorsum (H to J).",
-     (("H", (0.0, 0.5)), ("I", (0.0, 1.0)), ("J", (0.0, 0.6)))),
-    ("root_advancement", "mm", -8.0, 18.0, "Moves the root (J to M) forward.",
-     (("J", (0.5, 0.0)), ("K", (1.0, 0.0)), ("L", (1.0, 0.0)), ("M", (0.6, 0.0)))),
+    ("back_dorsum_height", "mm", -16.0, 20.0,
+     "Raises the back of the dorsum (H to J) up and back, away from the hub.",
+     _along_rays((("H", 0.5), ("I", 1.0), ("J", 0.4)))),
+    ("root_advancement", "mm", -8.0, 24.0,
+     "Moves the root (J to M) forward, toward the hub.",
+     _along_rays((("J", -0.4), ("K", -1.0), ("L", -1.0), ("M", -0.6)))),
     ("body_height", "mm", -5.0, 8.0, "Raises the whole upper surface, tip to root.",
      (("S", (0.0, 0.5)), ("A", (0.0, 1.0)), ("B", (0.0, 1.0)), ("C", (0.0, 1.0)),
       ("D", (0.0, 1.0)),
