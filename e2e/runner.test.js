@@ -54,6 +54,8 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		const hrefs = await list.getByRole( 'link' ).evaluateAll( ( links ) => links.map( ( link ) => link.getAttribute( 'href' ) ) );
 		assert.ok( lessons.length >= 5, `${ lessons.length } starter lessons` );
 		assert.deepEqual( hrefs, lessons.map( ( lesson ) => `#/teach?lesson=${ lesson.id }&item=0` ) );
+		const teach = page.getByRole( 'navigation', { name: 'Views' } ).getByRole( 'link', { name: 'Teach', exact: true } );
+		assert.equal( await teach.getAttribute( 'aria-current' ), 'page', 'the bar links the runner for a teacher, marked' );
 
 	} );
 

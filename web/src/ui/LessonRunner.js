@@ -93,6 +93,7 @@ export class LessonRunner {
 
 		this.screen = screen;
 		this.closeLesson();
+		this.root.className = `lesson-runner lr-on-${ screen }`;
 		this.root.replaceChildren();
 
 	}
@@ -101,7 +102,7 @@ export class LessonRunner {
 
 		this.clear( 'sign-in' );
 		this.root.append( h( 'div', { className: 'lr-message' },
-			h( 'h1', { className: 'title' }, 'Lessons' ),
+			h( 'h1', { className: 'lr-page-title' }, 'Lessons' ),
 			signInPrompt( { reason: 'as a teacher to run a lesson with a class', win: this.window } ) ) );
 
 	}
@@ -112,7 +113,7 @@ export class LessonRunner {
 		const shown = ++ this.shows;
 		const status = h( 'p', { className: 'status', role: 'status' }, 'Loading the lessons…' );
 		const list = h( 'ul', { className: 'lr-lessons', 'aria-label': 'Lessons' } );
-		this.root.append( h( 'div', { className: 'lr-message lr-list' }, h( 'h1', { className: 'title' }, 'Lessons' ), status, list ) );
+		this.root.append( h( 'div', { className: 'lr-message lr-list' }, h( 'h1', { className: 'lr-page-title' }, 'Lessons' ), status, list ) );
 		try {
 
 			this.lessons = ( await this.api.get( 'lessons?limit=100' ) ).lessons ?? [];
@@ -155,6 +156,7 @@ export class LessonRunner {
 
 		if ( shown !== this.shows ) return;
 		this.screen = 'lesson';
+		this.root.className = 'lesson-runner lr-on-lesson';
 		this.lesson = lesson;
 		this.index = - 1;
 		this.buildLesson();
