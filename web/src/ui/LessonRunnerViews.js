@@ -10,7 +10,6 @@
 //   presenter.replay();                 // from the start, with its sound
 
 import { itemRequest, itemSettings } from './LessonRunnerItems.js';
-import { LabelLayer } from './LabelLayer.js';
 
 /** The first phone that is not silence, or -1. */
 export function firstSpokenPhone( phones ) {
@@ -49,7 +48,7 @@ export class ItemPresenter {
 		this.item = item;
 		this.settings = itemSettings( item );
 		this.plays = 0;
-		this.applyViews( this.settings );
+		await this.applyViews( this.settings );
 		await view.say( itemRequest( item ) );
 		if ( presenting !== this.presenting || ! view.viewer || ! view.utterance || view.busy ) return false;
 		view.setSpeed( this.settings.speed );
@@ -59,8 +58,8 @@ export class ItemPresenter {
 
 	}
 
-	/** The item's views on the head and beside it. */
-	applyViews( settings ) {
+	/** The item's views on the head and beside it (the label layer loaded when first wanted). */
+	async applyViews( settings ) {
 
 		const view = this.view;
 		view.state.skin = settings.transparency > 0;
@@ -93,6 +92,8 @@ export class ItemPresenter {
 
 		if ( settings.labels && ! this.labels && view.landmarks ) {
 
+			const { LabelLayer } = await import( './LabelLayer.js' );
+			if ( ! view.viewer || this.labels ) return;
 			this.labels = new LabelLayer( { document: view.landmarks, head: view.head, viewer: view.viewer, stage: view.stage, obstacles: this.obstacles } );
 			view.unregister.push( () => this.labels.dispose() );
 
