@@ -3,7 +3,8 @@ database the test chooses, with one or several worker processes; it can be kille
 (the whole group: uvicorn's supervisor and its workers) and started again on the same database.
 
 Also ``write_concurrently``: bounded concurrent writes (poses and recording imports) that record
-which were acknowledged, for the crash tests.
+which were acknowledged, for the crash tests. Those routes need a signed-in user: the first
+start makes an admin in the database and ``.headers`` carries their token.
 """
 
 import os
@@ -17,6 +18,9 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import httpx
+
+from accounts_support import bearer
+from glasshead.store.db import engine_for
 
 REPO = Path(__file__).resolve().parents[1]
 #: Seconds a server may take to start (migrations, assets, spawned workers).
@@ -42,6 +46,8 @@ class ServerProcess:
         self.process: subprocess.Popen | None = None
         self.base = ""
         self.starts = 0
+        #: The Authorization header of an admin, made once the server has migrated the database.
+        self.headers: dict = {}
 
     def start(self) -> "ServerProcess":
         port = free_port()
@@ -63,6 +69,10 @@ class ServerProcess:
                 raise RuntimeError(f"the server exited:\n{self.log_path.read_text()}")
             try:
                 if httpx.get(f"{self.base}{API}/health", timeout=2).status_code == 200:
+                    if not self.headers:
+                        engine = engine_for(self.database_url)
+                        self.headers = bearer("admin", engine=engine)
+                        engine.dispose()
                     return self
             except httpx.HTTPError:
                 pass
@@ -101,11 +111,11 @@ def recording_body(k: int) -> dict:
 
 
 def write_concurrently(base: str, count: int, *, first: int = 0, threads: int = 8,
-                       on_ack=None) -> dict:
+                       on_ack=None, headers: dict | None = None) -> dict:
     """Sends ``count`` writes (k from ``first`` on) from ``threads`` threads, even k a pose,
     odd k a recording import; returns {k: (kind, id)} for each write acknowledged (201).
     ``on_ack(acknowledged_so_far)`` is called after each acknowledgement. A write whose
-    connection fails is not acknowledged."""
+    connection fails is not acknowledged. ``headers``: a signed-in user's (ServerProcess's)."""
     acknowledged: dict[int, tuple[str, int]] = {}
     lock = threading.Lock()
 
@@ -128,14 +138,15 @@ def write_concurrently(base: str, count: int, *, first: int = 0, threads: int = 
         if on_ack is not None:
             on_ack(so_far)
 
-    with httpx.Client(timeout=20) as client, ThreadPoolExecutor(threads) as pool:
+    with httpx.Client(timeout=20, headers=headers) as client, ThreadPoolExecutor(threads) as pool:
         list(pool.map(lambda k: write(client, k), range(first, first + count)))
     return acknowledged
 
 
-def check_acknowledged_writes_are_there(base: str, acknowledged: dict) -> None:
+def check_acknowledged_writes_are_there(base: str, acknowledged: dict,
+                                        headers: dict | None = None) -> None:
     """Each acknowledged write reads back with what was written."""
-    with httpx.Client(timeout=20) as client:
+    with httpx.Client(timeout=20, headers=headers) as client:
         for k, (kind, record_id) in sorted(acknowledged.items()):
             if kind == "pose":
                 response = client.get(f"{base}{API}/poses/{record_id}")
@@ -161,7 +172,7 @@ def kill_during_writes(server: ServerProcess) -> dict:
             killed.set()
             server.kill()
 
-    acknowledged = write_concurrently(server.base, WRITES, on_ack=on_ack)
+    acknowledged = write_concurrently(server.base, WRITES, on_ack=on_ack, headers=server.headers)
     assert killed.is_set(), f"only {len(acknowledged)} writes were acknowledged"
     assert KILL_AFTER <= len(acknowledged) < WRITES, len(acknowledged)
     return acknowledged

@@ -6,6 +6,7 @@ from concurrent.futures import ThreadPoolExecutor
 import pytest
 import sqlalchemy as sa
 
+from accounts_support import signed_in
 from glasshead.store.db import alembic_config, engine_for, upgrade_to_head
 
 API = "/api/v1"
@@ -15,7 +16,7 @@ ONE_FRAME = {"format": "emur-json", "content": {"frames": [{"t_ms": 0, "rows": [
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    return signed_in(start_app()[1], "admin")
 
 
 def _pose(client, **changes):

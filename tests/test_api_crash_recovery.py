@@ -35,8 +35,8 @@ def test_every_acknowledged_write_survives_a_sigkill_and_the_database_checks_ok(
     try:
         acknowledged = kill_during_writes(server)
         server.start()  # the same database file, recovered from its WAL
-        check_acknowledged_writes_are_there(server.base, acknowledged)
-        after = write_concurrently(server.base, 4, first=WRITES)
+        check_acknowledged_writes_are_there(server.base, acknowledged, server.headers)
+        after = write_concurrently(server.base, 4, first=WRITES, headers=server.headers)
         assert len(after) == 4  # and it takes writes again
     finally:
         server.stop()

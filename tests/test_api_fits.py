@@ -10,6 +10,7 @@ import time
 import numpy as np
 import pytest
 
+from accounts_support import signed_in
 from glasshead.fitting import fit2d
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.store.db import engine_for
@@ -29,7 +30,7 @@ def outline(built_assets):
 
 @pytest.fixture
 def client(start_app, built_assets):
-    return start_app()[1]
+    return signed_in(start_app()[1], "author")
 
 
 def contour_csv(points) -> bytes:
@@ -141,6 +142,7 @@ def test_a_full_queue_is_503_with_retry_after_and_stores_nothing(start_app, outl
                                                                  monkeypatch):
     monkeypatch.setenv("GLASSHEAD_FIT_QUEUE_LIMIT", "1")
     app, client = start_app()
+    signed_in(client, "author")
     monkeypatch.setattr(app.state.fits, "submit", lambda job_id: None)  # nothing runs
     assert post_fit(client, contour_csv(outline), "contour").status_code == 202
     full = post_fit(client, contour_csv(outline), "contour")

@@ -2,6 +2,8 @@
 
 import pytest
 
+from accounts_support import signed_in
+
 API = "/api/v1"
 TIP_UP = {"name": "tip up", "description": "alveolar closure",
           "params": {"tip_advance": 1.5, "tip_height": 4.0}}
@@ -9,7 +11,8 @@ TIP_UP = {"name": "tip up", "description": "alveolar closure",
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    """The app with an admin signed in (tests/test_api_roles.py has the other roles)."""
+    return signed_in(start_app()[1], "admin")
 
 
 def test_a_saved_pose_is_created_and_read_back(client):

@@ -52,7 +52,7 @@ def test_of_twenty_concurrent_patches_across_two_new_workers_exactly_one_wins(tm
                                                                               postgres_url):
     server = ServerProcess(tmp_path, postgres_url, workers=WORKERS).start()
     try:
-        with httpx.Client(base_url=server.base, timeout=30) as client:
+        with httpx.Client(base_url=server.base, timeout=30, headers=server.headers) as client:
             created = client.post(f"{API}/poses", json=POSE)
             assert created.status_code == 201, created.text
             pose_id, tag = created.json()["id"], created.headers["etag"]
@@ -79,8 +79,8 @@ def test_every_acknowledged_write_survives_a_sigkill_of_both_workers(tmp_path, p
     try:
         acknowledged = kill_during_writes(server)
         server.start()
-        check_acknowledged_writes_are_there(server.base, acknowledged)
-        assert len(write_concurrently(server.base, 4, first=WRITES)) == 4
+        check_acknowledged_writes_are_there(server.base, acknowledged, server.headers)
+        assert len(write_concurrently(server.base, 4, first=WRITES, headers=server.headers)) == 4
     finally:
         server.stop()
     database = postgres_url.split("/")[3].split("?")[0]

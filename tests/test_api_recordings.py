@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
+from accounts_support import signed_in
 from glasshead.api.app import create_app
 from glasshead.api.routes import recordings
 from glasshead.epg.formats import CSV_ELECTRODES, CSV_MAGIC
@@ -19,12 +20,12 @@ API = "/api/v1"
 
 @pytest.fixture
 def client(tmp_path, monkeypatch):
-    """The app on a fresh SQLite file, migrated at start-up."""
+    """The app on a fresh SQLite file, migrated at start-up, with an admin signed in."""
     monkeypatch.setenv("GLASSHEAD_DATABASE_URL", f"sqlite:///{tmp_path / 'api.sqlite3'}")
     monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
     get_settings.cache_clear()
     with TestClient(create_app()) as client:
-        yield client
+        yield signed_in(client, "admin")
     get_settings.cache_clear()
 
 

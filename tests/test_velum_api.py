@@ -6,6 +6,7 @@ import shutil
 
 import pytest
 
+from accounts_support import signed_in
 from glasshead.constants import VELUM_RIG_FILE
 
 API = "/api/v1"
@@ -14,7 +15,7 @@ OUT_OF_RANGE = "params.velum_opening: 1.5 is outside [0, 1]"
 
 @pytest.fixture
 def client(built_assets, start_app):
-    return start_app(built_assets)[1]
+    return signed_in(start_app(built_assets)[1], "author")
 
 
 def _pose(params, name="nasal"):

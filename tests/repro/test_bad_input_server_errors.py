@@ -9,13 +9,15 @@ import json
 
 import pytest
 
+from accounts_support import signed_in
+
 API = "/api/v1"
 BEYOND_INT64 = 2**63  # one more than SQLite's and PostgreSQL's largest integer key
 
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    return signed_in(start_app()[1], "admin")
 
 
 @pytest.mark.parametrize("path", [

@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 from live_server_support import live_server, send_until_answered
 
+from accounts_support import signed_in
 from glasshead.api.limits import BODY_LIMITS, DEFAULT_LIMIT, MIB, body_limit
 
 CHUNK = 64 * 1024
@@ -96,6 +97,7 @@ def _padded_vertices(size: int) -> bytes:
 def test_a_body_just_under_its_limit_is_accepted_and_one_byte_over_is_not(start_app,
                                                                            built_assets):
     _, client = start_app()
+    signed_in(client, "admin")
     limit = body_limit("POST", "/api/v1/collision/correct")
     headers = {"Content-Type": "application/json"}
     under = client.post("/api/v1/collision/correct", content=_padded_vertices(limit),
@@ -110,6 +112,7 @@ def test_a_body_just_under_its_limit_is_accepted_and_one_byte_over_is_not(start_
 
 def test_a_chunked_body_one_byte_over_its_limit_is_refused(start_app, built_assets):
     _, client = start_app()
+    signed_in(client, "admin")
     body = _padded_vertices(DEFAULT_LIMIT + 1)
     response = client.post("/api/v1/poses", headers={"Content-Type": "application/json"},
                            content=(body[k:k + CHUNK] for k in range(0, len(body), CHUNK)))

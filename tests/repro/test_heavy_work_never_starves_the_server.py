@@ -16,6 +16,7 @@ import pytest
 from fastapi import HTTPException
 from live_server_support import live_server
 
+from accounts_support import signed_in
 from glasshead.api.compute_pool import ComputePool
 from glasshead.api.routes.collision import CorrectRequest, correct
 from glasshead.api.routes.epg import ContactsRequest, contacts_json
@@ -45,6 +46,7 @@ def slow_task(store, seconds: float) -> bytes:
 
 def test_the_pool_gives_the_same_answers_as_the_in_process_code(start_app, built_assets):
     app, client = start_app()
+    signed_in(client, "admin")
     surface = client.post(f"{API}/tongue/surface", json={"params": {"tip_height": 5.0}})
     assert surface.status_code == 200
     vertices = surface.json()["vertices"]
@@ -69,6 +71,7 @@ def test_the_pool_gives_the_same_answers_as_the_in_process_code(start_app, built
 
 def test_comparisons_and_plots_from_the_pool_match_the_in_process_code(start_app, data_dir):
     app, client = start_app()
+    signed_in(client, "admin")
     emur = (data_dir / "epg" / "emur-engassim.json").read_bytes()
     created = client.post(f"{API}/epg/recordings",
                           files={"file": ("engassim.json", emur, "application/json")})
@@ -92,6 +95,7 @@ def test_comparisons_and_plots_from_the_pool_match_the_in_process_code(start_app
 
 def test_an_error_raised_in_a_worker_answers_as_it_would_in_process(start_app, built_assets):
     _, client = start_app()
+    signed_in(client, "admin")
     response = client.post(f"{API}/epg/indices", json={"frames": [["2" * 8] * 8]})
     assert response.status_code == 422
     assert isinstance(response.json()["detail"], str) and response.json()["detail"]
@@ -101,6 +105,7 @@ def test_a_worker_follows_a_rebuilt_asset_by_its_content(start_app, built_assets
     assets = tmp_path / "assets"
     shutil.copytree(built_assets, assets)
     _, client = start_app(assets)
+    signed_in(client, "admin")
     body = {"params": {"tip_height": 4.0}}
     first = client.post(f"{API}/tongue/surface", json=body)
     assert first.status_code == 200
@@ -149,6 +154,7 @@ def test_a_compute_route_answers_503_when_its_queue_is_full(start_app, built_ass
     monkeypatch.setenv("GLASSHEAD_COMPUTE_WORKERS", "1")
     monkeypatch.setenv("GLASSHEAD_COMPUTE_QUEUE_LIMIT", "0")
     app, client = start_app()
+    signed_in(client, "admin")
     app.state.compute.pending = 1  # one request holds the only worker
     busy = client.post(f"{API}/tongue/surface", json={"params": {}})
     assert busy.status_code == 503

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from sqlalchemy import update
 
+from accounts_support import signed_in
 from glasshead.api import idempotency
 from glasshead.epg import formats
 from glasshead.store.base import utc_now
@@ -34,7 +35,9 @@ def count(client, route="epg/recordings") -> int:
 
 @pytest.fixture
 def app_client(start_app):
-    return start_app()
+    app, client = start_app()
+    signed_in(client, "admin")
+    return app, signed_in(client, "admin")
 
 
 @pytest.fixture

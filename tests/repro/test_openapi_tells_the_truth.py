@@ -8,6 +8,8 @@ server (tests/test_api_openapi_conformance.py); these are the cases it was built
 
 import pytest
 
+from accounts_support import signed_in
+
 API = "/api/v1"
 ERROR_REF = "#/components/schemas/Error"
 
@@ -21,7 +23,7 @@ def document(built_assets):
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    return signed_in(start_app()[1], "admin")
 
 
 def operations(document):

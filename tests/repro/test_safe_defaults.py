@@ -11,6 +11,7 @@ import re
 
 import pytest
 
+from accounts_support import signed_in
 from glasshead.api.security import allowed_host_names, host_name, inline_script_hashes
 from glasshead.api.static import HASH_PREFIX
 from glasshead.pipeline.report_paths import portable
@@ -22,7 +23,7 @@ ONE_FRAME = {"format": "emur-json", "content": {"frames": [{"t_ms": 0, "rows": [
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    return signed_in(start_app()[1], "admin")
 
 
 @pytest.mark.parametrize("path", [f"{API}/health", f"{API}/poses/999", "/", "/missing.js",

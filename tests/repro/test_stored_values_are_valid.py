@@ -10,6 +10,7 @@ import json
 import numpy as np
 import pytest
 
+from accounts_support import signed_in
 from glasshead.api.routes import recordings
 from glasshead.epg import formats
 from glasshead.epg.sequence import MAX_FRAMES, make_sequence
@@ -21,7 +22,7 @@ ZEROS = ",".join(["0"] * 62)
 
 @pytest.fixture
 def client(start_app):
-    return start_app()[1]
+    return signed_in(start_app()[1], "admin")
 
 
 def csv_with(*meta_lines: str) -> str:

@@ -6,29 +6,39 @@ frame stands for the whole recording (a static target); a sequence is aligned by
 side's first frame (see ``glasshead.epg.compare``). The comparisons and plots run in a compute
 worker (``api.compute_pool``), which reads the recording from the database itself: one of
 120,000 frames takes 2 to 4 s.
+
+As reading a recording, these are for clinicians and admins, on recordings the caller may read
+(``api/ownership.py``): the recording and a reference recording are checked in the request,
+before the work is queued; another caseload's is a 404.
 """
 
 from typing import Annotated
 
 import numpy as np
-from fastapi import APIRouter, HTTPException, Query, Response
+from fastapi import APIRouter, Depends, HTTPException, Query, Response
+from fastapi.concurrency import run_in_threadpool
 from pydantic import BaseModel, Field
 from sqlalchemy.orm import Session
 
+from glasshead.api.auth import require_role
 from glasshead.api.compute_pool import ComputeDep
 from glasshead.api.lookups import MAX_ID, RecordId, get_pose_record, get_record
+from glasshead.api.ownership import recording_for
 from glasshead.asset_store import AssetStore
 from glasshead.epg import compare as epg_compare
 from glasshead.epg.formats import rows_to_frame
 from glasshead.epg.indices import epg_indices
 from glasshead.epg.plot import DEFAULT_PANELS, PANELS, Track, index_tracks_svg
 from glasshead.epg.sequence import EpgFormatError, check_times
-from glasshead.store.db import database_url, engine_for
+from glasshead.store.db import database_url, engine_for, get_engine
+from glasshead.store.users import User
 
 router = APIRouter(tags=["epg recordings"])
 
 #: Most reference frames accepted in a request body.
 MAX_REFERENCE_FRAMES = 20_000
+#: Who reads recordings.
+Clinician = Annotated[User, Depends(require_role("clinician", "admin"))]
 PanelsQuery = Annotated[list[str] | None, Query(
     description=f"indices to plot, one panel each; default {', '.join(DEFAULT_PANELS)}")]
 CODE_LEGEND = {
@@ -115,11 +125,20 @@ def run_comparison(session: Session, recording_id: int, request: CompareRequest)
     return sequence, label, frames, result
 
 
+def _check_readable(user: User, recording_id: int, request: CompareRequest | None = None):
+    """404 unless ``user`` may read the recording and a reference recording it names."""
+    with Session(get_engine()) as session:
+        recording_for(session, user, recording_id)
+        if request is not None and isinstance(request.reference, RecordingReference):
+            recording_for(session, user, request.reference.recording_id)
+
+
 @router.post("/epg/recordings/{recording_id}/compare", operation_id="compareRecording",
              response_model=ComparisonReport)
 async def compare_recording(recording_id: RecordId, request: CompareRequest,
-                            compute: ComputeDep) -> Response:
+                            compute: ComputeDep, user: Clinician) -> Response:
     """Electrode-by-electrode agreement per frame and the differences of the indices."""
+    await run_in_threadpool(_check_readable, user, recording_id, request)
     return await compute.respond(comparison_json, (database_url(), recording_id, request))
 
 
@@ -127,17 +146,19 @@ async def compare_recording(recording_id: RecordId, request: CompareRequest,
              response_class=Response,
              responses={200: {"content": {"image/svg+xml": {}}}})
 async def plot_comparison(recording_id: RecordId, request: CompareRequest, compute: ComputeDep,
-                          panels: PanelsQuery = None) -> Response:
+                          user: Clinician, panels: PanelsQuery = None) -> Response:
     """SVG: the recording's indices over time (solid) against the reference's (dashed)."""
+    await run_in_threadpool(_check_readable, user, recording_id, request)
     payload = (database_url(), recording_id, request, _check_panels(panels))
     return Response(await compute.run(comparison_svg, payload), media_type="image/svg+xml")
 
 
 @router.get("/epg/recordings/{recording_id}/plot", operation_id="plotRecording",
             response_class=Response, responses={200: {"content": {"image/svg+xml": {}}}})
-async def plot_recording(recording_id: RecordId, compute: ComputeDep,
+async def plot_recording(recording_id: RecordId, compute: ComputeDep, user: Clinician,
                          panels: PanelsQuery = None) -> Response:
     """SVG: the recording's indices over time."""
+    await run_in_threadpool(_check_readable, user, recording_id)
     payload = (database_url(), recording_id, _check_panels(panels))
     return Response(await compute.run(recording_svg, payload), media_type="image/svg+xml")
 

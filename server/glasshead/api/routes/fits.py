@@ -7,6 +7,9 @@ row is stored), stores a ``queued`` job and answers 202 with it and its Location
 in a worker process (``fitting.job_runner``), never in the request. Its progress is read by
 polling GET /fits/{id} or as server-sent events from GET /fits/{id}/events. A finished fit's
 ``params`` are a target, listed by GET /fits?state=done. docs/fits.md describes it all.
+
+Fitted targets are shared as saved poses are: every signed-in adult reads them; authors,
+clinicians and admins upload observations; a fit is deleted only by its uploader or an admin.
 """
 
 import asyncio
@@ -33,13 +36,16 @@ from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
 from glasshead.api import idempotency
+from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.lookups import Offset, RecordId
+from glasshead.api.ownership import check_owner
 from glasshead.fitting import uploads
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.fitting.jobs import DEFAULT_METHOD
 from glasshead.store.db import get_engine
 from glasshead.store.fit_jobs import FitJob
 from glasshead.store.session import SessionDep
+from glasshead.store.users import User
 
 router = APIRouter(tags=["fits"])
 
@@ -62,6 +68,8 @@ def get_fit_runner(request: Request) -> FitRunner:
 
 
 RunnerDep = Annotated[FitRunner, Depends(get_fit_runner)]
+#: Who uploads observations to fit.
+Maker = Annotated[User, Depends(require_role("author", "clinician", "admin"))]
 
 
 class FitProgress(BaseModel):
@@ -84,6 +92,7 @@ class FitOut(BaseModel):
         description="the fitted target: every rig parameter (tongue, jaw, lips, velum)")
     report: dict | None = Field(
         description="rms_mm, evaluations, seconds, volume_change_pct, at_limit, method, ...")
+    owner_id: int | None = Field(None, description="the user who uploaded it")
     created_at: datetime
     updated_at: datetime
     started_at: datetime | None
@@ -123,6 +132,7 @@ async def create_fit(
     response: Response,
     session: SessionDep,
     runner: RunnerDep,
+    user: Maker,
     kind: Annotated[Kind, Form(description="what the file holds")],
     idempotency_key: idempotency.IdempotencyKeyHeader = None,
     file: Annotated[UploadFile | None, File(description="the observation file")] = None,
@@ -156,7 +166,7 @@ async def create_fit(
         raise HTTPException(status_code=error.status, detail=str(error)) from None
     job = await run_in_threadpool(
         _store, session, runner, observation, name or file.filename or f"{kind} fit", method,
-        max_evals, idempotency_key, digest,
+        max_evals, idempotency_key, digest, user.id,
         lambda fit_id: str(request.url_for("get_fit", fit_id=fit_id).path))
     if isinstance(job, Response):  # the same key's first request committed meanwhile
         return job
@@ -166,7 +176,7 @@ async def create_fit(
 
 def _store(session: Session, runner: FitRunner, observation: uploads.Observation, name: str,
            method: str | None, max_evals: int | None, key: str | None = None, digest: str = "",
-           location=None) -> FitJob | Response:
+           owner_id: int | None = None, location=None) -> FitJob | Response:
     if runner.queue_full(session):
         raise HTTPException(status_code=503, headers={"Retry-After": str(RETRY_AFTER_S)},
                             detail=f"{runner.queue_limit} fits are already waiting; retry "
@@ -175,7 +185,7 @@ def _store(session: Session, runner: FitRunner, observation: uploads.Observation
     job = FitJob(name=name.strip()[:200] or f"{observation.kind} fit", kind=observation.kind,
                  method=method or DEFAULT_METHOD[observation.kind], state="queued",
                  progress={"evaluations": 0, "best_error": None, "fraction": 0.0},
-                 source={**observation.source, "options": options})
+                 source={**observation.source, "options": options}, owner_id=owner_id)
     job.set_observation(observation.points)
     session.add(job)
     session.flush()
@@ -190,7 +200,7 @@ def _store(session: Session, runner: FitRunner, observation: uploads.Observation
 
 
 @router.get("/fits", operation_id="listFits", response_model=FitList)
-def list_fits(session: SessionDep, state: State | None = None,
+def list_fits(session: SessionDep, user: SignedInUser, state: State | None = None,
               offset: Offset = 0,
               limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> FitList:
     """Fits, newest first; ``state=done`` lists the fitted targets."""
@@ -203,7 +213,7 @@ def list_fits(session: SessionDep, state: State | None = None,
 
 
 @router.get("/fits/{fit_id}", operation_id="getFit", response_model=FitOut)
-def get_fit(fit_id: RecordId, session: SessionDep) -> FitJob:
+def get_fit(fit_id: RecordId, session: SessionDep, user: SignedInUser) -> FitJob:
     """One fit: its state and progress, and once done its target (``params``) and report."""
     return get_fit_record(session, fit_id)
 
@@ -212,7 +222,8 @@ def get_fit(fit_id: RecordId, session: SessionDep) -> FitJob:
             response_class=StreamingResponse,
             responses={200: {"content": {"text/event-stream": {}},
                              "description": "progress events, then one done or failed event"}})
-def stream_fit_events(fit_id: RecordId, session: SessionDep) -> StreamingResponse:
+def stream_fit_events(fit_id: RecordId, session: SessionDep,
+                      user: SignedInUser) -> StreamingResponse:
     """Server-sent events: ``progress`` (the job's state and progress) whenever its row
     changes, then one ``done`` or ``failed`` event with the whole job, then the stream ends."""
     get_fit_record(session, fit_id)
@@ -255,8 +266,10 @@ async def _events(fit_id: int):
 
 
 @router.delete("/fits/{fit_id}", operation_id="deleteFit", status_code=status.HTTP_204_NO_CONTENT)
-def delete_fit(fit_id: RecordId, session: SessionDep) -> Response:
+def delete_fit(fit_id: RecordId, session: SessionDep, user: Maker) -> Response:
     """Delete a fit and its target; a fit still running stops at its next progress write."""
-    session.delete(get_fit_record(session, fit_id))
+    job = get_fit_record(session, fit_id)
+    check_owner(user, job, "fit")
+    session.delete(job)
     session.commit()
     return Response(status_code=status.HTTP_204_NO_CONTENT)

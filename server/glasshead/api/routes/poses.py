@@ -4,6 +4,10 @@ A pose's ``params`` map articulation parameter names (as in the tongue, face and
 numbers; a value outside its rig's range is refused (422 naming the parameter and the range),
 names no rig has are kept. Pose names are unique, so a pose can be found by name
 (``GET /poses?name=...``).
+
+Poses are content shared within a school: every signed-in adult reads them; authors, clinicians
+and admins save them; a pose is changed or deleted only by whoever saved it, or an admin (403
+otherwise; a pose saved before poses had owners is an admin's).
 """
 
 import math
@@ -11,18 +15,21 @@ import re
 from datetime import datetime
 from typing import Annotated
 
-from fastapi import APIRouter, Header, HTTPException, Query, Response, status
+from fastapi import APIRouter, Depends, Header, HTTPException, Query, Response, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
 from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.deps import AssetsDep
 from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId, get_pose_record
+from glasshead.api.ownership import check_owner
 from glasshead.api.params import check_known_params
 from glasshead.store.models import SavedPose
 from glasshead.store.session import SessionDep
+from glasshead.store.users import User
 
 router = APIRouter(tags=["poses"])
 
@@ -35,6 +42,8 @@ IfMatch = Annotated[str | None, Header(description="the ETag last read: the writ
 
 PARAM_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_.]{0,63}$")
 MAX_PARAMS = 256
+#: Who saves poses and targets.
+Maker = Annotated[User, Depends(require_role("author", "clinician", "admin"))]
 PoseName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1, max_length=120)]
 
 
@@ -80,6 +89,7 @@ class PoseOut(BaseModel):
     name: str
     description: str
     params: dict[str, float]
+    owner_id: int | None = Field(description="the user who saved it (None: an admin's)")
     created_at: datetime
     updated_at: datetime
 
@@ -103,10 +113,11 @@ def _commit(session: Session, name: str, record: SavedPose | None = None) -> Non
 
 @router.post("/poses", operation_id="createPose", status_code=status.HTTP_201_CREATED,
              response_model=PoseOut, responses=NAME_CONFLICT)
-def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep,
+def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep, user: Maker,
                 response: Response) -> SavedPose:
     check_known_params(assets, pose.params)
-    record = SavedPose(name=pose.name, description=pose.description, params=pose.params)
+    record = SavedPose(name=pose.name, description=pose.description, params=pose.params,
+                       owner_id=user.id)
     session.add(record)
     _commit(session, pose.name)
     set_etag(response, KIND, record)
@@ -114,7 +125,7 @@ def create_pose(pose: PoseIn, session: SessionDep, assets: AssetsDep,
 
 
 @router.get("/poses", operation_id="listPoses", response_model=PoseList)
-def list_poses(session: SessionDep, name: str | None = None,
+def list_poses(session: SessionDep, user: SignedInUser, name: str | None = None,
                offset: Offset = 0,
                limit: Annotated[int, Query(ge=1, le=1000)] = 100) -> PoseList:
     """Poses in name order; ``name`` selects the one pose of that name."""
@@ -127,7 +138,8 @@ def list_poses(session: SessionDep, name: str | None = None,
 
 
 @router.get("/poses/{pose_id}", operation_id="getPose", response_model=PoseOut)
-def get_pose(pose_id: RecordId, session: SessionDep, response: Response) -> SavedPose:
+def get_pose(pose_id: RecordId, session: SessionDep, user: SignedInUser,
+             response: Response) -> SavedPose:
     record = get_pose_record(session, pose_id)
     set_etag(response, KIND, record)
     return record
@@ -136,8 +148,9 @@ def get_pose(pose_id: RecordId, session: SessionDep, response: Response) -> Save
 @router.put("/poses/{pose_id}", operation_id="replacePose", response_model=PoseOut,
             responses={**PRECONDITION, **NAME_CONFLICT})
 def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep, assets: AssetsDep,
-                 response: Response, if_match: IfMatch = None) -> SavedPose:
+                 user: Maker, response: Response, if_match: IfMatch = None) -> SavedPose:
     record = get_pose_record(session, pose_id)
+    check_owner(user, record, KIND)
     check_if_match(if_match, KIND, record, f"pose {pose_id}")
     check_known_params(assets, pose.params)
     record.name, record.description, record.params = pose.name, pose.description, pose.params
@@ -149,8 +162,9 @@ def replace_pose(pose_id: RecordId, pose: PoseIn, session: SessionDep, assets: A
 @router.patch("/poses/{pose_id}", operation_id="updatePose", response_model=PoseOut,
               responses={**PRECONDITION, **NAME_CONFLICT})
 def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep, assets: AssetsDep,
-                response: Response, if_match: IfMatch = None) -> SavedPose:
+                user: Maker, response: Response, if_match: IfMatch = None) -> SavedPose:
     record = get_pose_record(session, pose_id)
+    check_owner(user, record, KIND)
     check_if_match(if_match, KIND, record, f"pose {pose_id}")
     if patch.params is not None:
         check_known_params(assets, patch.params)
@@ -165,8 +179,10 @@ def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep, assets
 
 @router.delete("/poses/{pose_id}", operation_id="deletePose",
                status_code=status.HTTP_204_NO_CONTENT, responses=PRECONDITION)
-def delete_pose(pose_id: RecordId, session: SessionDep, if_match: IfMatch = None) -> Response:
+def delete_pose(pose_id: RecordId, session: SessionDep, user: Maker,
+                if_match: IfMatch = None) -> Response:
     record = get_pose_record(session, pose_id)
+    check_owner(user, record, KIND)
     check_if_match(if_match, KIND, record, f"pose {pose_id}")
     session.delete(record)
     commit_versioned(session, KIND, record, f"pose {pose_id}")
