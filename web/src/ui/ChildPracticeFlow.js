@@ -20,15 +20,6 @@ export function looksLikeJoinCode( code ) {
 
 }
 
-/** The screen of the practice: who signed in, and what there is to do. */
-export function practiceScreen( { session, roster, lessons, round } ) {
-
-	if ( session?.kind !== 'child' ) return roster ? 'roster' : 'code';
-	if ( round ) return round.done ? 'done' : 'practice';
-	return lessons && lessons.length === 1 ? 'practice' : 'lessons';
-
-}
-
 /** One pass through a lesson's items for one child. */
 export class PracticeRound {
 
