@@ -290,3 +290,22 @@ def test_lessons_and_poses_are_changed_only_by_their_owner_or_an_admin(client):
                             headers=someone_else).status_code == 403
     assert client.patch(pose_url, json={"description": "mine"}, headers=ann).status_code == 200
     assert client.delete(pose_url, headers=admin).status_code == 204
+
+
+def test_the_document_declares_the_token_401_and_403_of_every_operation_that_needs_one(client):
+    document = client.get(f"{API}/openapi.json").json()
+    assert document["components"]["securitySchemes"]["bearerToken"] == {
+        "type": "http", "scheme": "bearer", "description": "a token from POST /auth/sessions"}
+    undocumented = []
+    for path, operations in document["paths"].items():
+        for method, operation in operations.items():
+            allowed = ROLE_TABLE[operation["operationId"]]
+            if allowed == "open":
+                continue
+            limited = set(allowed) != set(CALLERS[1:]) and operation["operationId"] not in \
+                SESSION_ROUTES  # a session route refuses another kind of token with 401
+            needs = {"401", "403"} if limited else {"401"}
+            missing = needs - set(operation["responses"])
+            if missing or {"bearerToken": []} not in operation.get("security", []):
+                undocumented.append(f"{method.upper()} {path}: {sorted(missing)} or security")
+    assert not undocumented, "\n".join(undocumented)
