@@ -17,6 +17,10 @@ from scipy.spatial import cKDTree
 
 from glasshead.geometry import face_rig
 from glasshead.geometry.jaw import jaw_pose
+from glasshead.geometry.tongue_rig import JAW_PARAMETER
+
+#: The jaw's largest opening, degrees (the tongue rig's jaw_opening range).
+JAW_MAX_DEG = JAW_PARAMETER[3]
 
 #: Rest vertices closer than this are one point shared by two meshes (GLB float32), mm.
 SEAM_MM = 1e-3
@@ -133,7 +137,7 @@ def interpenetration(upper_vertices, upper_faces, lower_vertices):
     return float(trimesh.proximity.closest_point(upper, lower_vertices[inside])[1].max())
 
 
-def random_lip_sets(rig, count, seed, closed_share=0.3, jaw_range=(0.0, 25.0)):
+def random_lip_sets(rig, count, seed, closed_share=0.3, jaw_range=JAW_PARAMETER[2:4]):
     """``count`` seeded random (jaw opening, lip params) across every range."""
     rng = np.random.default_rng(seed)
     sets = []
@@ -147,14 +151,15 @@ def random_lip_sets(rig, count, seed, closed_share=0.3, jaw_range=(0.0, 25.0)):
 
 def extreme_sets(rig):
     """Every lip parameter alone at each extreme, and some strong combinations, at jaw openings
-    0, 12.5 and 25 degrees."""
+    0, half the jaw's range and its maximum."""
     lips = [{}]
     for spec in rig["parameters"]:
         lips += [{spec["name"]: spec["min"]}, {spec["name"]: spec["max"]}]
     lips += [{"lip_opening": 0.0, "lip_rounding": 10.0, "lip_protrusion": 8.0},
              {"lip_opening": 0.0, "upper_lip_raise": 6.0, "lower_lip_tuck": 5.0},
              {"upper_lip_raise": 6.0, "lower_lip_tuck": 5.0, "lip_rounding": -4.0}]
-    return [(opening, params) for opening in (0.0, 12.5, 25.0) for params in lips]
+    return [(opening, params) for opening in (0.0, 0.5 * JAW_MAX_DEG, JAW_MAX_DEG)
+            for params in lips]
 
 
 def skin_showing_through_lips(posed, faces, step=0.5, within=0.5):

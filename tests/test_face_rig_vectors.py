@@ -71,7 +71,7 @@ def test_the_file_holds_100_or_more_seeded_random_sets_with_the_jaw_and_unique_d
     assert len(random) == RANDOM_CASES >= 100
     assert all(f"seed {document['constants']['seed']}" in c["description"] for c in random)
     openings = [c["input"]["params"]["jaw_opening"] for c in random]
-    assert max(openings) - min(openings) > 20
+    assert max(openings) - min(openings) > 8  # of the jaw's 0 to 10 degrees
     assert sum(c["input"]["params"]["lip_opening"] == 0.0 for c in random) >= 15
     descriptions = [c["description"] for c in document["cases"]]
     assert len(set(descriptions)) == len(descriptions)

@@ -148,16 +148,16 @@ def test_groove_depth_lowers_the_midline_of_the_dorsum(rig):
 
 
 def test_the_tongue_rides_on_the_jaw_its_floor_points_move_with_the_mandible(rig):
-    values = rig.values_from({"jaw_opening": 20.0})
+    values = rig.values_from({"jaw_opening": 10.0})
     points, hub, _offsets, _stretch = rig.control_points(values)
-    pose = jaw_pose(20.0, rig.jaw)
+    pose = jaw_pose(10.0, rig.jaw)
     fully = rig.point_jaw_weights == 1.0
     np.testing.assert_allclose(points[fully], apply_jaw_pose(rig.rest_points[fully], pose),
                                atol=1e-12)
     np.testing.assert_allclose(hub, apply_jaw_pose(rig.hub[None], pose, [rig.hub_jaw_weight])[0],
                                rtol=0, atol=1e-12)  # mm, the same pose by two routes
     rest, opened = rig.evaluate(rig.neutral).vertices, rig.vertices(values)
-    assert opened[:, 1].min() < rest[:, 1].min() - 10
+    assert opened[:, 1].min() < rest[:, 1].min() - 5  # 8.5 mm lower at 10 degrees
 
 
 def test_width_stretches_sideways_and_never_moves_the_poles(rig):

@@ -207,7 +207,7 @@ CORONAL_PARAMETERS = (
       ("left lower side", 1.0))),
 )
 
-JAW_PARAMETER = ("jaw_opening", "deg", 0.0, 25.0,
+JAW_PARAMETER = ("jaw_opening", "deg", 0.0, 10.0,
                  "Opens the jaw: rotation about the temporomandibular axis with a forward slide.")
 
 GROUP_SAGITTAL = "tongue sagittal"

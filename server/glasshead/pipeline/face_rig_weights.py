@@ -40,13 +40,19 @@ from glasshead.pipeline.surface_distance import SurfaceDistance
 #: A face node lies on a bone (or a lip surface) when closer than this, mm.
 ON_SURFACE_MM = 1.5
 #: Fraction of the mouth's half-width, either side of the midline, where the lips are fixed to
-#: their bone; toward the corners their weights are free to blend.
-LIP_MIDDLE_FRACTION = 0.3
+#: their bone (nodes on a lip, and the lip's own vertices on no node: its inner side); toward the
+#: corners their weights are free to blend. With 0.3 the lower lip's inner side took 0.7 to 0.8
+#: (harmonic over the lip, from the corners' 0.2), lagged behind the jaw and showed its inside
+#: as a U from 5 degrees; fixed over most of the width, the lip rides on the jaw as one piece.
+LIP_MIDDLE_FRACTION = {"upper_lip": 0.75, "lower_lip": 0.75}
 #: Nodes higher than this above the mouth centre with the maxilla or cranium as nearest bone are
 #: fixed to 0 (the cheeks and nose stay put; below it the cheek stretches over the jaw).
 UPPER_FACE_ABOVE_MOUTH_MM = 5.0
-#: Radius of the region about each corner of the mouth that takes the corner's weight, mm.
-CORNER_RADIUS_MM = 16.0
+#: Radius of the region about each corner of the mouth that takes the corner's weight, mm
+#: (16 mm, for a jaw opening to 25 degrees, drew the weights of the lower lip's outer half
+#: down to 0.2 to 0.5; 8 mm let the upper lip's edges near a corner stretch over 5 times their
+#: rest length; 12 mm keeps them within that and the corners from folding).
+CORNER_RADIUS_MM = 12.0
 #: Shell vertices farther than this from every rim point with a weight above RIM_MOVING keep
 #: still; nearer, the shell blends from the rim's weights down to 0 (mm).
 SHELL_BLEND_MM = 70.0
@@ -89,7 +95,8 @@ def node_jaw_weights(src: FaceSources, mouth_centre, mouth_half_width):
                           SurfaceDistance(*src.cranium).distance(nodes))
     to_upper_lip = SurfaceDistance(*src.upper_lip).distance(nodes)
     to_lower_lip = SurfaceDistance(*src.lower_lip).distance(nodes)
-    middle = np.abs(nodes[:, 2]) < LIP_MIDDLE_FRACTION * mouth_half_width
+    middle_upper = np.abs(nodes[:, 2]) < LIP_MIDDLE_FRACTION["upper_lip"] * mouth_half_width
+    middle_lower = np.abs(nodes[:, 2]) < LIP_MIDDLE_FRACTION["lower_lip"] * mouth_half_width
     still = np.zeros(len(nodes), dtype=bool)
     still_nodes = src.skin_nodes[still_skin_vertices(src)]
     still[still_nodes[still_nodes >= 0]] = True
@@ -98,9 +105,10 @@ def node_jaw_weights(src: FaceSources, mouth_centre, mouth_half_width):
     kept = attached[(to_jaw[attached] <= to_upper[attached]) & ~still[attached]]
     one = np.zeros(len(nodes), dtype=bool)
     one[kept] = True
-    one |= middle & (to_lower_lip < ON_SURFACE_MM)
+    # Where the lips touch, a node near both belongs to the nearer one.
+    one |= middle_lower & (to_lower_lip < ON_SURFACE_MM) & (to_lower_lip <= to_upper_lip)
     zero = (to_upper < ON_SURFACE_MM) & (to_jaw > ON_SURFACE_MM)
-    zero |= middle & (to_upper_lip < ON_SURFACE_MM)
+    zero |= middle_upper & (to_upper_lip < ON_SURFACE_MM) & (to_upper_lip < to_lower_lip)
     zero |= (to_upper < to_jaw) & (nodes[:, 1] > mouth_centre[1] + UPPER_FACE_ABOVE_MOUTH_MM)
     zero &= ~one
     zero |= still
@@ -113,15 +121,34 @@ def node_jaw_weights(src: FaceSources, mouth_centre, mouth_half_width):
     return weights, stats
 
 
-def mesh_jaw_weights(meshes, nodes, node_weights):
+def lip_middle(name, vertices, nodes, mouth_half_width):
+    """Vertices of a lip within its LIP_MIDDLE_FRACTION of the mouth's half-width of the midline
+    and on no face node (the lip's inner side, which the node field does not reach); (k,) int64."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    off_node = cKDTree(nodes).query(vertices)[0] > COINCIDENT_MM
+    middle = np.abs(vertices[:, 2]) < LIP_MIDDLE_FRACTION[name] * mouth_half_width
+    return np.flatnonzero(middle & off_node)
+
+
+def mesh_jaw_weights(meshes, nodes, node_weights, mouth_half_width):
     """Per-vertex jaw weights of the face skin and both lips.
 
     meshes : dict with ``face_skin``, ``upper_lip``, ``lower_lip`` -> (vertices, faces).
     nodes : (p, 3) face nodes; node_weights : (p,) from ``node_jaw_weights``.
+    mouth_half_width : mm; the middle of each lip (``lip_middle``) is fixed to its bone's weight.
     Returns (dict name -> (n,) float64 in [0, 1], number of lip corner points shared).
     """
+    bone = {"upper_lip": 0.0, "lower_lip": 1.0}
+    middles = {name: lip_middle(name, meshes[name][0], nodes, mouth_half_width) for name in bone}
+
     def carry(name, extra=None):
         vertices, faces = meshes[name]
+        if extra is None:
+            extra = (np.zeros(0, dtype=np.int64), np.zeros(0))
+        if name in bone:
+            fixed = np.setdiff1d(middles[name], extra[0])
+            extra = (np.concatenate([extra[0], fixed]),
+                     np.concatenate([extra[1], np.full(len(fixed), bone[name])]))
         return np.clip(transfer_weights(vertices, faces, nodes, node_weights, extra), 0.0, 1.0)
 
     names = ("face_skin", "upper_lip", "lower_lip")

@@ -20,6 +20,7 @@ import numpy as np
 from glasshead.constants import FACE_VERTEX_TOLERANCE_MM
 from glasshead.geometry import face_rig
 from glasshead.geometry.jaw import jaw_pose
+from glasshead.geometry.tongue_rig import JAW_PARAMETER
 from glasshead.vectors import sources
 from glasshead.vectors.common import case, document, rounded, tolerance
 
@@ -32,7 +33,7 @@ PROBES_PER_MESH = 12
 PARAM_DECIMALS = 4
 RESULT_DECIMALS = 5
 REST_DECIMALS = 4
-JAW_RANGE_DEG = (0.0, 25.0)
+JAW_RANGE_DEG = JAW_PARAMETER[2:4]
 #: mm. The teeth's decisions of every case hold with the face and the depth moved this much.
 MARGIN_MM = 1e-4
 
@@ -57,7 +58,7 @@ def fixed_sets(rig):
         for label in ("min", "max"):
             sets.append((f"{spec['name']} alone at its {label} {spec[label]:g}",
                          {spec["name"]: float(spec[label]), "jaw_opening": 0.0}))
-    for opening in (0.0, 12.5, 25.0):
+    for opening in (0.0, 0.5 * JAW_RANGE_DEG[1], JAW_RANGE_DEG[1]):
         sets.append((f"lips closed at jaw opening {opening:g} deg",
                      {"lip_opening": 0.0, "jaw_opening": opening}))
     return sets
