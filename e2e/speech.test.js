@@ -4,8 +4,8 @@
 // clock to every frame, not by waiting for real-time playback (software rendering is slow), and
 // reading window.glasshead: the tongue tip's height peaks inside /t/ and /d/, the lips close
 // during /p b m/, the velum lowers during /m n ŋ/, the live palatogram shows front closure
-// during /t/ and back closure during /k/ (the last, marked todo, falls short in the phoneme
-// targets today, not in the player). Screenshots speech-1920 and speech-768 are for a person.
+// during /t/ and back closure during a held /k/ (the coarticulated /k/ is marked todo).
+// Screenshots speech-1920 and speech-768 are for a person.
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
@@ -267,9 +267,10 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 
 	} );
 
-	// The /k/ target itself has no full back row (its fitted EPG: R7 11100111), so neither has
-	// the coarticulated /k/ (the targets', not the player's).
-	test( 'the live palatogram shows back closure during /k/', { todo: 'the /k/ target (and so every /k/) has no full row in R6-R8' }, () => {
+	// The /k/ targets close a back row (R8 for /k/ before /a/ and /u/, R7 before /i/; the held
+	// target below), but a /k/ of 40-50 ms between vowels never reaches its target: the
+	// neighbours' dominance keeps the dorsum under the palate, touching the sides only.
+	test( 'the live palatogram shows back closure during /k/', { todo: 'the coarticulated /k/ stops short of its target: sides of R6-R8 only' }, () => {
 
 		const open = phonesOf( utterance.phones, [ 'K' ] ).filter( ( phone ) => ! closedDuring( phone, [ 5, 6, 7 ] ) ).map( ( p ) => `/k/ at ${ p.start_s.toFixed( 2 ) } s: no full row in R6-R8` );
 		assert.deepEqual( open, [] );
@@ -289,6 +290,22 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 		await page.getByRole( 'button', { name: 'Cues', exact: true } ).click();
 		await settle( page );
 		await saveScreenshot( page, 'speech-1920' );
+		await button( 'Hold target' ).click();
+		assert.equal( ( await speech() ).hold, null );
+
+	} );
+
+	test( 'holding the target of /k/ freezes on it: back closure on the live palatogram', async () => {
+
+		const k = phonesOf( utterance.phones, [ 'K' ] )[ 0 ];
+		await page.getByRole( 'group', { name: 'Phonemes' } ).getByRole( 'button' ).nth( k.index ).click();
+		await button( 'Hold target' ).click();
+		await page.waitForFunction( () => window.glasshead.speech.hold === 'K' && /Holding/.test( document.querySelector( '.sp-form [role=status]' ).textContent ), null, { timeout: 10_000 } );
+		// The palatogram follows the held pose with the next drawn frame.
+		await page.waitForFunction( () => [ 5, 6, 7 ].some( ( r ) => window.glasshead.epg?.rows?.[ r ] === '11111111' ), null, { timeout: 10_000 } ).catch( () => {} );
+		const state = await readDebug( page );
+		assert.equal( state.speech.phone.symbol, 'K' );
+		assert.ok( [ 5, 6, 7 ].some( ( r ) => rowClosed( state.epg.rows, r ) ), `rows ${ state.epg.rows.join( ' ' ) }` );
 		await button( 'Hold target' ).click();
 		assert.equal( ( await speech() ).hold, null );
 

@@ -21,8 +21,9 @@ How a measured target is made (``measured_target``):
 4. Contact (``contact_target``): the shapes of the consonants of the three real EPG classes
    (/t d n/, /s z/, /k g ŋ/, every context) and /i/ are fitted again with the outline and an
    EPG error together (``fitting.fit_contact``): toward the class's real majority pattern
-   (``fitting.epg_observations``), weighted per electrode by how clear its majority is, or for
-   /i/ toward the pattern its realism rule describes (``RULE_GOALS``).
+   (``fitting.epg_observations``), weighted per electrode by how clear its majority is (for
+   /k g ŋ/ the majority of the real frames that close a back row, ``RULE_FRAMES_OF_GOAL``), or
+   for /i/ toward the pattern its realism rule describes (``RULE_GOALS``).
 
 A consonant's own target is its /a/-context fit (the open vowel pulls the tongue least); the /i/
 and /u/ fits are kept as ``contexts``. Reasoning-based targets (W, R, HH, Y and AE) are built
@@ -246,8 +247,19 @@ RULE_GOALS = {
 #: sibilants, whose real frames keep the middle columns open in the front rows.
 CORONAL_OF_GOAL = {
     "alveolar_fricative": fit_contact.CORONAL_GROUPS,
+    "velar_stop": fit_contact.CORONAL_GROUPS,
 }
 CORONAL_DEFAULT = ("width", "edge_height", "side_bulge")
+#: Goals made from only those of the class's real frames that meet its realism rule. Of the 32
+#: real /k g/ frames 8 close a back row (R8, in every one of the 8); the other 24 close behind
+#: the palate's last row, where no electrode sees the closure, so the majority of all 32 (R8
+#: ``11110111``) has no complete row, and targets fitted to it had none either.
+RULE_FRAMES_OF_GOAL = {"velar_stop": epg_observations.back_closure}
+#: The EPG weight of a goal's contact fit where it is not ``fit_contact.EPG_WEIGHT``: the back
+#: row closes only when the dorsum reaches it across its whole width, against the volume bound
+#: and JD3's outline; at 30 the velar fits stopped with R8's middle electrodes about 0.5 mm out
+#: of reach (/k/(a) and /k/(u): R8 ``11100111``), at 100 they close it.
+EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0}
 
 
 def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -272,14 +284,17 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
         if name in ctx.classes and any(phoneme_inventory.lookup(s).shape == stem
                                        for s in symbols):
             frames = ctx.classes[name].frames
+            if name in RULE_FRAMES_OF_GOAL:
+                frames = frames[[RULE_FRAMES_OF_GOAL[name](f) for f in frames]]
             share = frames.mean(axis=0)
             weights = np.abs(2.0 * share - 1.0) * epg_observations.ELECTRODES
-            return {"name": name, "wanted": ctx.classes[name].majority, "weights": weights,
-                    "frames": int(len(frames))}
+            return {"name": name, "wanted": epg_observations.majority_pattern(frames),
+                    "weights": weights, "frames": int(len(frames)),
+                    "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT)}
     if shape_name in RULE_GOALS:
         wanted, weights = rule_pattern(shape_name)
         return {"name": RULE_GOALS[shape_name][0], "wanted": wanted, "weights": weights,
-                "rule": RULE_GOALS[shape_name][1]}
+                "rule": RULE_GOALS[shape_name][1], "epg_weight": fit_contact.EPG_WEIGHT}
     return None
 
 
@@ -325,11 +340,12 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
                                      press_mm=fit_contact.PRESS_MM)
     objective = fit_contact.ContactObjective(rig, shape["tongue_outline"], epg, base=fitted,
                                              groups=fit_contact.free_groups(rig, coronal=coronal),
-                                             section=ctx.section)
+                                             section=ctx.section, epg_weight=goal["epg_weight"])
     start = _contact_start(ctx, objective, fitted)
     contact = fit_contact.fit_contact(rig, shape["tongue_outline"], ctx.probes, goal["wanted"],
                                       base=objective.values(start), weights=goal["weights"],
-                                      section=ctx.section, coronal=coronal, name=shape_name)
+                                      section=ctx.section, coronal=coronal, name=shape_name,
+                                      epg_weight=goal["epg_weight"])
     tongue = {n: round(v, 4) for n, v in contact.params.items()}
     after_grid = ctx.epg(tongue)["grid"]
     fit = {**fit, "rms_mm": round(contact.rms_mm, 3),
@@ -340,6 +356,7 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
                        "agreement": round(_agreement(after_grid, goal), 4),
                        "evaluations": contact.evaluations, "seconds": round(contact.seconds, 2),
                        "stop": contact.stop, "coronal": list(coronal),
+                       "epg_weight": goal["epg_weight"], "goal_frames": goal.get("frames"),
                        "before": {"rms_mm": fit["rms_mm"],
                                   "epg_error_mm": round(plain(rig.vertices(fitted)), 3),
                                   "agreement": round(_agreement(before_grid, goal), 4),
@@ -643,6 +660,9 @@ def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
         "targets": targets,
         "contact_fit": {"epg_weight": fit_contact.EPG_WEIGHT, "margin_mm": fit_contact.MARGIN_MM,
                         "press_mm": fit_contact.PRESS_MM, "rule_goals": dict(RULE_GOALS),
+                        "epg_weight_of_goal": dict(EPG_WEIGHT_OF_GOAL),
+                        "rule_frames_of_goal": {name: test.__name__ for name, test
+                                                in RULE_FRAMES_OF_GOAL.items()},
                         "weights": "|2 p - 1| per electrode, p the share of the class's real "
                                    "frames touching it"},
         "realism": realism(grids, ctx.classes, _before_grids(targets)),
