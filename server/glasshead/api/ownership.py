@@ -3,7 +3,10 @@
 ``api/auth.py`` says who is asking and whether their role may call a route at all (401, 403);
 this module says which records they reach. A class (a teacher's class or a clinician's
 caseload) is its owner's: its children, their assignments, practice records and EPG recordings
-go with it. Someone else's class, child, assignment, practice record or recording is a 404, the
+go with it. The owner may share it with other teachers and clinicians (its staff, so that a
+clinician follows a teacher's pupil): staff reach it and everything in it as the owner does, but
+only the owner (or an admin) deletes the class or changes its staff, a 403 to staff. Someone
+else's class, child, assignment, practice record or recording is a 404, the
 answer for one that does not exist, so nobody learns that it does; in a body it is the 422 of a
 reference to nothing (``api/records.py``). Content that every signed-in adult reads (lessons,
 saved poses, fitted targets) is changed only by its owner or an admin: another's is a 403, since
@@ -15,7 +18,14 @@ from sqlalchemy import Select, false, or_, select
 from sqlalchemy.orm import Session
 
 from glasshead.api.auth import Person
-from glasshead.store.lessons import Assignment, Child, Lesson, PracticeRecord, SchoolClass
+from glasshead.store.lessons import (
+    Assignment,
+    Child,
+    ClassStaff,
+    Lesson,
+    PracticeRecord,
+    SchoolClass,
+)
 from glasshead.store.models import EpgRecording
 from glasshead.store.users import User
 
@@ -28,33 +38,54 @@ def _not_in_body(field: str, what: str, record_id: int) -> HTTPException:
     return HTTPException(status_code=422, detail=f"body.{field}: no {what} with id {record_id}")
 
 
-# Classes and children: the owner's, or an admin's.
+# Classes and children: the owner's and their staff's, or an admin's.
 
-def owned_class_ids(user: User) -> Select:
-    """The ids of the classes ``user`` owns (a subquery)."""
-    return select(SchoolClass.id).where(SchoolClass.owner_id == user.id)
-
-
-def owned_child_ids(user: User) -> Select:
-    """The ids of the children in classes ``user`` owns (a subquery)."""
-    return select(Child.id).where(Child.class_id.in_(owned_class_ids(user)))
+def staffed_class_ids(user: User) -> Select:
+    """The ids of the classes shared with ``user`` (a subquery)."""
+    return select(ClassStaff.class_id).where(ClassStaff.user_id == user.id)
 
 
-def keeps_class(user: User, school_class: SchoolClass) -> bool:
+def kept_class_ids(user: User) -> Select:
+    """The ids of the classes ``user`` owns or is staff of (a subquery)."""
+    return select(SchoolClass.id).where(or_(SchoolClass.owner_id == user.id,
+                                            SchoolClass.id.in_(staffed_class_ids(user))))
+
+
+def kept_child_ids(user: User) -> Select:
+    """The ids of the children in classes ``user`` owns or is staff of (a subquery)."""
+    return select(Child.id).where(Child.class_id.in_(kept_class_ids(user)))
+
+
+def owns_class(user: User, school_class: SchoolClass) -> bool:
     return user.role == "admin" or school_class.owner_id == user.id
 
 
+def keeps_class(session: Session, user: User, school_class: SchoolClass) -> bool:
+    """Whether ``user`` owns ``school_class``, is its staff or is an admin."""
+    return owns_class(user, school_class) or session.scalar(
+        staffed_class_ids(user).where(ClassStaff.class_id == school_class.id)) is not None
+
+
 def class_of(session: Session, user: User, class_id: int) -> SchoolClass:
-    """Class ``class_id`` when ``user`` owns it (or is an admin); 404 otherwise."""
+    """Class ``class_id`` when ``user`` owns it, is its staff or is an admin; 404 otherwise."""
     record = session.get(SchoolClass, class_id)
-    if record is None or not keeps_class(user, record):
+    if record is None or not keeps_class(session, user, record):
         raise _not_found("class", class_id)
     return record
 
 
+def check_class_owner(user: User, school_class: SchoolClass) -> None:
+    """403 unless ``user`` owns ``school_class`` or is an admin: staff, who reach the class,
+    neither delete it nor change who it is shared with."""
+    if not owns_class(user, school_class):
+        raise HTTPException(status_code=403, detail=f"class {school_class.id} is shared with "
+                                                    "you: only its owner or an admin deletes it "
+                                                    "or changes who it is shared with")
+
+
 def child_of(session: Session, person: Person, child_id: int) -> Child:
-    """Child ``child_id`` when ``person`` is that child, owns their class or is an admin; 404
-    otherwise."""
+    """Child ``child_id`` when ``person`` is that child, keeps their class (owner or staff) or is
+    an admin; 404 otherwise."""
     record = session.get(Child, child_id)
     if record is None or not _reaches_child(session, person, record):
         raise _not_found("child", child_id)
@@ -64,16 +95,16 @@ def child_of(session: Session, person: Person, child_id: int) -> Child:
 def _reaches_child(session: Session, person: Person, child: Child) -> bool:
     if person.child is not None:
         return child.id == person.child.id
-    return keeps_class(person.user, session.get(SchoolClass, child.class_id))
+    return keeps_class(session, person.user, session.get(SchoolClass, child.class_id))
 
 
 def check_class_reference(session: Session, user: User, class_id: int | None,
                           field: str = "class_id") -> None:
-    """422 naming ``field`` when ``class_id`` is not a class ``user`` owns."""
+    """422 naming ``field`` when ``class_id`` is not a class ``user`` keeps."""
     if class_id is None:
         return
     record = session.get(SchoolClass, class_id)
-    if record is None or not keeps_class(user, record):
+    if record is None or not keeps_class(session, user, record):
         raise _not_in_body(field, "class", class_id)
 
 
@@ -88,13 +119,13 @@ def check_child_reference(session: Session, person: Person, child_id: int | None
 
 
 def visible_classes(query: Select, user: User) -> Select:
-    return query if user.role == "admin" else query.where(SchoolClass.owner_id == user.id)
+    return query if user.role == "admin" else query.where(SchoolClass.id.in_(kept_class_ids(user)))
 
 
 def visible_children(query: Select, user: User) -> Select:
     if user.role == "admin":
         return query
-    return query.where(Child.class_id.in_(owned_class_ids(user)))
+    return query.where(Child.class_id.in_(kept_class_ids(user)))
 
 
 # Lessons: every adult reads them; a child reads those assigned to them or to their class.
@@ -135,7 +166,7 @@ def check_owner(user: User, record, what: str) -> None:
 # Assignments and practice: those of the caller's classes, or a child's own.
 
 def _class_or_its_children(user: User, class_column, child_column):
-    return or_(class_column.in_(owned_class_ids(user)), child_column.in_(owned_child_ids(user)))
+    return or_(class_column.in_(kept_class_ids(user)), child_column.in_(kept_child_ids(user)))
 
 
 def visible_assignments(query: Select, person: Person) -> Select:
@@ -161,7 +192,7 @@ def visible_practice(query: Select, person: Person) -> Select:
         return query.where(PracticeRecord.child_id == person.child.id)
     if person.is_admin:
         return query
-    return query.where(PracticeRecord.child_id.in_(owned_child_ids(person.user)))
+    return query.where(PracticeRecord.child_id.in_(kept_child_ids(person.user)))
 
 
 def practice_for(session: Session, person: Person, record_id: int) -> PracticeRecord:
@@ -172,7 +203,8 @@ def practice_for(session: Session, person: Person, record_id: int) -> PracticeRe
     return record
 
 
-# EPG recordings: reference recordings and those of a clinician's own caseload, or an admin's.
+# EPG recordings: reference recordings and those of the children of a clinician's own or shared
+# classes, or an admin's.
 
 def visible_recordings(query: Select, user: User) -> Select:
     if user.role == "admin":
@@ -180,7 +212,7 @@ def visible_recordings(query: Select, user: User) -> Select:
     if user.role != "clinician":
         return query.where(false())
     return query.where(or_(EpgRecording.child_id.is_(None),
-                           EpgRecording.child_id.in_(owned_child_ids(user))))
+                           EpgRecording.child_id.in_(kept_child_ids(user))))
 
 
 def recording_for(session: Session, user: User, recording_id: int) -> EpgRecording:

@@ -1,5 +1,5 @@
 """Tables for lessons and the people who practise them: classes, children, lessons,
-assignments and practice records.
+assignments and practice records, and the adults a class is shared with (its staff).
 
 Children are pseudonymous: a display name and an avatar id from a fixed list, nothing else (no
 birth date, email address or real name is asked for or stored). A lesson's items are one JSON
@@ -10,7 +10,7 @@ record; ids never reused).
 
 from datetime import datetime
 
-from sqlalchemy import JSON, CheckConstraint, ForeignKey, Integer, String
+from sqlalchemy import JSON, CheckConstraint, ForeignKey, Integer, String, UniqueConstraint
 from sqlalchemy.orm import Mapped, mapped_column
 
 from glasshead.store.base import Base, Timestamped, UtcDateTime, Versioned, utc_now
@@ -34,6 +34,21 @@ class SchoolClass(Versioned, Timestamped, Base):
     #: The teacher or clinician who made it; only they (and admins) see it and its children.
     owner_id: Mapped[int | None] = mapped_column(
         ForeignKey("users.id", ondelete="SET NULL"), index=True)
+
+
+class ClassStaff(Base):
+    """An adult a class is shared with: a clinician who follows a teacher's pupil, or a second
+    teacher. They reach the class and its children as its owner does, but neither delete the
+    class nor change who it is shared with (``api/ownership.py``)."""
+
+    __tablename__ = "class_staff"
+    __table_args__ = (UniqueConstraint("class_id", "user_id"),)
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    class_id: Mapped[int] = mapped_column(ForeignKey("classes.id", ondelete="CASCADE"),
+                                          index=True)
+    user_id: Mapped[int] = mapped_column(ForeignKey("users.id", ondelete="CASCADE"), index=True)
+    added_at: Mapped[datetime] = mapped_column(UtcDateTime(), default=utc_now)
 
 
 class Child(Versioned, Timestamped, Base):

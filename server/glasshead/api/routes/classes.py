@@ -6,9 +6,10 @@ class's name. Children are pseudonymous: a display name and one of a fixed list 
 (``GET /children/avatars``), nothing that names them. Writes take If-Match (412 when stale);
 deleting a class deletes its children and their practice.
 
-A class is its owner's: the teacher, clinician or admin who made it. Only they and admins list,
-read and change it and its children; to anyone else another's class or child is a 404
-(``api/ownership.py``).
+A class is its owner's: the teacher, clinician or admin who made it. Only they, the teachers and
+clinicians they share it with (its staff, ``routes/class_staff.py``) and admins list, read and
+change it and its children; to anyone else another's class or child is a 404
+(``api/ownership.py``). Staff do not delete the class (a 403).
 """
 
 import secrets
@@ -24,6 +25,7 @@ from glasshead.api.auth import Person, require_role
 from glasshead.api.etags import PRECONDITION, check_if_match, set_etag
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import (
+    check_class_owner,
     check_class_reference,
     child_of,
     class_of,
@@ -137,8 +139,9 @@ def create_class(body: ClassIn, session: SessionDep, user: Keeper,
 @router.get("/classes", operation_id="listClasses", response_model=ClassList)
 def list_classes(session: SessionDep, user: Keeper, join_code: JoinCode = None,
                  offset: Offset = 0, limit: Limit = 100) -> ClassList:
-    """The caller's classes (an admin's: all) in id order; ``join_code`` finds one by its code
-    (a child finds theirs with the open POST /auth/class-roster)."""
+    """The caller's classes, their own and those shared with them (an admin's: all) in id
+    order; ``join_code`` finds one by its code (a child finds theirs with the open POST
+    /auth/class-roster)."""
     query = visible_classes(select(SchoolClass), user)
     if join_code is not None:
         query = query.where(SchoolClass.join_code == join_code.strip().upper())
@@ -182,6 +185,7 @@ def update_class(class_id: RecordId, patch: ClassPatch, session: SessionDep, use
 def delete_class(class_id: RecordId, session: SessionDep, user: Keeper,
                  if_match: IfMatch = None) -> Response:
     record = class_of(session, user, class_id)
+    check_class_owner(user, record)
     delete_record(session, CLASS, record, f"class {class_id}", if_match)
     return Response(status_code=status.HTTP_204_NO_CONTENT)
 
