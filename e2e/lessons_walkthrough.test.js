@@ -2,8 +2,9 @@
 // an author writes a lesson (POST /lessons); a teacher, in the lesson runner (#/teach), makes a
 // class, adds two children and gives the lesson to the class; a child on a 768 x 1024 touch screen
 // types the class code, taps their own picture, hears the first target again and taps "I tried
-// it" and a face (#/practice); the teacher sees that try in the runner's practice list; a
-// clinician imports a real EPG recording (the emuR engassim set) for the child of their caseload
+// it" and a face (#/practice); the teacher sees that try in the runner's practice list and shares
+// the class with a clinician there (POST /classes/{id}/staff); the clinician sees the same child's
+// practice in the child's history, imports a real EPG recording (the emuR engassim set) for her
 // and compares it with a phoneme's target in the clinician view. Each person signs in as they
 // would (e2e/accounts.js); what each view shows is read from window.glasshead. Screenshots
 // walkthrough-runner-1366x768.png and walkthrough-practice-768x1024.png are for a person.
@@ -154,7 +155,7 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 
 	} );
 
-	test( 'the teacher sees the child\'s try in the runner\'s practice list', async () => {
+	test( 'the teacher sees the child\'s try in the runner\'s practice list and shares the class with a clinician', async () => {
 
 		await teacherPage.getByRole( 'link', { name: new RegExp( `^${ LESSON.title.replace( /[/()]/g, '\\$&' ) }` ) } ).click();
 		await teacherPage.waitForFunction( () => window.glasshead.runner.panel?.records.length === 1, null, { timeout: 60_000 } );
@@ -165,22 +166,46 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		const row = teacherPage.getByRole( 'list', { name: 'Practice records' } ).getByRole( 'listitem' );
 		assert.match( await row.textContent(), /Ada\s*\/t\// );
 		assert.ok( await row.getByRole( 'img', { name: 'Got it (child)' } ).isVisible() );
+		// Sharing: an unknown username is refused in plain words, the clinician's is taken.
+		const clinician = sessions.clinician.user;
+		await teacherPage.getByText( 'Sharing', { exact: true } ).click();
+		const share = teacherPage.getByRole( 'textbox', { name: 'Share this class with a clinician or teacher' } );
+		await share.fill( 'nobody@glasshead.test' );
+		await teacherPage.getByRole( 'button', { name: 'Share', exact: true } ).click();
+		await teacherPage.getByText( 'Not shared: no such user among teachers and clinicians.' ).waitFor( { timeout: 30_000 } );
+		await share.fill( clinician.username.toUpperCase() );
+		await teacherPage.getByRole( 'button', { name: 'Share', exact: true } ).click();
+		await teacherPage.waitForFunction( ( name ) => window.glasshead.runner.panel.sharing.staff.includes( name ), clinician.username, { timeout: 30_000 } );
+		const sharing = ( await readDebug( teacherPage ) ).runner.panel.sharing;
+		assert.deepEqual( sharing, { owner: sessions.teacher.user.username, staff: [ clinician.username ], canShare: true } );
+		assert.ok( await teacherPage.getByRole( 'list', { name: 'Shared with' } ).getByRole( 'button', { name: `Stop sharing with ${ clinician.display_name }` } ).isVisible() );
+		const staff = ( await api( sessions.teacher, 'GET', `classes/${ schoolClass.id }/staff` ) ).body;
+		assert.deepEqual( staff.staff.map( ( m ) => [ m.user_id, m.role ] ), [ [ clinician.id, 'clinician' ] ] );
 		await teacherPage.waitForFunction( () => window.glasshead.runner.ready === true, null, { timeout: 180_000, polling: 200 } );
 		await saveScreenshot( teacherPage, 'walkthrough-runner-1366x768' );
-		assert.deepEqual( teacherPage.problems, [] );
+		// The one refusal is the unknown username's, which the panel said in its own words.
+		const refused = new RegExp( `status of 422 .*/api/v1/classes/${ schoolClass.id }/staff\\b` );
+		assert.deepEqual( teacherPage.problems.filter( ( problem ) => ! refused.test( problem ) ), [] );
 		await teacherPage.context().close();
 
 	} );
 
-	test( 'a clinician imports a recording for the child of their caseload and compares it with a target', async () => {
+	test( 'the clinician sees the same child\'s practice, imports a recording for her and compares it with a target', async () => {
 
-		const caseload = ( await api( sessions.clinician, 'POST', 'classes', { name: 'Caseload' } ) ).body;
-		const child = ( await api( sessions.clinician, 'POST', 'children', { class_id: caseload.id, display_name: 'Ada', avatar: 'owl' } ) ).body;
-		assert.equal( ( await api( sessions.clinician, 'GET', `children/${ children[ 0 ].id }` ) ).status, 404, 'the teacher\'s class is not the clinician\'s' );
+		const child = children[ 0 ];
+		const shared = ( await api( sessions.clinician, 'GET', 'classes' ) ).body;
+		assert.deepEqual( shared.classes.map( ( c ) => c.id ), [ schoolClass.id ], 'the teacher\'s class, shared with the clinician, and no caseload of their own' );
+		// Staff do not change who the class is shared with, nor delete it.
+		assert.equal( ( await api( sessions.clinician, 'DELETE', `classes/${ schoolClass.id }/staff/${ sessions.clinician.user.id }` ) ).status, 403 );
+		assert.equal( ( await api( sessions.clinician, 'DELETE', `classes/${ schoolClass.id }` ) ).status, 403 );
 		const page = await openPage( browser, { width: 1366, height: 768 } );
 		await signIn( page, server, 'clinician' );
 		await page.goto( `${ server.baseUrl }/#/clinician?target=phoneme:T` );
-		await page.waitForFunction( () => window.glasshead.clinician?.loaded === true, null, { timeout: 240_000, polling: 200 } );
+		await page.waitForFunction( () => window.glasshead.clinician?.loaded === true && window.glasshead.clinicianChild?.loaded === true, null, { timeout: 240_000, polling: 200 } );
+		assert.deepEqual( ( await readDebug( page ) ).clinicianChild.options, children.map( ( c ) => String( c.id ) ) );
+		await page.getByRole( 'combobox', { name: 'Child', exact: true } ).selectOption( String( child.id ) );
+		await page.waitForFunction( ( id ) => window.glasshead.clinicianChild.child === id && window.glasshead.clinicianChild.practice === 1, child.id, { timeout: 30_000 } );
+		assert.match( await page.getByRole( 'table', { name: 'Practice history' } ).textContent(), /\/t\// );
 		await page.getByRole( 'combobox', { name: 'Recorded from' } ).selectOption( String( child.id ) );
 		await page.getByLabel( 'Import a recording file' ).setInputFiles( EMUR );
 		await page.waitForFunction( () => window.glasshead.clinician.imported !== null && window.glasshead.clinician.agreement !== null, null, { timeout: 90_000, polling: 200 } );

@@ -1,12 +1,15 @@
 // The lesson runner's side panel, for the teacher and hidden in presentation mode: give the lesson
 // to one of their classes (GET /classes, POST /assignments) and see that class's practice of it
 // (GET /children?class_id=, GET /practice?child_id=&lesson_id= for each child: newest first),
-// each record with the child's picture and name, the item, how it went and when.
+// each record with the child's picture and name, the item, how it went and when. Classes shared
+// with the signed-in teacher or clinician are listed with their own; the class's owner shares it
+// from here (LessonRunnerStaff.js).
 
 import { h } from './Controls.js';
 import { picture, RATINGS } from './ChildPracticePictures.js';
 import { targetLabel } from './LessonRunnerItems.js';
 import { LessonRunnerRoster } from './LessonRunnerRoster.js';
+import { LessonRunnerStaff } from './LessonRunnerStaff.js';
 import { isForbidden } from './signIn.js';
 
 /** Records listed per child at most (the newest). */
@@ -68,6 +71,7 @@ export class LessonRunnerPanel {
 		this.codeNote = h( 'p', { className: 'lr-note lr-code' } );
 		this.childrenNote = h( 'p', { className: 'lr-note lr-children' } );
 		this.roster = new LessonRunnerRoster( { api, classId: () => this.classId, onClass: ( made ) => this.loadClasses( made.id ), onChild: () => this.refresh() } );
+		this.sharing = new LessonRunnerStaff( { api } );
 		this.refreshButton = h( 'button', { type: 'button', onClick: () => this.refresh() }, 'Refresh' );
 		this.table = h( 'ul', { className: 'lr-records', 'aria-label': 'Practice records' } );
 		this.error = h( 'p', { className: 'error', role: 'alert', hidden: '' } );
@@ -75,7 +79,7 @@ export class LessonRunnerPanel {
 		this.recordsHead = h( 'div', { className: 'lr-records-head' }, h( 'h2', { className: 'lr-heading' }, 'Practice' ), this.refreshButton );
 		this.element = h( 'aside', { className: 'lr-panel', 'aria-label': 'Class and practice' },
 			this.classLabel, this.classSelect, this.assignButton, this.assignedNote, this.codeNote, this.childrenNote, this.roster.element,
-			this.recordsHead, this.table, this.error );
+			this.sharing.element, this.recordsHead, this.table, this.error );
 
 	}
 
@@ -100,7 +104,7 @@ export class LessonRunnerPanel {
 			if ( isForbidden( error ) ) {
 
 				// An author: lessons to run, but no classes to give them to.
-				for ( const element of [ this.classLabel, this.classSelect, this.assignButton, this.roster.element, this.recordsHead, this.table ] ) element.hidden = true;
+				for ( const element of [ this.classLabel, this.classSelect, this.assignButton, this.roster.element, this.sharing.element, this.recordsHead, this.table ] ) element.hidden = true;
 				this.assignedNote.textContent = 'Teachers, clinicians and admins give lessons to their classes here.';
 				return;
 
@@ -133,6 +137,7 @@ export class LessonRunnerPanel {
 		const lesson = this.lesson;
 		const classId = this.classId;
 		const load = ++ this.loads;
+		if ( classId !== this.sharing.classId ) this.sharing.load( classId ); // its own errors, its own line
 		if ( ! lesson || classId === null ) {
 
 			this.codeNote.textContent = '';
@@ -216,6 +221,7 @@ export class LessonRunnerPanel {
 		return {
 			classId: this.classId, classes: this.classes.map( ( c ) => c.name ), assigned: this.assigned.length > 0,
 			records: this.rows.map( ( row ) => ( { id: row.id, child: row.child.display_name, item: row.item, rating: row.rating?.rating ?? null, replays: row.replays } ) ),
+			sharing: this.sharing.report(),
 		};
 
 	}
