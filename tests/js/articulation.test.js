@@ -82,9 +82,10 @@ test( 'the parametric tongue replaces the rest tongue in the scene, with its tri
 	assert.equal( geometry.index.count / 3, 5952 );
 	const rest = rigSurface( {} );
 	// The same kernel on the same values: equal up to float32 rounding (mm; unit normals, which the
-	// frame takes from the float32 positions it draws: a few 1e-6 off the float64 surface's).
+	// frame takes from the float32 positions it draws: up to about 1e-5 off the float64 surface's
+	// where the triangles are smallest, at the poles, so they are held to 1e-4).
 	nearArray( articulation.positions, rest.positions, 1e-5, 'positions' );
-	nearArray( articulation.normals, rest.normals, 1e-5, 'normals' );
+	nearArray( articulation.normals, rest.normals, 1e-4, 'normals' );
 	assert.ok( head.part( TONGUE_PART ).outline.segmentCount > 0 || head.part( TONGUE_PART ).outlineStale, 'the section outline follows the new tongue' );
 
 } );
