@@ -17,7 +17,7 @@ import { api as pageApi } from '../api.js';
 import { registerDebug } from '../debug.js';
 import { ClinicianData } from './clinicianData.js';
 import { clinicianEpgReport, clinicianReport } from './clinicianReport.js';
-import { frameCount, frameTimes, targetFrameAt } from './clinicianFrames.js';
+import { playbackMethods } from './clinicianPlayback.js';
 import { clinicianLayout, DEFAULT_SPEED, fillChoices, keyHandler, offers } from './clinicianLayout.js';
 import { RecordingImport } from './clinicianImport.js';
 import { ChildHistory } from './clinicianChild.js';
@@ -274,84 +274,6 @@ export class ClinicianView {
 
 	}
 
-	/** Frames of the time base: the recording's, else the target's. */
-	frameCount() {
-
-		return frameCount( this.state );
-
-	}
-
-	times() {
-
-		return frameTimes( this.state );
-
-	}
-
-	/** The target frame shown at the current frame. */
-	targetFrameIndex() {
-
-		return targetFrameAt( this.state );
-
-	}
-
-	setFrame( frame ) {
-
-		if ( ! Number.isFinite( frame ) ) return;
-		this.state.frame = Math.max( 0, Math.min( this.frameCount() - 1, Math.round( frame ) ) );
-		this.render();
-		if ( ! this.state.playing ) this.url.write();
-
-	}
-
-	step( delta ) {
-
-		this.pause();
-		this.setFrame( this.state.frame + delta );
-
-	}
-
-	togglePlay() {
-
-		if ( this.state.playing ) this.pause();
-		else this.play();
-
-	}
-
-	/** Play from the current frame at the recording's own frame times (times the speed). */
-	play() {
-
-		const from = this.clock.play( this.times(), this.state.frame, this.state.speed );
-		if ( from < 0 ) return;
-		this.showPlaying( true );
-		this.setFrame( from );
-
-	}
-
-	pause() {
-
-		this.clock.pause( { silent: true } );
-		this.showPlaying( false );
-
-	}
-
-	setSpeed( speed ) {
-
-		this.state.speed = speed;
-		this.clock.setSpeed( speed );
-
-	}
-
-	showPlaying( playing ) {
-
-		this.state.playing = playing;
-		if ( ! this.playButton ) return;
-		if ( ! playing ) this.url.write();
-		const label = playing ? 'Pause' : 'Play';
-		this.playButton.textContent = label;
-		this.playButton.setAttribute( 'aria-label', label );
-
-	}
-
 	fit() {
 
 		this.plot.resize( Math.max( 320, Math.min( 900, this.plotCard.clientWidth - 22 ) ) );
@@ -441,6 +363,9 @@ export class ClinicianView {
 	}
 
 }
+
+// Frames, stepping and playback live in clinicianPlayback.js.
+Object.assign( ClinicianView.prototype, playbackMethods );
 
 /** Route entry for the view registry: the view for clinicians and admins, else a sign-in prompt. */
 export function mountClinicianView( container, { win = globalThis.window } = {} ) {
