@@ -151,3 +151,21 @@ def test_bad_inputs_are_refused(scene):
     with pytest.raises(ValueError, match="margin"):
         EpgObjective(probes, np.zeros(probes.count), rig.triangles, margin=-1.0)
     assert wanted_from_rows(["01111110"] + ["0" * 8] * 7)[0, 1] == 1
+
+
+def test_a_contact_margin_aims_the_wanted_contacts_into_the_palate_and_leaves_free_ones_alone(
+        scene):
+    rig, _tables, probes = scene
+    wanted = np.arange(probes.count) % 2
+    objective = EpgObjective(probes, wanted, rig.triangles, margin=0.5, contact_margin=1.5)
+    tau = objective.tolerance
+    # A wanted contact 0.4 mm past its electrode (d = -0.4) falls short of the 0.5 mm aimed at;
+    # one 0.6 mm past it is met. Free electrodes keep the 0.5 mm margin: 1.4 mm away is short.
+    d = np.where(wanted == 1, -0.4, tau + 0.6)
+    np.testing.assert_allclose(objective.hinges(d), np.where(wanted == 1, 0.1, 0.0), atol=1e-12)
+    np.testing.assert_allclose(objective.hinges(np.where(wanted == 1, -0.6, tau + 0.4)),
+                               np.where(wanted == 1, 0.0, 0.1), atol=1e-12)
+    plain = EpgObjective(probes, wanted, rig.triangles, margin=0.5)
+    assert plain.contact_margin == 0.5 and plain.error_from_distances(d) == 0.0
+    with pytest.raises(ValueError, match="contact margin"):
+        EpgObjective(probes, wanted, rig.triangles, contact_margin=-0.1)

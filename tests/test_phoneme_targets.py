@@ -13,7 +13,9 @@ from glasshead.fitting import epg_observations as obs
 from glasshead.phonemes import INVENTORY
 from glasshead.pipeline.phoneme_targets import (
     INPUT_FILES,
+    PENETRATION_OF_GOAL,
     VOLUME_GOAL_PCT,
+    Context,
     build_phoneme_targets,
 )
 
@@ -137,6 +139,34 @@ def test_k_g_ng_close_a_back_row_in_every_context_fitted_to_the_real_frames_that
             assert abs(variant["volume_change_pct"]) <= VOLUME_GOAL_PCT
             contact = variant["fit"]["contact"]
             assert contact["goal"] == "velar_stop" and contact["goal_frames"] == 8
+
+
+def test_the_velar_closure_holds_when_the_jaw_or_the_body_moves_a_little(built, targets):
+    """The velar targets of /a/ and /u/ context close their back row with a margin
+    (``PENETRATION_OF_GOAL``), not by grazing it: /k g ng/ there keep a full row in R6-R8 with
+    the jaw 0.3 deg more open or closed, or one body parameter 0.3 mm up or down. Fitted to reach
+    R8 only just (no margin), /k/(a) lost R8 with the jaw 0.3 deg more open. /k/(i) has no margin
+    (it would draw the dorsum back and undo the fronting before /i/), so it is not asked here."""
+    contexts = set(PENETRATION_OF_GOAL["velar_stop"])
+    assert contexts == {"a", "u"} and min(PENETRATION_OF_GOAL["velar_stop"].values()) >= 0.3
+    ctx = Context(built["dir"])
+    rig = ctx.rig
+    moves = [("jaw_opening", d) for d in (-0.3, 0.3)] + [
+        (name, d) for name in ("dorsum_height", "back_dorsum_height", "body_height",
+                               "dorsum_advancement") for d in (-0.3, 0.3)]
+    failed = []
+    for symbol in ("K", "G", "NG"):
+        for context in sorted(contexts):
+            variant = targets[symbol]["contexts"][context]
+            tongue = {n: v for n, v in variant["params"].items() if n in rig.parameter_names}
+            for name, change in moves:
+                k = rig.parameter_names.index(name)
+                moved = {**tongue, name: float(np.clip(tongue[name] + change, rig.minimum[k],
+                                                       rig.maximum[k]))}
+                epg = ctx.epg(moved)
+                if not obs.back_closure(epg["grid"]):
+                    failed.append((symbol, context, name, change, epg["rows"][5:]))
+    assert failed == []
 
 
 def test_the_contact_fits_raise_the_agreement_and_keep_the_volume(built, targets):

@@ -157,14 +157,16 @@ class ContactObjective:
 def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weights=None,
                 section: MidSagittalSection | None = None, sections=SECTIONS, jaw=True,
                 coronal=CORONAL_GROUPS,
-                epg_weight=EPG_WEIGHT, margin=MARGIN_MM, press_mm=PRESS_MM,
+                epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
+                press_mm=PRESS_MM,
                 volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
                 max_evals=MAX_EVALS, name="", method="bobyqa") -> ContactFitReport:
     """Fit the sagittal and grouped coronal parameters to an outline (n, 2) and a wanted EPG
     pattern (``EpgObjective``'s ``wanted``: per electrode or an (8, 8) grid) from ``base`` (P,)
-    values (normally the 2D fit's result, which also holds the jaw and the other parameters)."""
+    values (normally the 2D fit's result, which also holds the jaw and the other parameters).
+    ``contact_margin``: the wanted contacts' own margin (``EpgObjective``), default ``margin``."""
     epg = EpgObjective(probes, wanted, rig.triangles, weights=weights, margin=margin,
-                       press_mm=press_mm)
+                       contact_margin=contact_margin, press_mm=press_mm)
     objective = ContactObjective(rig, outline, epg, base=base,
                                  groups=free_groups(rig, sections, jaw, coronal),
                                  section=section, epg_weight=epg_weight,

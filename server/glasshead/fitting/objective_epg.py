@@ -32,8 +32,12 @@ within an edge of the mesh, so the error does not drop when a ray slips off the 
 **The error.** With the contact tolerance tau (the probe's reach, ``EPG_CONTACT_TOLERANCE_MM``)
 and a margin m >= 0, a squared hinge per electrode:
 
-    contact wanted:     h = max(0, d - (tau - m))
+    contact wanted:     h = max(0, d - (tau - m_c))        m_c = contact_margin, default m
     no contact wanted:  h = max(0, (tau + m) - d)
+
+A wanted contact may be given its own margin (``contact_margin``, default m): above tau it aims
+the tongue past the electrode, into the palate, so that the contact holds when the pose moves a
+little (a target that only grazes its row loses it when the jaw opens a fifth of a degree).
 
 and the error is sqrt(sum w_i h_i^2 / sum w_i) mm: 0 exactly when every electrode is on its
 wanted side (with margin 0: when the uncorrected tongue's contacts are the wanted pattern), and
@@ -76,7 +80,8 @@ class EpgObjective:
 
     def __init__(self, probes: Probes, wanted: npt.ArrayLike, triangles: npt.ArrayLike, *,
                  weights: npt.ArrayLike | None = None, margin: float = 0.0,
-                 tolerance: float | None = None, press_mm: float | None = None,
+                 contact_margin: float | None = None, tolerance: float | None = None,
+                 press_mm: float | None = None,
                  back_mm: float = BACK_MM, reach_mm: float = REACH_MM):
         self.probes = probes
         self.wanted = self._per_electrode(wanted, "wanted").astype(bool)
@@ -88,6 +93,9 @@ class EpgObjective:
             raise ValueError("the margin cannot be negative")
         self.tolerance = float(probes.tolerance if tolerance is None else tolerance)
         self.margin = float(margin)
+        self.contact_margin = self.margin if contact_margin is None else float(contact_margin)
+        if self.contact_margin < 0:
+            raise ValueError("the contact margin cannot be negative")
         self.press_mm = None if press_mm is None else float(press_mm)
         self.triangles = np.asarray(triangles, dtype=np.int64)
         self.back, self.reach = float(back_mm), float(reach_mm)
@@ -171,7 +179,7 @@ class EpgObjective:
     def hinges(self, distances: npt.ArrayLike) -> Floats:
         """Per electrode (k,) mm: how far each distance is on the wrong side of its threshold."""
         d = np.asarray(distances, dtype=np.float64)
-        h = np.where(self.wanted, np.maximum(0.0, d - (self.tolerance - self.margin)),
+        h = np.where(self.wanted, np.maximum(0.0, d - (self.tolerance - self.contact_margin)),
                      np.maximum(0.0, (self.tolerance + self.margin) - d))
         if self.press_mm is not None:
             h = np.where(self.wanted, h + np.maximum(0.0, -self.press_mm - d), h)
