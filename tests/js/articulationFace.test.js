@@ -124,7 +124,7 @@ test( 'with a face rig the lower lip is no longer carried rigidly: its group sta
 	const state = lipState();
 	const articulation = new Articulation( new TongueRig( TONGUE ), state ).attach( fullHead );
 	articulation.setFaceRig( new FacePose( FACE.rig, fullHead, state ) );
-	state.set( 'jaw_opening', 12 );
+	state.set( 'jaw_opening', 10 );
 	articulation.update();
 	assert.ok( head.part( 'lower_lip' ).group.matrix.equals( new Matrix4() ) );
 	assert.equal( mandible.group.matrix.equals( new Matrix4() ), false, 'the mandible turned' );
@@ -180,7 +180,7 @@ test( 'loadArticulation poses the face from the API\'s face rig and reports what
 		assert.ok( articulation.state.names.includes( 'lip_rounding' ) );
 		assert.equal( debugObject().collision.enabled, false );
 		const closed = debugObject().lipGap;
-		articulation.state.set( 'jaw_opening', 15 );
+		articulation.state.set( 'jaw_opening', 10 );
 		articulation.update();
 		assert.ok( debugObject().lipGap > closed + 5, `lip gap ${ closed } then ${ debugObject().lipGap }` );
 

@@ -52,7 +52,7 @@ test( 'the vectors were computed on these tables, these constants and 100 or mor
 	assert.equal( VECTORS.constants.barycentric, COLLISION_TOL.barycentric );
 	assert.equal( FIXTURES.layout.format_version, EPG_LAYOUT_FORMAT_VERSION );
 	assert.ok( POSES.length >= 100, `${POSES.length} poses` );
-	assert.ok( POSES.some( ( c ) => c.input.params.jaw_opening > 10 ), 'the jaw is exercised' );
+	assert.ok( POSES.some( ( c ) => c.input.params.jaw_opening > 5 ), 'the jaw is exercised over the upper half of its 0-10 degree range' );
 	const descriptions = VECTORS.cases.map( ( c ) => c.description );
 	assert.equal( new Set( descriptions ).size, descriptions.length );
 

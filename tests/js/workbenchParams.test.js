@@ -64,7 +64,7 @@ test( 'copied JSON lists every parameter in rig order, rounded, and pastes back 
 
 	const state = fresh();
 	state.set( 'tip_height', 2.3 );
-	state.set( 'jaw_opening', 12.5 );
+	state.set( 'jaw_opening', 7.5 );
 	state.set( 'front_groove_depth', - 1.75 );
 	const json = state.toJSON();
 	const object = JSON.parse( json );
