@@ -2,8 +2,9 @@
 
 Twin of ``web/src/core/jaw.js``. The mandible rotates about a z-parallel axis through the
 condyles (the top-back of the ramus) and its condyles slide forward and down along the articular
-eminence as it opens; for the opening range of speech (0 to about 25 degrees) a slide that grows
-linearly with the angle is a fair model.
+eminence as it opens; up to about 25 degrees a slide that grows linearly with the angle is a fair
+model. The rig's ``jaw_opening`` runs 0 to 10 degrees, what speech uses (docs/face-rig.md); the
+shared vectors try this kernel over the model's whole 0 to 25.
 
 The pose is a (3, 4) float64 matrix [R | t] acting on project-frame points (mm):
 ``p' = R p + t`` with ``R`` the rotation by -opening about +z (the chin, at +x, goes down) and
