@@ -75,7 +75,7 @@ class ClassIn(BaseModel):
 
 
 class ClassPatch(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [{"name": "Year 3"}]})
     name: ClassName | None = None
 
 
@@ -102,7 +102,8 @@ class ChildIn(BaseModel):
 
 
 class ChildPatch(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"display_name": "Ada", "avatar": "fox"}]})
     class_id: BodyId | None = None
     display_name: DisplayName | None = None
     avatar: Avatar | None = None

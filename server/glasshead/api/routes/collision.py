@@ -14,7 +14,7 @@ in a compute worker (``api.compute_pool``).
 from typing import Annotated
 
 from fastapi import APIRouter, Response
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from glasshead.api.compute_pool import ComputeDep
 from glasshead.api.deps import AssetsDep
@@ -34,6 +34,11 @@ Vertex = Annotated[list[Coordinate], Field(min_length=3, max_length=3)]
 
 
 class CorrectRequest(BaseModel):
+    # Three midline vertices of the tongue at the /t/ target: the blade's highest, which is
+    # inside the palate and corrected; the tip, tested and outside; the dorsum, screened.
+    model_config = ConfigDict(json_schema_extra={"examples": [
+        {"vertices": [[10.97, 17.92, 0.0], [22.81, 5.75, 0.0], [-19.3, 11.19, 0.0]],
+         "velum_opening": 0.0}]})
     vertices: Annotated[list[Vertex], Field(max_length=COLLISION_MAX_VERTICES,
                                             description="Tongue vertices [x, y, z], mm, "
                                                         "project frame.")]

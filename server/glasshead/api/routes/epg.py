@@ -60,7 +60,9 @@ class Layout(BaseModel):
 
 
 class ContactsRequest(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"params": {"tip_height": 5.79, "tip_advancement": 0.28, "blade_height": 8.28,
+                    "jaw_opening": 0.0}, "grid": "reading62"}]})
     params: dict[str, float] | None = Field(
         None, description="articulation parameters (names left out are neutral)",
         examples=[{"tip_height": 6.0, "tip_advancement": 4.0}])

@@ -17,7 +17,7 @@ from typing import Annotated
 import numpy as np
 from fastapi import APIRouter, Depends, HTTPException, Query, Response
 from fastapi.concurrency import run_in_threadpool
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 from sqlalchemy.orm import Session
 
 from glasshead.api.auth import require_role
@@ -69,6 +69,13 @@ class FramesReference(BaseModel):
 
 
 class CompareRequest(BaseModel):
+    # Against the synthetic EPG of the /t/ target (assets/build/phoneme-targets.json), one frame
+    # standing for the whole recording; or against another stored recording.
+    model_config = ConfigDict(json_schema_extra={"examples": [
+        {"reference": {"label": "/t/ target", "frames": [
+            ["01111110", "11000011", "10000001", "10000001", "10000001", "11000011", "11000011",
+             "11000011"]]}},
+        {"reference": {"recording_id": 1}}]})
     reference: RecordingReference | FramesReference
 
 

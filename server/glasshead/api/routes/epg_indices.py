@@ -2,7 +2,7 @@
 
 import numpy as np
 from fastapi import APIRouter, HTTPException, Response
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from glasshead.api.compute_pool import ComputeDep
 from glasshead.asset_store import AssetStore
@@ -17,6 +17,12 @@ MAX_FRAMES = 20_000
 
 
 class IndicesRequest(BaseModel):
+    # Two frames of the /s/ -> /k/ of "bescan" in the emuR reference data (sp1bescan).
+    model_config = ConfigDict(json_schema_extra={"examples": [{"frames": [
+        ["01100010", "11100011", "11100001", "11000001", "11000001", "11000001", "11000011",
+         "11100011"],
+        ["01000010", "11100011", "11100001", "11000001", "11000001", "11000001", "11000011",
+         "11100111"]]}]})
     frames: list[list[str]] = Field(
         min_length=1, max_length=MAX_FRAMES,
         description="per frame 8 strings of '0'/'1', R1 (front) first; character c = column "

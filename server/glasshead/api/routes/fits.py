@@ -39,6 +39,7 @@ from glasshead.api import idempotency
 from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import check_owner
+from glasshead.api.routes.recordings import EMUR_EXAMPLE
 from glasshead.fitting import uploads
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.fitting.jobs import DEFAULT_METHOD
@@ -124,6 +125,9 @@ async def _read_limited(upload: UploadFile, kind: str) -> bytes:
 
 @router.post("/fits", operation_id="createFit", status_code=status.HTTP_202_ACCEPTED,
              response_model=FitOut,
+             openapi_extra={"requestBody": {"content": {"multipart/form-data": {"example": {
+                 "kind": "epg", "file": json.dumps(EMUR_EXAMPLE), "name": "bescan s->k",
+                 "method": "sbplx", "max_evals": 400}}}}},
              responses={413: {"description": "the file is past the kind's size limit"},
                         415: {"description": "the file is not in a format of the kind"},
                         503: {"description": "the queue is full; retry after Retry-After"}})

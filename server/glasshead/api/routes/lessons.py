@@ -54,7 +54,10 @@ Reader = Annotated[Person, Depends(allow(*ADULTS, "child"))]
 
 
 class LessonPatch(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"title": "/s/ and /ʃ/, slowly", "items": [
+            {"target": {"kind": "phoneme", "text": "s"}, "speed": 0.5},
+            {"target": {"kind": "word", "text": "ship"}, "speed": 0.5}]}]})
     title: Text | None = None
     language: LanguageTag | None = None
     description: str | None = Field(None, max_length=2000)

@@ -60,7 +60,12 @@ def _check_params(params: dict[str, float]) -> dict[str, float]:
 
 
 class PoseIn(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    # The /t/ target's main tongue and jaw parameters (assets/build/phoneme-targets.json).
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"name": "t alveolar closure", "description": "tip and blade up to the alveolar ridge",
+         "params": {"tip_advancement": 0.28, "tip_height": 5.79, "blade_advancement": 1.7,
+                    "blade_height": 8.28, "dorsum_height": 9.44, "body_height": -5.0,
+                    "jaw_opening": 0.0}}]})
     name: PoseName
     description: str = Field("", max_length=2000)
     params: dict[str, float] = Field(description="parameter name -> value, in the rig's units")
@@ -72,7 +77,9 @@ class PoseIn(BaseModel):
 
 
 class PosePatch(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"description": "tip a little higher", "params": {"tip_height": 6.0,
+                                                          "blade_height": 8.28}}]})
     name: PoseName | None = None
     description: str | None = Field(None, max_length=2000)
     params: dict[str, float] | None = None

@@ -31,7 +31,7 @@ from fastapi import (
     status,
 )
 from fastapi.concurrency import run_in_threadpool
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
@@ -68,11 +68,22 @@ FormatName = Literal["emur-json", "csv", "ssff"]
 Clinician = Annotated[User, Depends(require_role("clinician", "admin"))]
 CHILD_ID = ("the child it was recorded from, in one of your classes; leave out for a reference "
             "recording")
+#: The documented example: two frames, 5 ms apart, of the /s/ -> /k/ of "bescan" in the emuR
+#: reference data (utterance sp1bescan), as the emuR JSON format writes them.
+EMUR_EXAMPLE = {"segments": [{
+    "label": "s->k", "utt": "sp1bescan", "word": "bescan", "start_ms": 156095.0,
+    "end_ms": 156100.0, "frames": [
+        {"t_ms": 156095.0, "rows": ["01100010", "11100011", "11100001", "11000001", "11000001",
+                                    "11000001", "11000011", "11100011"]},
+        {"t_ms": 156100.0, "rows": ["01000010", "11100011", "11100001", "11000001", "11000001",
+                                    "11000001", "11000011", "11100111"]}]}]}
 
 
 class RecordingUpload(BaseModel):
     """A recording file sent as JSON: text or JSON in ``content``, binary (ssff) in base64."""
 
+    model_config = ConfigDict(json_schema_extra={"examples": [
+        {"format": "emur-json", "content": EMUR_EXAMPLE, "name": "sp1bescan s->k"}]})
     format: FormatName
     content: str | dict | list | None = Field(
         None, description="csv: the file's text; emur-json: the document or its text")
@@ -129,6 +140,8 @@ def summary(record: EpgRecording) -> RecordingSummary:
     # The multipart form comes from the parameters below; the JSON alternative is added here.
     openapi_extra={"requestBody": {"required": True, "content": {
         "application/json": {"schema": RecordingUpload.model_json_schema()},
+        "multipart/form-data": {"example": {"file": json.dumps(EMUR_EXAMPLE),
+                                            "format": "emur-json", "name": "sp1bescan s->k"}},
     }}},
 )
 async def create_recordings(

@@ -51,6 +51,8 @@ class RigDefinition(BaseModel):
 
 
 class SurfaceRequest(BaseModel):
+    model_config = ConfigDict(json_schema_extra={"examples": [
+        {"params": {"tip_height": 5.79, "blade_height": 8.28, "jaw_opening": 2.0}}]})
     params: dict[str, float] = Field(
         default_factory=dict,
         description="Parameter name -> value; names left out take their neutral value. Lip "

@@ -56,7 +56,8 @@ class UserIn(BaseModel):
 
 
 class UserPatch(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
+        {"display_name": "Ann Clinician", "role": "clinician"}]})
     display_name: DisplayName | None = None
     role: Role | None = None
     password: Password | None = Field(None, description="a new password; signs the user out "

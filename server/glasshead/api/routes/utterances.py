@@ -11,7 +11,7 @@ from typing import Annotated, Literal
 
 from fastapi import APIRouter, File, Form, HTTPException, Response, UploadFile
 from fastapi.responses import FileResponse
-from pydantic import BaseModel, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from glasshead.api.deps import AssetsDep, SpeechCacheDep
 from glasshead.speech import audio, utterance
@@ -23,6 +23,10 @@ router = APIRouter(tags=["utterances"])
 
 #: Largest TextGrid accepted, bytes.
 MAX_TEXTGRID_BYTES = 1024 * 1024
+#: The documented example: "sip" after 50 ms of silence, in Praat's short text format.
+TEXTGRID_EXAMPLE = ('File type = "ooTextFile"\nObject class = "TextGrid"\n\n0\n0.5\n<exists>\n1\n'
+                    '"IntervalTier"\n"phones"\n0\n0.5\n4\n0\n0.05\n""\n0.05\n0.22\n"s"\n'
+                    '0.22\n0.34\n"ɪ"\n0.34\n0.5\n"p"\n')
 AudioKind = Literal["natural", "lowpass", "vocoded", "none", "articulatory"]
 Rate = Field(1.0, ge=0.5, le=2.0, description="speaking rate: 1 is espeak-ng's 175 words a "
                                               "minute; timed phones are divided by it")
@@ -47,6 +51,14 @@ class PhoneIn(BaseModel):
 class UtteranceRequest(BaseModel):
     """Exactly one of ``text``, ``phonemes`` and ``phones``."""
 
+    model_config = ConfigDict(json_schema_extra={"examples": [
+        {"text": "Ted and Kim bring a pink map."},
+        {"phonemes": "ʃ ɪ p", "rate": 0.75, "audio": {"kind": "lowpass", "cutoff_hz": 1000.0}},
+        {"phones": [{"symbol": "sil", "start_s": 0.0, "end_s": 0.05},
+                    {"symbol": "s", "start_s": 0.05, "end_s": 0.22},
+                    {"symbol": "ɪ", "start_s": 0.22, "end_s": 0.34},
+                    {"symbol": "p", "start_s": 0.34, "end_s": 0.5}],
+         "audio": {"kind": "none"}}]})
     text: str | None = Field(None, min_length=1, max_length=MAX_TEXT_CHARS,
                              description="English text")
     phonemes: list[str] | str | None = Field(
@@ -125,7 +137,9 @@ def create_utterance(body: UtteranceRequest, assets: AssetsDep,
 
 
 @router.post("/utterances/textgrid", operation_id="createUtteranceFromTextGrid",
-             response_model=Utterance)
+             response_model=Utterance,
+             openapi_extra={"requestBody": {"content": {"multipart/form-data": {"example": {
+                 "file": TEXTGRID_EXAMPLE, "rate": 1.0, "audio_kind": "none"}}}}})
 def create_utterance_from_textgrid(
     assets: AssetsDep,
     cache_dir: SpeechCacheDep,
