@@ -37,9 +37,9 @@ from sqlalchemy.orm import Session
 
 from glasshead.api import idempotency
 from glasshead.api.auth import SignedInUser, require_role
+from glasshead.api.examples import EMUR_EXAMPLE
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import check_owner
-from glasshead.api.routes.recordings import EMUR_EXAMPLE
 from glasshead.fitting import uploads
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.fitting.jobs import DEFAULT_METHOD

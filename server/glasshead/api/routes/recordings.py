@@ -38,6 +38,7 @@ from sqlalchemy.orm import Session
 from glasshead.api import idempotency
 from glasshead.api.auth import Person, require_role
 from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
+from glasshead.api.examples import EMUR_EXAMPLE
 from glasshead.api.lookups import MAX_ID, Offset, RecordId
 from glasshead.api.ownership import (
     check_child_reference,
@@ -68,15 +69,6 @@ FormatName = Literal["emur-json", "csv", "ssff"]
 Clinician = Annotated[User, Depends(require_role("clinician", "admin"))]
 CHILD_ID = ("the child it was recorded from, in one of your classes; leave out for a reference "
             "recording")
-#: The documented example: two frames, 5 ms apart, of the /s/ -> /k/ of "bescan" in the emuR
-#: reference data (utterance sp1bescan), as the emuR JSON format writes them.
-EMUR_EXAMPLE = {"segments": [{
-    "label": "s->k", "utt": "sp1bescan", "word": "bescan", "start_ms": 156095.0,
-    "end_ms": 156100.0, "frames": [
-        {"t_ms": 156095.0, "rows": ["01100010", "11100011", "11100001", "11000001", "11000001",
-                                    "11000001", "11000011", "11100011"]},
-        {"t_ms": 156100.0, "rows": ["01000010", "11100011", "11100001", "11000001", "11000001",
-                                    "11000001", "11000011", "11100111"]}]}]}
 
 
 class RecordingUpload(BaseModel):
