@@ -1,8 +1,8 @@
-// End-to-end: the workbench's cue layer in Debian's Chromium at 1920 x 1080. The cues switch on
-// and off, lowering the velum gives the nasal flow strength, the tongue tip closing against the
-// ridge stops the oral flow behind the closure, a narrow gap makes it turbulent, and a hidden layer
-// draws nothing while the head is still. Assertions read `window.glasshead`; the screenshots
-// cues-closure, cues-profile and cues-nasal are for a person to look at.
+// End-to-end: the workbench's cue layer in Debian's Chromium at 1366 x 768, a projector's size. The
+// cues switch on and off, lowering the velum gives the nasal flow strength, the tongue tip closing
+// against the ridge stops the oral flow behind the closure, a narrow gap makes it turbulent, and a
+// hidden layer draws nothing while the head is still. Assertions read `window.glasshead`; the
+// screenshots cues-closure, cues-profile and cues-nasal are for a person to look at.
 
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
@@ -16,7 +16,7 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1920, height: 1080 } );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
 
 	} );
 

@@ -1,6 +1,7 @@
 // End-to-end: the flat mid-sagittal diagram of the workbench and the constriction in Debian's
-// Chromium at 1920 x 1080. Assertions read `window.glasshead`; the screenshots diagram-rest,
-// diagram-tip-raised (the panel) and diagram-workbench (the page) are for a person to look at.
+// Chromium at 1366 x 768, a projector's size. Assertions read `window.glasshead`; the screenshots
+// diagram-rest, diagram-tip-raised (the panel) and diagram-workbench (the page) are for a person to
+// look at.
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
@@ -16,7 +17,7 @@ describe( 'the diagram', { timeout: 240_000 }, () => {
 
 		server = await startServer();
 		browser = await launchBrowser();
-		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1920, height: 1080 } );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
 
 	} );
 

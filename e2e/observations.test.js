@@ -38,7 +38,7 @@ describe( 'the workbench shows observations and phoneme targets', { timeout: 300
 		shape = await get( `observations/${ encodeURIComponent( SHAPE ) }` );
 		phoneme = await get( 'phonemes/T' );
 		browser = await launchBrowser();
-		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1920, height: 1080 } );
+		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
 
 	} );
 
