@@ -1,7 +1,12 @@
 // Every test: static checks (ruff, mypy, eslint), Python (pytest, including the shared vectors),
 // JavaScript unit tests (including the shared vectors), and end-to-end tests in Debian's Chromium.
 // Prints one closing tally.
-import { spawnSync } from 'node:child_process';
+//
+// The suites run in two lanes side by side, lint then Python in one, JavaScript then the browser
+// in the other: pytest keeps about one core busy and Chromium the other, so the whole run takes
+// about as long as its longer lane instead of the sum. Each suite's output is printed whole when
+// it ends, never interleaved. GLASSHEAD_TEST_LANES=1 runs them one after another.
+import { spawn } from 'node:child_process';
 import { existsSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
 import { REPO } from './lib.mjs';
@@ -21,17 +26,44 @@ const suites = [
 
 const tally = { passed: 0, failed: 0, skipped: 0, todo: 0 };
 const failedSuites = [];
-for ( const suite of suites ) {
-	console.log( `\n==> ${suite.name} tests` );
-	const result = spawnSync( suite.command, suite.args, { cwd: REPO, encoding: 'utf8', stdio: [ 'ignore', 'pipe', 'inherit' ] } );
-	process.stdout.write( result.stdout ?? '' );
-	const counts = countResults( suite.name, result.stdout ?? '' );
-	tally.passed += counts.passed;
-	tally.failed += counts.failed;
-	tally.skipped += counts.skipped;
-	tally.todo += counts.todo ?? 0;
-	if ( result.status !== 0 || counts.passed === 0 ) failedSuites.push( `${suite.name} (exit ${result.status}, ${counts.passed} passed)` );
+const started = Date.now();
+
+/** Run one suite with its output held back, then print it under its heading and count it. */
+function runSuite( suite ) {
+	return new Promise( ( resolve ) => {
+		const begun = Date.now();
+		const child = spawn( suite.command, suite.args, { cwd: REPO, stdio: [ 'ignore', 'pipe', 'pipe' ] } );
+		let stdout = '';
+		let stderr = '';
+		child.stdout.setEncoding( 'utf8' ).on( 'data', ( chunk ) => ( stdout += chunk ) );
+		child.stderr.setEncoding( 'utf8' ).on( 'data', ( chunk ) => ( stderr += chunk ) );
+		child.on( 'error', ( error ) => ( stderr += `could not start ${suite.command}: ${error.message}\n` ) );
+		child.on( 'close', ( status ) => {
+			const seconds = ( ( Date.now() - begun ) / 1000 ).toFixed( 0 );
+			console.log( `\n==> ${suite.name} tests (${seconds} s)` );
+			process.stdout.write( stdout );
+			process.stderr.write( stderr );
+			const counts = countResults( suite.name, stdout );
+			tally.passed += counts.passed;
+			tally.failed += counts.failed;
+			tally.skipped += counts.skipped;
+			tally.todo += counts.todo ?? 0;
+			if ( status !== 0 || counts.passed === 0 ) failedSuites.push( `${suite.name} (exit ${status}, ${counts.passed} passed)` );
+			resolve();
+		} );
+	} );
 }
+
+async function runLane( lane ) {
+	for ( const suite of lane ) await runSuite( suite );
+}
+
+const byName = Object.fromEntries( suites.map( ( suite ) => [ suite.name, suite ] ) );
+const lanes = process.env.GLASSHEAD_TEST_LANES === '1'
+	? [ suites ]
+	: [ [ byName.lint, byName.python ], [ byName.javascript, byName[ 'end-to-end' ] ] ];
+await Promise.all( lanes.map( runLane ) );
+console.log( `\nAll tests took ${( ( Date.now() - started ) / 1000 ).toFixed( 0 )} s.` );
 
 console.log( failedSuites.length ? `\nFailed suites: ${failedSuites.join( ', ' )}` : '\nAll suites passed.' );
 console.log( `${tally.passed} passed, ${tally.failed} failed, ${tally.skipped} skipped` + ( tally.todo ? `, ${tally.todo} todo (known shortfalls, named above)` : '' ) );
