@@ -3,10 +3,10 @@ and a missing or corrupt file answered with one 503 shape on every route that ne
 
 import json
 import os
-import shutil
 
 import pytest
 
+from assets_support import copy_built_assets
 from glasshead.asset_store import ASSETS, AssetStore, AssetUnavailableError
 from glasshead.constants import REBUILD_COMMAND
 
@@ -40,7 +40,7 @@ ROUTES = {
 def assets(tmp_path, built_assets):
     """A private copy of the built assets, free to damage."""
     copy = tmp_path / "assets"
-    shutil.copytree(built_assets, copy)
+    copy_built_assets(built_assets, copy)
     return copy
 
 

@@ -1,12 +1,12 @@
 """The teaching landmarks, checked on the anatomy they are found on, and served by the API."""
 
 import json
-import shutil
 
 import numpy as np
 import pytest
 import trimesh
 
+from assets_support import copy_built_assets
 from glasshead.constants import LANDMARKS_FILE
 from glasshead.geometry.landmarks import (
     closest_pair,
@@ -173,7 +173,7 @@ def test_the_route_serves_the_built_landmarks(built_assets, document, start_app)
 def test_without_built_landmarks_the_route_answers_503_naming_the_command(
         tmp_path, built_assets, start_app):
     assets = tmp_path / "assets"
-    shutil.copytree(built_assets, assets)
+    copy_built_assets(built_assets, assets)
     (assets / LANDMARKS_FILE).unlink()
     response = start_app(assets)[1].get("/api/v1/anatomy/landmarks")
     assert response.status_code == 503

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import trimesh
 
+from assets_support import copy_built_assets
 from glasshead.cli import main
 from glasshead.geometry.meshio import MeshFormatError
 from glasshead.pipeline import larynx, sources, tract_checks
@@ -328,7 +329,7 @@ def test_a_corrupt_vertebrae_transform_is_named(data_copy, tmp_path, capsys):
 def test_a_failed_rebuild_leaves_the_previous_complete_build_untouched(
         data_copy, built_assets, tmp_path, capsys):
     out = tmp_path / "out"
-    shutil.copytree(built_assets, out)
+    copy_built_assets(built_assets, out)
     before = (out / "manifest.json").read_bytes()
     (data_copy / sources.TRACT / "pharynx.obj").write_text("v 0 0 0\nv 1 0 0\nf 1 2 3\n")
     assert build(data_copy, out) == 3

@@ -2,11 +2,11 @@
 articulation parameters: accepted in range, refused out of range with 422 naming the range."""
 
 import json
-import shutil
 
 import pytest
 
 from accounts_support import signed_in
+from assets_support import copy_built_assets
 from glasshead.constants import VELUM_RIG_FILE
 
 API = "/api/v1"
@@ -81,7 +81,7 @@ def test_out_of_range_lip_and_tongue_values_in_a_pose_are_refused_naming_the_ran
 def test_without_a_built_velum_rig_the_velum_routes_say_what_to_run(built_assets, tmp_path,
                                                                     start_app):
     assets = tmp_path / "assets"
-    shutil.copytree(built_assets, assets, ignore=shutil.ignore_patterns(VELUM_RIG_FILE, "*.glb"))
+    copy_built_assets(built_assets, assets, VELUM_RIG_FILE, "*.glb")
     _, client = start_app(assets)
     for response in (client.get(f"{API}/velum/rig"),
                      client.post(f"{API}/tongue/surface", json={"params": {"velum_opening": 0.5}})):

@@ -7,7 +7,6 @@ answered while compute requests are still in flight. Speeds are measured in benc
 
 import asyncio
 import json
-import shutil
 import threading
 import time
 import urllib.request
@@ -17,6 +16,7 @@ from fastapi import HTTPException
 from live_server_support import live_server
 
 from accounts_support import signed_in
+from assets_support import copy_built_assets
 from glasshead.api.compute_pool import ComputePool
 from glasshead.api.routes.collision import CorrectRequest, correct
 from glasshead.api.routes.epg import ContactsRequest, contacts_json
@@ -103,7 +103,7 @@ def test_an_error_raised_in_a_worker_answers_as_it_would_in_process(start_app, b
 
 def test_a_worker_follows_a_rebuilt_asset_by_its_content(start_app, built_assets, tmp_path):
     assets = tmp_path / "assets"
-    shutil.copytree(built_assets, assets)
+    copy_built_assets(built_assets, assets)
     _, client = start_app(assets)
     signed_in(client, "admin")
     body = {"params": {"tip_height": 4.0}}
