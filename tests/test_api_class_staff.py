@@ -6,11 +6,9 @@ member takes the access away. Both on SQLite and on a real PostgreSQL server
 """
 
 import pytest
-from fastapi.testclient import TestClient
 
 from accounts_support import add_user, header, token_for
-from glasshead.settings import get_settings
-from glasshead.store.db import engine_for
+from backend_support import app_on_new_database
 from postgres_support import throwaway_postgres
 
 API = "/api/v1"
@@ -27,25 +25,8 @@ def postgres_server():
 @pytest.fixture(scope="module", params=["sqlite", "postgresql"])
 def client(request, tmp_path_factory, built_assets):
     """The app on a new database of each backend, shared by this module's tests."""
-    from glasshead.api.app import create_app
-
-    folder = tmp_path_factory.mktemp(f"staff-{request.param}")
-    if request.param == "postgresql":
-        server = request.getfixturevalue("postgres_server")
-        url = server.url(server.create_database())
-    else:
-        url = f"sqlite:///{folder / 'staff.sqlite3'}"
-    with pytest.MonkeyPatch.context() as env:
-        env.setenv("GLASSHEAD_DATABASE_URL", url)
-        env.setenv("GLASSHEAD_WEB_DIST_DIR", str(folder / "no-web"))
-        env.setenv("GLASSHEAD_COMPUTE_WORKERS", "1")
-        get_settings.cache_clear()
-        try:
-            with TestClient(create_app()) as client:
-                yield client
-        finally:
-            get_settings.cache_clear()
-            engine_for(url).dispose()
+    with app_on_new_database(request, tmp_path_factory, "staff") as client:
+        yield client
 
 
 def as_user(role: str, username: str | None = None) -> tuple[int, dict]:

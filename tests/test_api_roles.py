@@ -13,13 +13,12 @@ import json
 from pathlib import Path
 
 import pytest
-from fastapi.testclient import TestClient
 from sqlalchemy.orm import Session
 
 from accounts_support import add_user, child_bearer, header, token_for
+from backend_support import app_on_new_database
 from glasshead.api.routes.classes import new_join_code
-from glasshead.settings import get_settings
-from glasshead.store.db import engine_for, get_engine
+from glasshead.store.db import get_engine
 from glasshead.store.lessons import Child, SchoolClass
 from postgres_support import throwaway_postgres
 
@@ -47,25 +46,8 @@ def postgres_server():
 def client(request, tmp_path_factory, built_assets):
     """The app on a new database of each backend, shared by this module's tests (each makes its
     own users and records)."""
-    from glasshead.api.app import create_app
-
-    folder = tmp_path_factory.mktemp(f"roles-{request.param}")
-    if request.param == "postgresql":
-        server = request.getfixturevalue("postgres_server")
-        url = server.url(server.create_database())
-    else:
-        url = f"sqlite:///{folder / 'roles.sqlite3'}"
-    with pytest.MonkeyPatch.context() as env:
-        env.setenv("GLASSHEAD_DATABASE_URL", url)
-        env.setenv("GLASSHEAD_WEB_DIST_DIR", str(folder / "no-web"))
-        env.setenv("GLASSHEAD_COMPUTE_WORKERS", "1")
-        get_settings.cache_clear()
-        try:
-            with TestClient(create_app()) as client:
-                yield client
-        finally:
-            get_settings.cache_clear()
-            engine_for(url).dispose()
+    with app_on_new_database(request, tmp_path_factory, "roles") as client:
+        yield client
 
 
 def make_class(owner_id: int, name: str = "Owls", children: tuple = ("Ada",)) -> tuple:
