@@ -145,10 +145,11 @@ def test_the_velar_closure_holds_when_the_jaw_or_the_body_moves_a_little(built, 
     """The velar targets of /a/ and /u/ context close their back row with a margin
     (``PENETRATION_OF_GOAL``), not by grazing it: /k g ng/ there keep a full row in R6-R8 with
     the jaw 0.3 deg more open or closed, or one body parameter 0.3 mm up or down. Fitted to reach
-    R8 only just (no margin), /k/(a) lost R8 with the jaw 0.3 deg more open. /k/(i) has no margin
-    (it would draw the dorsum back and undo the fronting before /i/), so it is not asked here."""
-    contexts = set(PENETRATION_OF_GOAL["velar_stop"])
-    assert contexts == {"a", "u"} and min(PENETRATION_OF_GOAL["velar_stop"].values()) >= 0.3
+    R8 only just (no margin), /k/(a) lost R8 with the jaw 0.3 deg more open. /k/(i) has only a
+    0.1 mm margin (more would draw the dorsum back and undo the fronting before /i/), so it is not
+    asked here."""
+    contexts = {c for c, mm in PENETRATION_OF_GOAL["velar_stop"].items() if mm >= 0.3}
+    assert contexts == {"a", "u"}
     ctx = Context(built["dir"])
     rig = ctx.rig
     moves = [("jaw_opening", d) for d in (-0.3, 0.3)] + [

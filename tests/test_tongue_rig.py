@@ -29,9 +29,9 @@ def moves_of(name):
     return next(p for p in parameter_table() if p["name"] == name)["moves"]
 
 
-def test_there_are_ten_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
+def test_there_are_eleven_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
     groups = [p["group"] for p in parameter_table()]
-    assert groups.count("tongue sagittal") == 10
+    assert groups.count("tongue sagittal") == 11
     for section in ("front", "middle", "back"):
         assert groups.count(f"tongue coronal {section}") == 7
     assert groups.count("jaw") == 1
@@ -132,9 +132,10 @@ def test_build_definition_checks_the_shapes_it_is_given(definition):
 
 @pytest.mark.parametrize("name, value", [("back_dorsum_height", -16.0),
                                          ("back_dorsum_height", 20.0),
-                                         ("root_advancement", 24.0)])
-def test_the_back_dorsum_and_the_root_move_along_the_hubs_rays_so_no_point_turns(definition,
-                                                                                 name, value):
+                                         ("root_advancement", 24.0),
+                                         ("dorsum_front_height", 20.0)])
+def test_the_dorsum_and_the_root_move_along_the_hubs_rays_so_no_point_turns(definition,
+                                                                            name, value):
     rig = TongueRig(definition)
     values = rig.neutral.copy()
     values[rig.parameter_names.index(name)] = value
@@ -145,8 +146,18 @@ def test_the_back_dorsum_and_the_root_move_along_the_hubs_rays_so_no_point_turns
     turn = np.degrees(np.arctan2(*(posed - hub).T[::-1]) - np.arctan2(*(rest - hub).T[::-1]))
     np.testing.assert_allclose(turn, 0.0, atol=1e-4)
     inward = np.linalg.norm(posed - hub, axis=1) < np.linalg.norm(rest - hub, axis=1)
-    # Raising the back of the dorsum takes it away from the hub; the root comes toward it.
-    assert (inward[moved] == (value < 0 if name == "back_dorsum_height" else True)).all()
+    # Raising the back or the front of the dorsum takes it away from the hub; the root comes
+    # toward it.
+    assert (inward[moved] == (value < 0 if "dorsum" in name else True)).all()
+
+
+def test_the_raised_front_of_the_dorsum_goes_up_and_forward_and_only_up():
+    front = {m["point"]: m["by"] for m in moves_of("dorsum_front_height")}
+    assert set(front) == {"C", "D", "E", "F", "G"}
+    assert all(by[1] > 0 for by in front.values())
+    assert front["C"][0] > 0 and front["D"][0] > 0 and front["E"][0] > 0
+    spec = next(p for p in parameter_table() if p["name"] == "dorsum_front_height")
+    assert spec["min"] == spec["neutral"] == 0.0 and spec["max"] == 20.0
 
 
 def test_the_root_comes_forward_and_the_raised_back_of_the_dorsum_goes_up():

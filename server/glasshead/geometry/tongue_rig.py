@@ -138,7 +138,11 @@ def _along_rays(weights):
 # and forward they turned round the hub toward each other and folded the pages at 10 and 18 mm.
 # Each range is as wide as it can be while every corner of the sagittal and jaw ranges still
 # keeps the pages in order (tests/test_tongue_surface.py): the dorsum and blade advancements,
-# the blade height and the back dorsum's drop are held there, not by the shapes.
+# the blade height and the back dorsum's drop are held there, not by the shapes. The front of
+# /i/ and the palatals needs the blade and the front of the dorsum higher and further forward at
+# once than those corners allow, so ``dorsum_front_height`` moves C to G out along their rays:
+# it only raises (0..20 mm), since lowering them along the rays against a retracted blade
+# folded the pages at every negative value tried.
 
 SAGITTAL_PARAMETERS = (
     ("tip_advancement", "mm", -4.0, 14.0, "Moves the tip pair (A, B) forward.",
@@ -159,6 +163,9 @@ SAGITTAL_PARAMETERS = (
       ("H", (0.5, 0.0)))),
     ("dorsum_height", "mm", -6.0, 12.0, "Raises the centre of the dorsum (E to H).",
      (("E", (0.0, 0.4)), ("F", (0.0, 1.0)), ("G", (0.0, 1.0)), ("H", (0.0, 0.5)))),
+    ("dorsum_front_height", "mm", 0.0, 20.0,
+     "Raises the front of the dorsum and the blade (C to G) up and forward, away from the hub.",
+     _along_rays((("C", 0.3), ("D", 0.7), ("E", 1.0), ("F", 0.8), ("G", 0.3)))),
     ("back_dorsum_height", "mm", -16.0, 20.0,
      "Raises the back of the dorsum (H to J) up and back, away from the hub.",
      _along_rays((("H", 0.5), ("I", 1.0), ("J", 0.4)))),
