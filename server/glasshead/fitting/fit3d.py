@@ -297,11 +297,13 @@ def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=No
                             volume_bound_pct=volume_bound_pct,
                             volume_bound_weight=volume_bound_weight, max_rays=max_rays)
     before = objective.residuals(objective.x0)
-    done = {"n": 0}
+    done = {"n": 0, "best": np.inf}
 
     def counted(evaluations, best):
+        # Each restart's optimiser counts its own best; the caller is told the fit's.
+        done["best"] = min(done["best"], best)
         if progress is not None:
-            progress(done["n"] + evaluations, best)
+            progress(done["n"] + evaluations, done["best"])
 
     options.setdefault("initial_step", step_fraction * (objective.upper - objective.lower))
     started, cpu = time.perf_counter(), time.process_time()
