@@ -225,6 +225,8 @@ TRACT_ORIGIN_CLEARANCE_MM = 3.0
 
 #: The build manifest (meshes, content hashes); written last, so it names only finished files.
 MANIFEST_FILE = "manifest.json"
+#: The face.node id of each face_skin vertex (-1: laid onto a lip), beside the skin's GLB.
+SKIN_NODES_FILE = "face_skin_nodes.json"
 #: Format version of the manifest; the asset store refuses any other version.
 MANIFEST_FORMAT_VERSION = 1
 #: The tongue rig definition (glasshead.geometry.tongue_rig).

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
+from glasshead.constants import SKIN_NODES_FILE
 from glasshead.geometry.meshio import read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
@@ -26,6 +27,7 @@ from glasshead.pipeline.maxilla_lods import (
 )
 from glasshead.pipeline.quantized_glb import quantized_glb
 from glasshead.pipeline.register_cbct import register_cbct
+from glasshead.pipeline.seam_fairing import close_head
 from glasshead.pipeline.tract import build_tract, read_tract_sources
 
 
@@ -82,10 +84,10 @@ def build_anatomy(data_dir, stage_dir, log=print):
                      head_centre(cranium_vertices))
     skin = timer.run("skin off the lips", uncover_lips, skin,
                      [badin["upper_lip"], badin["lower_lip"]])
+    skin, shell = timer.run("head shell and seam", close_head, skin, cranium_vertices)
     emit("face_skin", skin.vertices, skin.faces, "skin", "artisynth-badin/face.node+face.elem")
-    (Path(stage_dir) / "face_skin_nodes.json").write_text(
+    (Path(stage_dir) / SKIN_NODES_FILE).write_text(
         json.dumps({"mesh": "face_skin", "node_ids": skin.node_ids.tolist()}))
-    shell = timer.run("head shell", build_head_shell, skin.vertices, skin.faces, cranium_vertices)
     emit("head_shell", shell.vertices, shell.faces, "shell", "built: closes the face skin")
     report["face_skin"] = {k: v for k, v in skin.stats.items()}
     report["head_shell"] = {"method": build_head_shell.__module__ + " (see its docstring)",

@@ -139,7 +139,7 @@ def build_face_rig(data_dir, assets_dir=None):
     node_weights, weight_stats = face_rig_weights.node_jaw_weights(src, centre, half_width)
     meshes = {name: getattr(src, name) for name in MESH_NAMES}
     weights, shared = face_rig_weights.mesh_jaw_weights(meshes, src.nodes, node_weights,
-                                                        half_width)
+                                                        half_width, src.skin_nodes)
     weights["head_shell"] = face_rig_weights.shell_jaw_weights(
         *src.head_shell, src.face_skin[0], weights["face_skin"])
     weight_stats["lip_corner_points_shared"] = shared

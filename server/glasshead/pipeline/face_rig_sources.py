@@ -9,19 +9,19 @@ them. The face's hexahedral mesh, its jaw attachments and the cranium always com
 sources.
 """
 
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from scipy.spatial import cKDTree
 
-from glasshead.constants import MANIFEST_FILE
+from glasshead.constants import MANIFEST_FILE, SKIN_NODES_FILE
 from glasshead.geometry.frame import badin_to_project
 from glasshead.geometry.meshio import MeshFormatError, read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
-from glasshead.pipeline.head_shell import build_head_shell
 from glasshead.pipeline.outputs import load_built_meshes
+from glasshead.pipeline.seam_fairing import close_head
 
 ATTACHMENTS_FILE = "face_jaw_attachments.txt"
 MANIFEST = MANIFEST_FILE
@@ -29,11 +29,13 @@ MANIFEST = MANIFEST_FILE
 #: Meshes taken from the build when it has them: the rig's own meshes and the two bones.
 SCENE_MESHES = ("face_skin", "upper_lip", "lower_lip", "head_shell", "mandible", "maxilla")
 
-#: A skin vertex lies on a face node when closer than this, mm (GLB positions lie on a 2^-8 mm
+#: A skin vertex lies on its face node when closer than this, mm (GLB positions lie on a 2^-8 mm
 #: lattice, within 0.0034 mm of the node; nodes are millimetres apart).
 ON_NODE_MM = 1e-2
-#: Largest share of skin vertices on no node (those laid onto the lips at the skin's border).
-OFF_NODE_SHARE = 0.05
+#: Smallest share of the skin vertices with a node that must lie on it: all but the outer border
+#: band faired into the head shell (``seam_fairing``, about 16 %). A skin made from other nodes
+#: has almost none on its nodes.
+ON_NODE_SHARE = 0.75
 
 
 @dataclass
@@ -42,7 +44,8 @@ class FaceSources:
 
     nodes : (p, 3) face.node points in file order.  elems : (k, 8) zero-based node indices.
     jaw_attachments : (a,) zero-based node indices riding on the jaw.
-    skin_nodes : (n,) node index of each face_skin vertex (-1: laid onto a lip, on no node).
+    skin_nodes : (n,) node index of each face_skin vertex (-1: laid onto a lip, on no node);
+        the vertices of the faired outer border keep theirs, a few mm off it.
     head_shell : the shell closing the head, which shares the skin's rim.
     origin : where each mesh came from ("build <sha256>" or "sources").
     """
@@ -86,18 +89,24 @@ def read_scene_meshes(assets_dir):
     return {name: ((vertices, faces), sha256) for name, (vertices, faces, sha256) in built.items()}
 
 
-def skin_node_indices(skin_vertices, nodes):
-    """The face node under each skin vertex, -1 for the few laid onto the lips at the skin's
-    border (``face_skin.uncover_lips``); (n,) int64. ValueError if more than OFF_NODE_SHARE of
-    the vertices lie on no node."""
-    distance, nearest = cKDTree(nodes).query(skin_vertices)
-    off = distance > ON_NODE_MM
-    if off.mean() > OFF_NODE_SHARE:
-        worst = int(np.argmax(distance))
-        raise ValueError(f"{off.sum()} face_skin vertices lie on no face node (vertex {worst} is "
-                         f"{distance[worst]:.3g} mm from every node): the skin was not made from "
-                         "this face mesh")
-    return np.where(off, -1, nearest).astype(np.int64)
+def skin_node_indices(skin_vertices, skin_node_ids, node_ids, nodes):
+    """Zero-based face node index of each skin vertex from its face.node id (-1 stays -1: laid
+    onto a lip); (n,) int64. ValueError if the ids are not in face.node or fewer than
+    ON_NODE_SHARE of the vertices lie on their nodes (the skin was not made from these nodes)."""
+    skin_node_ids = np.asarray(skin_node_ids, dtype=np.int64)
+    if skin_node_ids.shape != (len(skin_vertices),):
+        raise ValueError(f"{len(skin_node_ids)} skin node ids for {len(skin_vertices)} vertices")
+    index_of = {int(n): i for i, n in enumerate(node_ids)}
+    missing = [int(n) for n in skin_node_ids if n >= 0 and int(n) not in index_of]
+    if missing:
+        raise ValueError(f"skin node id {missing[0]} is not in face.node")
+    index = np.array([index_of[int(n)] if n >= 0 else -1 for n in skin_node_ids], dtype=np.int64)
+    has = index >= 0
+    distance = np.linalg.norm(np.asarray(skin_vertices)[has] - nodes[index[has]], axis=1)
+    if np.mean(distance <= ON_NODE_MM) < ON_NODE_SHARE:
+        raise ValueError(f"only {np.sum(distance <= ON_NODE_MM)} of {has.sum()} face_skin vertices "
+                         "lie on their face nodes: the skin was not made from this face mesh")
+    return index
 
 
 def load_face_sources(data_dir, assets_dir=None):
@@ -114,12 +123,14 @@ def load_face_sources(data_dir, assets_dir=None):
     if built:
         meshes = {name: mesh for name, (mesh, _) in built.items()}
         origin = {name: f"build {digest}" for name, (_, digest) in built.items()}
+        skin_node_ids = json.loads((Path(assets_dir) / SKIN_NODES_FILE).read_text())["node_ids"]
     else:
         lips = {"upper_lip": sources.read_badin_mesh(data_dir, "upperlip"),
                 "lower_lip": sources.read_badin_mesh(data_dir, "lowerlip")}
         skin = extract_face_skin(node_ids, nodes_m, elem_ids, head_centre(cranium[0]))
         skin = uncover_lips(skin, list(lips.values()))
-        shell = build_head_shell(skin.vertices, skin.faces, cranium[0])
+        skin, shell = close_head(skin, cranium[0])
+        skin_node_ids = skin.node_ids
         meshes = {"face_skin": (skin.vertices, skin.faces),
                   "head_shell": (shell.vertices, shell.faces),
                   **lips,
@@ -131,7 +142,7 @@ def load_face_sources(data_dir, assets_dir=None):
         elems=elems,
         jaw_attachments=read_attachments(base / ATTACHMENTS_FILE, node_ids),
         cranium=cranium,
-        skin_nodes=skin_node_indices(meshes["face_skin"][0], nodes),
+        skin_nodes=skin_node_indices(meshes["face_skin"][0], skin_node_ids, node_ids, nodes),
         origin=origin,
         **meshes,
     )

@@ -130,11 +130,13 @@ def lip_middle(name, vertices, nodes, mouth_half_width):
     return np.flatnonzero(middle & off_node)
 
 
-def mesh_jaw_weights(meshes, nodes, node_weights, mouth_half_width):
+def mesh_jaw_weights(meshes, nodes, node_weights, mouth_half_width, skin_nodes):
     """Per-vertex jaw weights of the face skin and both lips.
 
     meshes : dict with ``face_skin``, ``upper_lip``, ``lower_lip`` -> (vertices, faces).
     nodes : (p, 3) face nodes; node_weights : (p,) from ``node_jaw_weights``.
+    skin_nodes : (n,) the node of each face_skin vertex (-1: none): each takes its node's weight,
+        also where the seam's fairing moved it off the node.
     mouth_half_width : mm; the middle of each lip (``lip_middle``) is fixed to its bone's weight.
     Returns (dict name -> (n,) float64 in [0, 1], number of lip corner points shared).
     """
@@ -152,7 +154,9 @@ def mesh_jaw_weights(meshes, nodes, node_weights, mouth_half_width):
         return np.clip(transfer_weights(vertices, faces, nodes, node_weights, extra), 0.0, 1.0)
 
     names = ("face_skin", "upper_lip", "lower_lip")
-    weights = {name: carry(name) for name in names}
+    on_node = np.flatnonzero(np.asarray(skin_nodes) >= 0)
+    weights = {name: carry(name) for name in names[1:]}
+    weights["face_skin"] = carry("face_skin", (on_node, node_weights[skin_nodes[on_node]]))
     upper, lower = meshes["upper_lip"][0], meshes["lower_lip"][0]
     distance, partner = cKDTree(upper).query(lower)
     in_lower = np.flatnonzero(distance <= COINCIDENT_MM)
