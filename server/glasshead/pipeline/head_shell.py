@@ -207,7 +207,7 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
 
     # Slope of the skin across the rim, from its normal: dr/dbeta = -r (n.e) / (n.ray), with e
     # the unit tangent toward the pole along the meridian.
-    normals = _vertex_normals(skin_vertices, np.asarray(skin_faces))[rim_ids]
+    normals = vertex_normals(skin_vertices, np.asarray(skin_faces))[rim_ids]
     toward_pole = np.stack(
         [np.sin(alpha), -np.cos(alpha) * np.cos(psi), -np.cos(alpha) * np.sin(psi)], axis=1
     ) @ axes
@@ -286,7 +286,7 @@ def _smooth_loop(values, width=RIM_SMOOTHING):
     return np.convolve(padded, kernel, mode="valid")
 
 
-def _vertex_normals(vertices, faces):
+def vertex_normals(vertices, faces):
     """Area-weighted unit vertex normals; (n, 3) float64."""
     tri = vertices[faces]
     face_normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])

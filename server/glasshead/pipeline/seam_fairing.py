@@ -33,7 +33,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import dijkstra
 
-from glasshead.pipeline.head_shell import build_head_shell
+from glasshead.pipeline.head_shell import build_head_shell, vertex_normals
 
 #: Skin vertices within this many edges of the rim move (the rim itself is 0).
 SKIN_HOPS = 2
@@ -56,17 +56,6 @@ def close_head(skin, cranium_vertices):
     skin_vertices, shell_vertices, stats = fair_seam(skin.vertices, skin.faces, shell)
     return (replace(skin, vertices=skin_vertices),
             replace(shell, vertices=shell_vertices, params=shell.params | {"seam_fairing": stats}))
-
-
-def vertex_normals(vertices, faces):
-    """Area-weighted unit vertex normals; (n, 3) float64."""
-    tri = vertices[faces]
-    face_normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    normals = np.zeros_like(vertices)
-    for corner in range(3):
-        np.add.at(normals, faces[:, corner], face_normal)
-    length = np.linalg.norm(normals, axis=1)
-    return normals / np.where(length > 0, length, 1.0)[:, None]
 
 
 def welded(skin_vertices, skin_faces, shell_vertices, shell_faces, rim):
