@@ -138,6 +138,10 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 		assert.ok( overflow <= 0, `${ overflow } px wider than the screen` );
 		const stage = await page.locator( '.cp-stage' ).boundingBox();
 		assert.ok( stage.height >= 0.4 * LANDSCAPE.height && stage.width >= 0.9 * LANDSCAPE.width, `the head is ${ stage.width } x ${ stage.height }` );
+		// The palatogram card sits whole inside the head's rounded frame, its own border showing.
+		const card = await page.locator( '.cp-stage .epg-overlay' ).boundingBox();
+		assert.ok( card, 'the palatogram card is shown' );
+		assert.ok( card.y >= stage.y && card.y + card.height <= stage.y + stage.height - 8, `card ${ card.y }..${ card.y + card.height }, frame ${ stage.y }..${ stage.y + stage.height }` );
 		await saveScreenshot( page, 'practice-1024x768' );
 		// The first without a face (the arrow), the second with one.
 		await page.getByRole( 'button', { name: 'I tried it' } ).tap();
