@@ -160,6 +160,41 @@ describe( 'every view on a tablet', { timeout: 900_000 }, () => {
 
 	}
 
+	test( 'turned from landscape to upright and back, the head stays whole in the 3D view, and Profile still frames it', async () => {
+
+		const page = await open( VIEWS[ 0 ], SIZES[ 1 ] );
+		try {
+
+			const framed = async ( label ) => {
+
+				await settle( page );
+				const { headRect } = await readDebug( page );
+				const canvas = await page.locator( 'canvas.viewer-canvas' ).boundingBox();
+				assert.ok( headRect, `${ label }: no head rectangle` );
+				const inside = headRect.x >= canvas.x - 1 && headRect.y >= canvas.y - 1 && headRect.x + headRect.width <= canvas.x + canvas.width + 1 && headRect.y + headRect.height <= canvas.y + canvas.height + 1;
+				assert.ok( inside, `${ label }: the head ${ JSON.stringify( headRect ) } leaves the ${ canvas.width } x ${ canvas.height } view` );
+				// ...and is not lost in it either.
+				assert.ok( headRect.width * headRect.height >= 0.15 * canvas.width * canvas.height, `${ label }: the head ${ JSON.stringify( headRect ) } is small in ${ canvas.width } x ${ canvas.height }` );
+
+			};
+			await framed( 'landscape' );
+			await page.setViewportSize( SIZES[ 0 ] );
+			await framed( 'upright' );
+			await page.getByRole( 'button', { name: 'Profile' } ).click();
+			await page.waitForFunction( () => window.glasshead.cameraMoving === false, null, { timeout: 30_000 } );
+			await framed( 'upright, profile' );
+			await page.setViewportSize( SIZES[ 1 ] );
+			await framed( 'landscape again' );
+			problems.push( ...page.problems );
+
+		} finally {
+
+			await page.context().close();
+
+		}
+
+	} );
+
 	test( 'the head turns with the arrow keys and zooms with + and - once the 3D view has focus', async () => {
 
 		const page = await open( VIEWS[ 0 ], SIZES[ 1 ] );

@@ -274,6 +274,22 @@ export class Head {
 	}
 
 	/** Bounding box of the anatomy meshes (world frame; section outlines excluded). */
+	/** World-space points of the skin's surface (every `step`-th vertex of each skin part). */
+	skinPoints( step = 4 ) {
+
+		const points = [];
+		for ( const part of this.parts.values() ) {
+
+			if ( part.tissue !== 'skin' ) continue;
+			const positions = part.geometry.getAttribute( 'position' );
+			for ( let i = 0; i < positions.count; i += step ) points.push( new Vector3().fromBufferAttribute( positions, i ).applyMatrix4( part.group.matrixWorld ) );
+
+		}
+
+		return points;
+
+	}
+
 	boundingBox( target = new Box3() ) {
 
 		target.makeEmpty();

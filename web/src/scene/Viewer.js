@@ -186,15 +186,23 @@ export class Viewer {
 	 */
 	screenRect( box ) {
 
-		const corner = new Vector3();
-		let x0 = Infinity, y0 = Infinity, x1 = - Infinity, y1 = - Infinity;
-		for ( let i = 0; i < 8; i ++ ) {
+		const corners = [];
+		for ( let i = 0; i < 8; i ++ ) corners.push( new Vector3( i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z ) );
+		return this.screenRectOfPoints( corners );
 
-			corner.set( i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z );
-			corner.project( this.camera );
-			if ( corner.z > 1 ) return null;
-			x0 = Math.min( x0, corner.x ); x1 = Math.max( x1, corner.x );
-			y0 = Math.min( y0, corner.y ); y1 = Math.max( y1, corner.y );
+	}
+
+	/** The CSS-pixel rectangle on the page covering world-space points (Vector3s), or null if one is behind the camera. */
+	screenRectOfPoints( points ) {
+
+		const projected = new Vector3();
+		let x0 = Infinity, y0 = Infinity, x1 = - Infinity, y1 = - Infinity;
+		for ( const point of points ) {
+
+			projected.copy( point ).project( this.camera );
+			if ( projected.z > 1 ) return null;
+			x0 = Math.min( x0, projected.x ); x1 = Math.max( x1, projected.x );
+			y0 = Math.min( y0, projected.y ); y1 = Math.max( y1, projected.y );
 
 		}
 

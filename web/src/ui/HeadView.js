@@ -71,6 +71,7 @@ export class HeadView {
 			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
 			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
 			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
+			headRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRectOfPoints( this.head.skinPoints() ) : null ),
 			eyes: () => this.eyes?.state() ?? null,
 			airProbe: () => ( this.viewer && this.state.loaded && this.head.air ? this.head.air.probe( this.viewer ) : null ),
 			cranialProbe: () => ( this.viewer && this.state.loaded && this.head.cranial ? this.head.cranial.probe( this.viewer ) : null ),
