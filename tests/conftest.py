@@ -1,4 +1,5 @@
-"""Shared fixtures: the reference data (required, never skipped) and the built assets."""
+"""Shared fixtures: the reference data (required, never skipped), the built assets and a
+throwaway PostgreSQL server per module that asks for one."""
 
 import json
 import os
@@ -7,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from glasshead.settings import get_settings
+from postgres_support import throwaway_postgres
 
 # Starlette's TestClient sends "Host: testserver"; the host allow-list (api/security.py) must let
 # it through. Tests of the allow-list itself set GLASSHEAD_ALLOWED_HOSTS or delete it.
@@ -73,3 +75,10 @@ def manifest(built_assets) -> dict:
 @pytest.fixture(scope="session")
 def build_report(built_assets) -> dict:
     return json.loads((built_assets / "build-report.json").read_text())
+
+
+@pytest.fixture(scope="module")
+def postgres_server():
+    """A throwaway PostgreSQL server (``postgres_support``) per test module, stopped after it."""
+    with throwaway_postgres() as server:
+        yield server

@@ -12,15 +12,8 @@ from glasshead.accounts import AccountError
 from glasshead.store.db import engine_for, upgrade_to_head
 from glasshead.store.lessons import Child, SchoolClass
 from glasshead.store.users import AuthToken
-from postgres_support import throwaway_postgres
 
 PASSWORD = "correct horse battery"
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 @pytest.fixture(params=["sqlite", "postgresql"])

@@ -14,7 +14,6 @@ from glasshead import accounts
 from glasshead.epg.formats import CSV_ELECTRODES, CSV_MAGIC
 from glasshead.settings import get_settings
 from glasshead.store.db import engine_for, get_engine
-from postgres_support import throwaway_postgres
 
 API = "/api/v1"
 PASSWORD = "correct horse battery"
@@ -97,12 +96,6 @@ def sqlite(start_app):
     client = start_app()[1]
     add_users(get_engine())
     return get_engine(), client
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 @pytest.fixture

@@ -9,17 +9,10 @@ import pytest
 
 from accounts_support import add_user, header, token_for
 from backend_support import app_on_new_database
-from postgres_support import throwaway_postgres
 
 API = "/api/v1"
 ONE_FRAME = {"format": "emur-json",
              "content": {"frames": [{"t_ms": 0, "rows": ["00011000"] + ["00000000"] * 7}]}}
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 @pytest.fixture(scope="module", params=["sqlite", "postgresql"])

@@ -9,19 +9,12 @@ from concurrent.futures import ThreadPoolExecutor
 import httpx
 import pytest
 
-from postgres_support import throwaway_postgres
 from server_process import API, ServerProcess
 
 WORKERS = 2
 CHILDREN = 10
 #: Practice records written in all, from 8 threads (bounded: about 10 s on two busy cores).
 RECORDS = 300
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 def database_url(setting: str, tmp_path, postgres_server_factory) -> str:

@@ -9,17 +9,10 @@ from accounts_support import signed_in
 from glasshead.lessons.starter import STARTER_LESSONS
 from glasshead.settings import get_settings
 from glasshead.store.db import engine_for, upgrade_to_head
-from postgres_support import throwaway_postgres
 
 API = "/api/v1"
 LESSON = {"title": "sip", "items": [{"target": {"kind": "phoneme", "text": "ʃ"}},
                                     {"target": {"kind": "word", "text": "sip"}, "speed": 0.5}]}
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 @pytest.fixture

@@ -12,7 +12,6 @@ import sqlalchemy as sa
 from alembic.migration import MigrationContext
 
 from glasshead.store.db import engine_for
-from postgres_support import throwaway_postgres
 from server_process import (
     API,
     WRITES,
@@ -24,12 +23,6 @@ from server_process import (
 
 WORKERS = 2
 POSE = {"name": "t closure", "description": "", "params": {"tip_height": 2.0}}
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 @pytest.fixture

@@ -20,7 +20,6 @@ from backend_support import app_on_new_database
 from glasshead.api.routes.classes import new_join_code
 from glasshead.store.db import get_engine
 from glasshead.store.lessons import Child, SchoolClass
-from postgres_support import throwaway_postgres
 
 API = "/api/v1"
 ROLE_TABLE = json.loads((Path(__file__).parent / "route_roles.json").read_text())
@@ -34,12 +33,6 @@ LESSON = {"title": "sip", "items": [{"target": {"kind": "phoneme", "text": "s"}}
                                     {"target": {"kind": "word", "text": "sip"}}]}
 ONE_FRAME = {"format": "emur-json",
              "content": {"frames": [{"t_ms": 0, "rows": ["00011000"] + ["00000000"] * 7}]}}
-
-
-@pytest.fixture(scope="module")
-def postgres_server():
-    with throwaway_postgres() as server:
-        yield server
 
 
 @pytest.fixture(scope="module", params=["sqlite", "postgresql"])
