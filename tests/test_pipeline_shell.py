@@ -9,7 +9,13 @@ from glasshead.geometry.meshio import read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre
 from glasshead.pipeline.head_shell import build_head_shell
-from glasshead.pipeline.seam_fairing import SHELL_RINGS, SKIN_HOPS, close_head
+from glasshead.pipeline.seam_fairing import (
+    SHELL_RINGS,
+    SKIN_HOPS,
+    adjacency,
+    close_head,
+    welded,
+)
 
 #: Shell rings next to the rim checked for folds (ring 0 is the rim).
 NEAR_RINGS = 3
@@ -60,11 +66,7 @@ def _shell_rings(shell):
 
 def _welded(skin, shell):
     """Skin and shell as one mesh, the shell's ring 0 replaced by the skin's rim vertices."""
-    offset = len(skin.vertices)
-    index = np.arange(len(shell.vertices)) + offset
-    index[: len(shell.rim)] = shell.rim
-    vertices = np.vstack([skin.vertices, shell.vertices])
-    return vertices, np.vstack([skin.faces, index[shell.faces]])
+    return welded(skin.vertices, skin.faces, shell.vertices, shell.faces, shell.rim)
 
 
 def test_the_shell_starts_exactly_on_the_skin_rim(head):
@@ -153,9 +155,7 @@ def test_fairing_moves_only_the_band_by_a_few_millimetres_and_keeps_the_seam_clo
     # The shell's ring 0 is still the skin's rim, exactly.
     np.testing.assert_array_equal(shell.vertices[: len(shell.rim)], skin.vertices[shell.rim])
     moved = np.linalg.norm(skin.vertices - raw_skin.vertices, axis=1)
-    edges = np.concatenate([skin.faces[:, [0, 1]], skin.faces[:, [1, 2]]])
-    graph = np.zeros((len(skin.vertices),) * 2, dtype=bool)
-    graph[edges[:, 0], edges[:, 1]] = graph[edges[:, 1], edges[:, 0]] = True
+    graph = adjacency(skin.faces, len(skin.vertices))
     hops = dijkstra(graph, directed=False, indices=shell.rim, unweighted=True, min_only=True)
     assert moved[hops > SKIN_HOPS].max() == 0.0  # the face as measured
     assert 0.5 < moved.max() < 6.0

@@ -89,14 +89,14 @@ def read_scene_meshes(assets_dir):
     return {name: ((vertices, faces), sha256) for name, (vertices, faces, sha256) in built.items()}
 
 
-def skin_node_indices(skin_vertices, skin_node_ids, node_ids, nodes):
+def skin_node_indices(skin_vertices, skin_node_ids, index_of, nodes):
     """Zero-based face node index of each skin vertex from its face.node id (-1 stays -1: laid
-    onto a lip); (n,) int64. ValueError if the ids are not in face.node or fewer than
-    ON_NODE_SHARE of the vertices lie on their nodes (the skin was not made from these nodes)."""
+    onto a lip), ``index_of`` mapping face.node ids to indices; (n,) int64. ValueError if the ids
+    are not in face.node or fewer than ON_NODE_SHARE of the vertices lie on their nodes (the skin
+    was not made from these nodes)."""
     skin_node_ids = np.asarray(skin_node_ids, dtype=np.int64)
     if skin_node_ids.shape != (len(skin_vertices),):
         raise ValueError(f"{len(skin_node_ids)} skin node ids for {len(skin_vertices)} vertices")
-    index_of = {int(n): i for i, n in enumerate(node_ids)}
     missing = [int(n) for n in skin_node_ids if n >= 0 and int(n) not in index_of]
     if missing:
         raise ValueError(f"skin node id {missing[0]} is not in face.node")
@@ -142,7 +142,7 @@ def load_face_sources(data_dir, assets_dir=None):
         elems=elems,
         jaw_attachments=read_attachments(base / ATTACHMENTS_FILE, node_ids),
         cranium=cranium,
-        skin_nodes=skin_node_indices(meshes["face_skin"][0], skin_node_ids, node_ids, nodes),
+        skin_nodes=skin_node_indices(meshes["face_skin"][0], skin_node_ids, index_of, nodes),
         origin=origin,
         **meshes,
     )

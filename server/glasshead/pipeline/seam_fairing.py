@@ -33,6 +33,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import dijkstra
 
+from glasshead.geometry.skin_weights import triangle_edges
 from glasshead.pipeline.head_shell import build_head_shell, vertex_normals
 
 #: Skin vertices within this many edges of the rim move (the rim itself is 0).
@@ -67,9 +68,9 @@ def welded(skin_vertices, skin_faces, shell_vertices, shell_faces, rim):
     return vertices, np.vstack([skin_faces, index[shell_faces]])
 
 
-def _adjacency(faces, count):
-    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    edges = np.unique(np.sort(edges, axis=1), axis=0)
+def adjacency(faces, count):
+    """Symmetric (count, count) sparse matrix with a 1 for each mesh edge."""
+    edges = triangle_edges(faces)
     ones = np.ones(2 * len(edges))
     graph = sp.coo_matrix((ones, (np.r_[edges[:, 0], edges[:, 1]],
                                   np.r_[edges[:, 1], edges[:, 0]])), shape=(count, count))
@@ -88,7 +89,7 @@ def fair_seam(skin_vertices, skin_faces, shell):
     rim, n_skin, n_rim = shell.rim, len(skin_vertices), len(shell.rim)
     vertices, faces = welded(skin_vertices, skin_faces, shell.vertices, shell.faces, rim)
     count = len(vertices)
-    graph = _adjacency(faces, count)
+    graph = adjacency(faces, count)
     degree = np.asarray(graph.sum(axis=1)).ravel()
     laplacian = (sp.eye(count) - sp.diags(1.0 / degree) @ graph).tocsr()
 
