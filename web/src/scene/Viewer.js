@@ -20,6 +20,9 @@ import { registerDebug } from '../debug.js';
 
 export const BACKGROUND_COLOR = '#dfe3e8';
 
+const BOX_CORNERS = Array.from( { length: 8 }, () => new Vector3() );
+const SCRATCH_POINT = new Vector3();
+
 export class Viewer {
 
 	/**
@@ -186,16 +189,16 @@ export class Viewer {
 	 */
 	screenRect( box ) {
 
-		const corners = [];
-		for ( let i = 0; i < 8; i ++ ) corners.push( new Vector3( i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z ) );
-		return this.screenRectOfPoints( corners );
+		// Scratch corners: the EPG card's placement asks for the lips' rectangle as the view moves.
+		BOX_CORNERS.forEach( ( corner, i ) => corner.set( i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z ) );
+		return this.screenRectOfPoints( BOX_CORNERS );
 
 	}
 
 	/** The CSS-pixel rectangle on the page covering world-space points (Vector3s), or null if one is behind the camera. */
 	screenRectOfPoints( points ) {
 
-		const projected = new Vector3();
+		const projected = SCRATCH_POINT;
 		let x0 = Infinity, y0 = Infinity, x1 = - Infinity, y1 = - Infinity;
 		for ( const point of points ) {
 
