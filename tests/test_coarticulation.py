@@ -10,6 +10,8 @@ import math
 import numpy as np
 import pytest
 
+from glasshead.fitting.objective2d import MidSagittalSection
+from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.phonemes import INVENTORY
 from glasshead.speech import dominance
 from glasshead.speech.coarticulation import (
@@ -73,19 +75,39 @@ def test_the_lips_round_for_u_before_the_vowel_in_stew_and_not_in_stee(targets, 
     assert rounding_stew[t_mid] - rounding_stee[t_mid] > 2.0
 
 
+@pytest.fixture(scope="module")
+def section(built_assets):
+    """The built rig's mid-sagittal section."""
+    return MidSagittalSection(TongueRig(json.loads((built_assets / "tongue-rig.json").read_text())))
+
+
+def dorsum_top_x(section, params):
+    """x (mm, + toward the lips) of the highest point of the tongue's mid-sagittal outline for
+    a mapping of parameter values (missing tongue parameters neutral): where /k/ closes."""
+    rig = section.rig
+    values = rig.neutral.copy()
+    for name, value in params.items():
+        if name in rig.parameters:
+            values[rig.parameter_names.index(name)] = value
+    outline = section.outline(np.clip(values, rig.minimum, rig.maximum))
+    return float(outline[np.argmax(outline[:, 1]), 0])
+
+
 @pytest.mark.parametrize("which", CONSTANT_SETS)
-def test_k_is_fronted_before_i_against_before_u(targets, which):
-    """dorsum_advancement (mm, + toward the lips) at /k/'s centre: key against coo."""
+def test_k_is_fronted_before_i_against_before_u(targets, section, which):
+    """The dorsum's highest point at /k/'s centre lies further forward in "key" than in "coo"."""
     constants = CONSTANT_SETS[which]
     key, coo = timed("K IY"), timed("K UW")
     k_key, k_coo = centre_frame(key[1]), centre_frame(coo[1])
-    front_key = coarticulate(key, targets, constants=constants)["tracks"]["dorsum_advancement"]
-    front_coo = coarticulate(coo, targets, constants=constants)["tracks"]["dorsum_advancement"]
-    assert front_key[k_key] - front_coo[k_coo] > 0.5
+    tracks_key = coarticulate(key, targets, constants=constants)["tracks"]
+    tracks_coo = coarticulate(coo, targets, constants=constants)["tracks"]
+    top_key = dorsum_top_x(section, {n: track[k_key] for n, track in tracks_key.items()})
+    top_coo = dorsum_top_x(section, {n: track[k_coo] for n, track in tracks_coo.items()})
+    assert top_key - top_coo > 1.0, (top_key, top_coo)
     # It is the context variant that fronts it: /k/ takes its /i/-context target before /i/.
-    k_i = target_of(targets, "K")["contexts"]["i"]["params"]["dorsum_advancement"]
-    k_u = target_of(targets, "K")["contexts"]["u"]["params"]["dorsum_advancement"]
-    assert k_i > k_u
+    contexts = target_of(targets, "K")["contexts"]
+    assert dorsum_top_x(section, contexts["i"]["params"]) \
+        > dorsum_top_x(section, contexts["u"]["params"]) + 1.0
 
 
 def test_a_consonant_takes_the_context_of_the_vowel_after_it_else_before_it():

@@ -29,9 +29,9 @@ def moves_of(name):
     return next(p for p in parameter_table() if p["name"] == name)["moves"]
 
 
-def test_there_are_eleven_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
+def test_there_are_twelve_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
     groups = [p["group"] for p in parameter_table()]
-    assert groups.count("tongue sagittal") == 11
+    assert groups.count("tongue sagittal") == 12
     for section in ("front", "middle", "back"):
         assert groups.count(f"tongue coronal {section}") == 7
     assert groups.count("jaw") == 1
@@ -90,6 +90,8 @@ def test_the_shared_definition_passes_its_own_checks(definition):
     (lambda d: d["parameters"][0].update(unit="furlong"), "unit"),
     (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "by": [1, 0]}),
      "bad sagittal move"),
+    (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "turn": 1.0}), "bad turn"),
+    (lambda d: d["parameters"][0]["moves"].append({"point": "E", "turn": "far"}), "bad turn"),
     (lambda d: d["parameters"][12]["moves"].append(
         {"section": "front", "control": "left pole", "by": 1.0}), "pole controls cannot move"),
     (lambda d: d["sagittal"]["control_points"][0].update(section_weights=[0.5, 0.1, 0.1]),
@@ -158,6 +160,29 @@ def test_the_raised_front_of_the_dorsum_goes_up_and_forward_and_only_up():
     assert front["C"][0] > 0 and front["D"][0] > 0 and front["E"][0] > 0
     spec = next(p for p in parameter_table() if p["name"] == "dorsum_front_height")
     assert spec["min"] == spec["neutral"] == 0.0 and spec["max"] == 20.0
+
+
+def test_the_retracted_tongue_turns_back_about_the_hub_keeping_each_points_distance(definition):
+    rig = TongueRig(definition)
+    values = rig.neutral.copy()
+    values[rig.parameter_names.index("tongue_retraction")] = 20.0
+    rest, hub, _, _ = rig.control_points(rig.neutral)
+    posed, _, _, _ = rig.control_points(values)
+    names = [p["name"] for p in definition["sagittal"]["control_points"]]
+    turn = np.degrees(np.arctan2(*(posed - hub).T[::-1]) - np.arctan2(*(rest - hub).T[::-1]))
+    turn = dict(zip(names, (turn + 180.0) % 360.0 - 180.0, strict=True))
+    # D..M turn 20 degrees back (counterclockwise seen from the subject's left: the dorsum goes
+    # back, the root down), tapering through the blade and along the floor; the tip stays.
+    for name in "FGHIJKLM":
+        assert turn[name] == pytest.approx(20.0, abs=1e-9), name
+    assert 0 < turn["C"] < turn["D"] < turn["E"] < 20.0
+    assert 0 < turn["O"] < turn["N"] < 20.0
+    for name in "ABPQRS":
+        assert turn[name] == pytest.approx(0.0, abs=1e-9), name
+    np.testing.assert_allclose(np.linalg.norm(posed - hub, axis=1),
+                               np.linalg.norm(rest - hub, axis=1), atol=1e-9)
+    assert posed[names.index("G"), 0] < rest[names.index("G"), 0] - 5.0
+    assert posed[names.index("K"), 1] < rest[names.index("K"), 1] - 5.0
 
 
 def test_the_root_comes_forward_and_the_raised_back_of_the_dorsum_goes_up():

@@ -24,7 +24,8 @@ pairs, under named articulation parameters. Here:
   sagittal control point carries (``section_weights``), interpolated with the sagittal basis;
   the coronal offsets are further weighted by each point's ``coronal_weight`` (1 on the upper
   surface, 0 on the floor and underside, see ``CORONAL_WEIGHTS``).
-- **Parameters** displace control points linearly: ``point = rest + (value - neutral) * by``;
+- **Parameters** displace control points linearly: ``point = rest + (value - neutral) * by``,
+  and may then turn them about the hub by ``(value - neutral) * turn`` degrees;
   a section's ``stretch`` (its width) scales its pages sideways, see ``STRETCH``.
   ``jaw_opening`` instead poses the jaw (see ``geometry.jaw``); the tongue rides on it, each
   sagittal control point and the hub by its ``jaw_weight``.
@@ -124,10 +125,18 @@ def _along_rays(weights):
                  for name, w in weights)
 
 
+def _turns(weights):
+    """Moves that turn points about the hub, degrees per unit (see
+    ``geometry.tongue_surface``): a turn keeps each point's distance from the hub, so points that
+    turn by the same angle keep their pages in order whatever the other parameters did to them."""
+    return tuple({"point": name, "turn": w} for name, w in weights)
+
+
 # --- The articulation parameters -------------------------------------------------------------
 # (name, unit, min, max, description, moves); neutral is 0 for every tongue parameter (values
 # are displacements from the rest shape, so the table stays valid when the rest shape is refit).
-# Sagittal moves: (point, (dx, dy)) in mm per unit. Coronal moves: (control, offset), radial mm
+# Sagittal moves: (point, (dx, dy)) in mm per unit, or {"point", "turn"} in degrees per unit
+# about the hub (``_turns``). Coronal moves: (control, offset), radial mm
 # per unit along the control's page direction, given for one section and applied to each.
 #
 # The sagittal ranges cover what the mid-sagittal fits to VocalTractLab's JD3 shapes reach for
@@ -142,7 +151,13 @@ def _along_rays(weights):
 # /i/ and the palatals needs the blade and the front of the dorsum higher and further forward at
 # once than those corners allow, so ``dorsum_front_height`` moves C to G out along their rays:
 # it only raises (0..20 mm), since lowering them along the rays against a retracted blade
-# folded the pages at every negative value tried.
+# folded the pages at every negative value tried. The back vowels, the velars in /a u/ and the
+# uvulars want the whole body of the tongue drawn back and down into the pharynx, about 10 to 25
+# degrees round the hub (their fits sat at the backward limit of ``dorsum_advancement`` and the
+# lower limit of ``body_height``). Made of straight moves that folded the pages wherever another
+# parameter had drawn a point near the hub; ``tongue_retraction`` turns the points instead
+# (``_turns``): D to M together, tapering to nothing at the blade and along the floor, so only
+# the taper changes the angles between pages.
 
 SAGITTAL_PARAMETERS = (
     ("tip_advancement", "mm", -4.0, 14.0, "Moves the tip pair (A, B) forward.",
@@ -177,6 +192,11 @@ SAGITTAL_PARAMETERS = (
       ("D", (0.0, 1.0)),
       ("E", (0.0, 1.0)), ("F", (0.0, 1.0)), ("G", (0.0, 1.0)), ("H", (0.0, 1.0)),
       ("I", (0.0, 1.0)), ("J", (0.0, 1.0)), ("K", (0.0, 0.6)), ("L", (0.0, 0.3)))),
+    ("tongue_retraction", "deg", 0.0, 25.0,
+     "Turns the body of the tongue back about the hub: the dorsum back, the root down into the "
+     "pharynx.",
+     _turns((("C", 0.2), ("D", 0.5), ("E", 0.8), ("F", 1.0), ("G", 1.0), ("H", 1.0), ("I", 1.0),
+             ("J", 1.0), ("K", 1.0), ("L", 1.0), ("M", 1.0), ("N", 0.6), ("O", 0.2)))),
 )
 
 #: A coronal move that stretches the section sideways instead of moving a control: a page point
@@ -236,7 +256,9 @@ def parameter_table():
     table = []
     for name, unit, low, high, text, moves in SAGITTAL_PARAMETERS:
         table.append(_parameter(name, unit, low, high, GROUP_SAGITTAL, text,
-                                [{"point": p, "by": list(by)} for p, by in moves]))
+                                [dict(m) if isinstance(m, dict) else {"point": m[0],
+                                                                      "by": list(m[1])}
+                                 for m in moves]))
     for section in SECTIONS:
         for name, unit, low, high, text, weights in CORONAL_PARAMETERS:
             table.append(_parameter(f"{section}_{name}", unit, low, high,
@@ -390,7 +412,10 @@ def _validate_parameters(definition, point_names, control_names, section_names):
         if not p["min"] <= p["neutral"] <= p["max"] or p["min"] == p["max"]:
             raise ValueError(f"parameter {name}: needs min <= neutral <= max and min < max")
         for move in p["moves"]:
-            if "point" in move:
+            if "turn" in move:
+                if move["point"] not in point_names or not isinstance(move["turn"], (int, float)):
+                    raise ValueError(f"parameter {name}: bad turn {move}")
+            elif "point" in move:
                 if move["point"] not in point_names or len(move["by"]) != 2:
                     raise ValueError(f"parameter {name}: bad sagittal move {move}")
             elif move.get("section") in section_names and move.get("control") in control_names:

@@ -5,12 +5,15 @@ table that does not depend on the parameters (basis functions at the stations an
 the blended rest ratios, the triangles) is built once in ``TongueRig.__init__``; an evaluation is
 then a few small matrix products:
 
-1. control points: rest + sum over parameters of (value - neutral) * move;
+1. control points: rest + sum over parameters of (value - neutral) * move; then each point
+   turns about the hub by the sum of (value - neutral) * its turn, in degrees (a turn keeps the
+   point's distance from the hub, so a tongue turned back into the pharynx keeps its pages in
+   order where the same move made of straight steps would fold them);
 2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 3. stations: S = B_sagittal @ points; page direction e = (S - H) / |S - H|;
 4. radial control values per station, with R = |S - H|, R0 its rest value and w the pole
    half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets times the
-   coronal weight (the pole controls are w itself);
+   coronal weight times min(1, R / R0) (the pole controls are w itself);
 5. radii at the page samples: lambda = values @ B_coronal^T; vertex = H + lambda * (cos(phi) e
    + sin(phi) (1 + k (1 - sin(phi)^4)) z), k the blended sideways stretch of the sections.
 
@@ -118,10 +121,13 @@ class TongueRig:
         self.sagittal_moves = np.zeros((count, len(points), 2))
         self.coronal_moves = np.zeros((count, len(sections), len(controls)))
         self.stretch_moves = np.zeros((count, len(sections)))
+        self.point_turns = np.zeros((count, len(points)))
         section_index = {s: k for k, s in enumerate(sections)}
         for k, p in enumerate(table):
             for move in p["moves"]:
-                if "point" in move:
+                if "turn" in move:
+                    self.point_turns[k, point_index[move["point"]]] += move["turn"]
+                elif "point" in move:
                     self.sagittal_moves[k, point_index[move["point"]]] += move["by"]
                 elif "stretch" in move:
                     self.stretch_moves[k, section_index[move["section"]]] += move["stretch"]
@@ -178,6 +184,11 @@ class TongueRig:
         values = self._checked(values)
         delta = values - self.neutral
         points = self.rest_points + np.tensordot(delta, self.sagittal_moves, axes=1)
+        turn = np.radians(delta @ self.point_turns)
+        if np.any(turn):
+            cos, sin = np.cos(turn), np.sin(turn)
+            x, y = (points - self.hub).T
+            points = self.hub + np.column_stack((cos * x - sin * y, sin * x + cos * y))
         offsets = np.tensordot(delta, self.coronal_moves, axes=1)
         stretch = delta @ self.stretch_moves
         pose = jaw_pose(values[self.jaw_parameter], self.jaw)
@@ -194,9 +205,12 @@ class TongueRig:
         radius = np.linalg.norm(towards, axis=1)
         direction = towards / radius[:, None]
         pole = self.pole_half_width
+        # Where the curve has come toward the hub, the offsets shrink with the radius: a groove
+        # cannot be deeper than the tongue there is, so no radius goes through the hub.
+        squeeze = np.minimum(1.0, radius / self.rest_radius)
         controls = pole + (self.rest_radius[:, None] - pole) * self.station_ratios \
             + (radius - self.rest_radius)[:, None] * self.follow \
-            + self.station_offset_blend @ offsets
+            + squeeze[:, None] * (self.station_offset_blend @ offsets)
         controls[:, self.pole_controls] = self.pole_half_width
         return hub, stations, direction, controls @ self.page_basis.T, self.station_blend @ stretch
 

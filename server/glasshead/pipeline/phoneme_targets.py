@@ -31,7 +31,7 @@ from fitted ones as ``glasshead.phonemes`` describes (``REASONED``).
 
 The step is skipped when the SHA-256 of its inputs (the built rig, observations, collision
 tables, EPG layout, face and velum rigs, the real EPG recording, and the code: this module,
-``phonemes``, the fitting and synthetic EPG modules) is the one the file records.
+``phonemes``, the fitting, tongue-surface and synthetic EPG modules) is the one the file records.
 """
 
 import hashlib
@@ -55,6 +55,7 @@ from glasshead.constants import (
     VELUM_PARAMETER,
     VELUM_RIG_FILE,
 )
+from glasshead.epg import contacts as epg_contacts
 from glasshead.epg import synthetic
 from glasshead.epg.contacts import probes_from_layout
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices
@@ -68,6 +69,7 @@ from glasshead.fitting import (
     optimizer,
 )
 from glasshead.fitting.objective2d import MidSagittalSection
+from glasshead.geometry import tongue_surface
 from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.outputs import current_output, write_json
@@ -86,7 +88,7 @@ VOLUME_REFITS = 3
 MAIN_CONTEXT = "a"
 #: The modules whose code shapes the output; their text is part of the cache key.
 CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_observations, synthetic,
-        objective_epg, fit_contact)
+        objective_epg, fit_contact, tongue_surface, epg_contacts)
 #: Built files read, and the data file.
 INPUT_FILES = (TONGUE_RIG_FILE, OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
                FACE_RIG_FILE, VELUM_RIG_FILE)

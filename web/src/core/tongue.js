@@ -6,11 +6,12 @@
 // functions at the stations and page angles, the blended rest ratios, the triangles, scratch
 // arrays). rig.evaluate( values, surface ) then writes positions and normals into the surface's
 // preallocated Float32Arrays and allocates nothing:
-//   1. control points = rest + sum over parameters of ( value - neutral ) * move;
+//   1. control points = rest + sum over parameters of ( value - neutral ) * move; then each point
+//      turns about the hub by the sum of ( value - neutral ) * its turn, degrees;
 //   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 //   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
 //   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets * coronal weight
-//      (poles: w);
+//      * min( 1, R / R0 ) (poles: w);
 //   5. vertex = H + lambda ( cos( phi ) e + sin( phi ) ( 1 + k ( 1 - sin( phi )^4 ) ) z ), lambda = page
 //      basis * controls, k the blended sideways stretch (the sections' widths).
 // Cohen, Beskow and Massaro (1998), section 3: sagittal and coronal B-splines whose control
@@ -133,11 +134,13 @@ export class TongueRig {
 		const sagittalMoves = [];
 		const coronalMoves = [];
 		const stretchMoves = [];
+		const turnMoves = [];
 		parameters.forEach( ( p, k ) => {
 
 			for ( const move of p.moves ) {
 
-				if ( move.point !== undefined ) sagittalMoves.push( [ k, pointIndex.get( move.point ), move.by[ 0 ], move.by[ 1 ] ] );
+				if ( move.turn !== undefined ) turnMoves.push( [ k, pointIndex.get( move.point ), move.turn * Math.PI / 180 ] );
+				else if ( move.point !== undefined ) sagittalMoves.push( [ k, pointIndex.get( move.point ), move.by[ 0 ], move.by[ 1 ] ] );
 				else if ( move.stretch !== undefined ) stretchMoves.push( [ k, sections.indexOf( move.section ), move.stretch ] );
 				else coronalMoves.push( [ k, sections.indexOf( move.section ) * c + controlIndex.get( move.control ), move.by ] );
 
@@ -154,6 +157,10 @@ export class TongueRig {
 		this.stretchMoveParameter = Int32Array.from( stretchMoves, ( m ) => m[ 0 ] );
 		this.stretchMoveSection = Int32Array.from( stretchMoves, ( m ) => m[ 1 ] );
 		this.stretchMoveBy = Float64Array.from( stretchMoves, ( m ) => m[ 2 ] );
+		this.turnMoveParameter = Int32Array.from( turnMoves, ( m ) => m[ 0 ] );
+		this.turnMovePoint = Int32Array.from( turnMoves, ( m ) => m[ 1 ] );
+		this.turnMoveRadians = Float64Array.from( turnMoves, ( m ) => m[ 2 ] );
+		this.pointTurn = new Float64Array( points.length );
 
 		this.jaw = jaw;
 		this.jawParameter = this.parameterIndex.get( jaw.parameter );
@@ -253,6 +260,8 @@ export class TongueRig {
 
 		}
 
+		this.turnAboutHub( values );
+
 		const offsets = this.offsets;
 		offsets.fill( 0 );
 		for ( let m = 0; m < this.coronalMoveParameter.length; m ++ ) {
@@ -280,6 +289,36 @@ export class TongueRig {
 		const hy = this.hub[ 1 ];
 		this.hub[ 0 ] = hx + w * ( pose[ 0 ] * hx + pose[ 1 ] * hy + pose[ 3 ] - hx );
 		this.hub[ 1 ] = hy + w * ( pose[ 4 ] * hx + pose[ 5 ] * hy + pose[ 7 ] - hy );
+
+	}
+
+	/** Step 1, second part: turns each control point about the rest hub by its summed turn. */
+	turnAboutHub( values ) {
+
+		if ( this.turnMoveParameter.length === 0 ) return;
+		const turn = this.pointTurn;
+		turn.fill( 0 );
+		for ( let m = 0; m < this.turnMoveParameter.length; m ++ ) {
+
+			const k = this.turnMoveParameter[ m ];
+			turn[ this.turnMovePoint[ m ] ] += ( values[ k ] - this.neutral[ k ] ) * this.turnMoveRadians[ m ];
+
+		}
+
+		const points = this.points;
+		const hx = this.hubRest[ 0 ];
+		const hy = this.hubRest[ 1 ];
+		for ( let i = 0; i < this.pointCount; i ++ ) {
+
+			if ( turn[ i ] === 0 ) continue;
+			const cos = Math.cos( turn[ i ] );
+			const sin = Math.sin( turn[ i ] );
+			const x = points[ 2 * i ] - hx;
+			const y = points[ 2 * i + 1 ] - hy;
+			points[ 2 * i ] = hx + cos * x - sin * y;
+			points[ 2 * i + 1 ] = hy + sin * x + cos * y;
+
+		}
 
 	}
 
@@ -321,9 +360,11 @@ export class TongueRig {
 			const b1 = stationBlend[ i * SECTION_COUNT + 1 ];
 			const b2 = stationBlend[ i * SECTION_COUNT + 2 ];
 			stationStretch[ i ] = b0 * stretch[ 0 ] + b1 * stretch[ 1 ] + b2 * stretch[ 2 ];
-			const o0 = stationOffsetBlend[ i * SECTION_COUNT ];
-			const o1 = stationOffsetBlend[ i * SECTION_COUNT + 1 ];
-			const o2 = stationOffsetBlend[ i * SECTION_COUNT + 2 ];
+			// Offsets shrink where the curve has come toward the hub: no radius goes through it.
+			const squeeze = Math.min( 1, r / rest );
+			const o0 = squeeze * stationOffsetBlend[ i * SECTION_COUNT ];
+			const o1 = squeeze * stationOffsetBlend[ i * SECTION_COUNT + 1 ];
+			const o2 = squeeze * stationOffsetBlend[ i * SECTION_COUNT + 2 ];
 			for ( let k = 0; k < c; k ++ ) {
 
 				controls[ i * c + k ] = isPole[ k ] ? pole
