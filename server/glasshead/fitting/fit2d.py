@@ -2,7 +2,7 @@
 
 Which parameters move:
 
-- the 10 sagittal tongue parameters (group "tongue sagittal"), free within their ranges;
+- the 12 sagittal tongue parameters (group "tongue sagittal"), free within their ranges;
 - the coronal parameters stay neutral: they shape the cross-sections, and the only one that moves
   the midline (groove depth, and its paramedian pair) cannot be told apart from a height in a
   mid-sagittal outline; the 3D surface fit sets them;

@@ -4,7 +4,7 @@ The error is the paper's 3D error (``objective3d.RayError3D``): rays from an ori
 tongue to each observed vertex, the residual the distance along the ray from the vertex to the
 rig's first crossing, walked over the triangle adjacency from the previous evaluation's hits.
 
-Which parameters move: the 10 sagittal and the 21 coronal tongue parameters, within their
+Which parameters move: the 12 sagittal and the 21 coronal tongue parameters, within their
 ranges (``fit_surface``), or with ``symmetric`` the coronal ones left and right alike, in
 ``fit_contact``'s 15 groups, the three asymmetries held: 25 variables. ``fit_shape3d`` fits
 VTL's sheets symmetrically, since VTL builds each from a half surface and its mirror (a
@@ -46,7 +46,7 @@ quadratic models go stale where rays slip from one rig triangle to the next.
 Speed: an evaluation is the rig's surface (2,978 vertices), the walk of every ray and the coarse
 volume, about 1.2 to 1.7 ms of CPU for VTL's 270 to 360 kept vertices. A surface with more than
 MAX_RAYS kept vertices is fitted, and its RMS reported, on an evenly spread subset (every
-vertex's first hit costs the same, and 1,000 rays resolve 32 parameters many times over).
+vertex's first hit costs the same, and 1,000 rays resolve 33 parameters many times over).
 """
 
 import time
@@ -76,7 +76,7 @@ CORONAL_PREFIX = "tongue coronal"
 #: Evaluations of a fit, restarts included: BOBYQA needed 526 to 1,907 on VTL's 69 sheets, and
 #: 2,500 take about 3.5 s of CPU, inside the 5 s goal with the 2D fit.
 MAX_EVALS = 2500
-#: Fewest kept vertices a surface needs: fewer cannot determine 32 parameters.
+#: Fewest kept vertices a surface needs: fewer cannot determine 33 parameters.
 MIN_RAYS = 40
 #: Kept vertices beyond this are thinned to an evenly spread subset for the fit.
 MAX_RAYS = 1000

@@ -23,7 +23,7 @@ most 0.5 mm from its electrode, a free electrode at least 1.5 mm away): the corr
 the synthetic EPG reads can differ from the uncorrected one by a fraction of a millimetre near
 the palate, and a margin of 0.3 mm left /t/'s first row open by its two middle electrodes.
 
-Free variables: the 10 sagittal parameters; the jaw, closing only (from the 2D fit's opening,
+Free variables: the 12 sagittal parameters; the jaw, closing only (from the 2D fit's opening,
 VTL's JA, a mapping of intent, toward 0); and, left and right alike, coronal groups per section
 (``free_groups``): width, edge height and side bulge for side contact, and for the sibilants
 also the groove's depth and width (``coronal``). The asymmetries stay at 0. BOBYQA

@@ -14,7 +14,7 @@ How a measured target is made (``measured_target``):
    range (``coronal_from_vtl``).
 2. Jaw from VTL's JA (``fit2d.jaw_opening_from_vtl``), lips from LP, LD and JX
    (``lips_from_vtl``), the velum by nasality.
-3. The 10 sagittal parameters fitted to the shape's outline (``fit2d.fit_outline``) with the
+3. The 12 sagittal parameters fitted to the shape's outline (``fit2d.fit_outline``) with the
    coronal values and the jaw held; when the tongue's volume ends more than ``VOLUME_GOAL_PCT``
    from rest the fit is repeated from its result with the volume weight ten times heavier, up
    to three times.
