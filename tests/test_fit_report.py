@@ -79,7 +79,7 @@ def test_the_reported_rms_is_the_objective_recomputed_at_the_fitted_values(repor
     """Objective2D made afresh from the start the report gives, evaluated at the fitted values,
     gives the reported RMS (1e-9 mm: the same arithmetic), origin and compared outline."""
     shapes = {s["name"]: s for s in observations["shapes"]}
-    free = fit2d.sagittal_parameters(rig)
+    free = fit2d.outline_parameters(rig)
     for entry in report["shapes"]:
         shape = shapes[entry["name"]]
         base = values_of(rig, entry["start_params"])

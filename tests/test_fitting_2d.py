@@ -8,7 +8,14 @@ import numpy as np
 import pytest
 
 from glasshead.constants import TONGUE_RIG_FILE
-from glasshead.fitting.fit2d import fit_all, fit_outline, fit_shape, jaw_opening_from_vtl
+from glasshead.fitting.fit2d import (
+    WIDTH_WEIGHT,
+    fit_all,
+    fit_outline,
+    fit_shape,
+    jaw_opening_from_vtl,
+    width_parameters,
+)
 from glasshead.fitting.objective2d import (
     ROOT_CUT_DEG,
     MidSagittalSection,
@@ -142,6 +149,42 @@ def test_vtl_i_has_a_higher_fronter_dorsum_than_a(rig, section, shapes):
     # back dorsum and the root moved straight down and forward).
     assert fits["a"].rms_mm < 1.5
     assert fits["i"].rms_mm < 1.5
+
+
+def test_a_parameter_named_in_neutral_weights_is_pulled_by_its_own_weight(rig, section, shapes):
+    outline = shapes["a"]["tongue_outline"]
+    free = ["tip_height", "front_width"]
+    plain = Objective2D(rig, outline, free, section=section)
+    pulled = Objective2D(rig, outline, free, section=section, neutral_weight=0.5,
+                         neutral_weights={"front_width": 3.0})
+    x = np.array([2.6, -1.2])  # 10 % of each range from neutral
+    assert pulled(x) - plain(x) == pytest.approx(0.5 * 0.1**2 + 3.0 * 0.1**2, rel=1e-9)
+    with pytest.raises(ValueError, match="cannot be negative"):
+        Objective2D(rig, outline, free, section=section, neutral_weights={"front_width": -1.0})
+
+
+def test_the_widths_stay_near_neutral_unless_the_volume_bound_presses(rig, section, shapes):
+    """An outline does not show the width: the fit narrows the tongue where it would otherwise
+    swell past its bound (the uvular in /a/ context), and leaves the widths near neutral where the
+    volume keeps within it (/@/, /i/)."""
+    widths = width_parameters(rig)
+    assert widths == ["front_width", "middle_width", "back_width"] and WIDTH_WEIGHT > 0
+    fits = {name: fit_shape(rig, shapes[name], section=section)
+            for name in ("@", "i", "tb-uvular-fricative(a)")}
+    for name in ("@", "i"):
+        assert max(abs(fits[name].params[w]) for w in widths) < 1.5, name
+    uvular = fits["tb-uvular-fricative(a)"]
+    assert sum(uvular.params[w] for w in widths) < -3.0
+    assert abs(uvular.volume_change_pct) <= 5.0
+    assert uvular.rms_mm <= 1.0
+    held = fit_shape(rig, shapes["tb-uvular-fricative(a)"], section=section)
+    assert held.params == uvular.params  # deterministic
+    sagittal_only = fit_outline(rig, shapes["tb-uvular-fricative(a)"]["tongue_outline"],
+                                free=[n for n in rig.parameter_names
+                                      if rig.parameters[n]["group"] == "tongue sagittal"],
+                                base=rig.values_from({"jaw_opening": uvular.params["jaw_opening"]}),
+                                section=section)
+    assert sagittal_only.rms_mm > uvular.rms_mm + 0.2
 
 
 def test_fit_all_reports_each_named_shape(rig, observations):

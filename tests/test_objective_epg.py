@@ -171,3 +171,17 @@ def test_a_contact_margin_aims_the_wanted_contacts_into_the_palate_and_leaves_fr
     assert plain.contact_margin == 0.5 and plain.error_from_distances(d) == 0.0
     with pytest.raises(ValueError, match="contact margin"):
         EpgObjective(probes, wanted, rig.triangles, contact_margin=-0.1)
+
+
+def test_the_contact_fit_leaves_out_the_held_parameters_and_the_sections_not_named(scene):
+    from glasshead.fitting.fit_contact import free_groups
+
+    rig, _tables, _probes = scene
+    every = free_groups(rig)
+    held = ("tip_height", "tongue_retraction")
+    body = free_groups(rig, ("middle", "back"), held=held)
+    names = {name for name, _ in body}
+    assert not names & set(held) and set(held) <= {name for name, _ in every}
+    assert not any(name.startswith("front_") for name in names)
+    assert "dorsum_height" in names and "middle_edge_height" in names
+    assert len(every) - len(body) == 2 + sum(name.startswith("front_") for name, _ in every)

@@ -83,11 +83,11 @@ class ContactFitReport:
 
 
 def free_groups(rig: TongueRig, sections=SECTIONS, jaw=True,
-                coronal=CORONAL_GROUPS) -> list[tuple[str, list[str]]]:
-    """(name, rig parameters) of each free variable: the sagittal ones alone, the coronal ones
-    per section and group, left and right together, and the jaw (closing only, see
-    ``ContactObjective``)."""
-    groups = [(name, [name]) for name in fit2d.sagittal_parameters(rig)]
+                coronal=CORONAL_GROUPS, held=()) -> list[tuple[str, list[str]]]:
+    """(name, rig parameters) of each free variable: the sagittal ones alone (but those in
+    ``held``, which keep their start), the coronal ones per section and group, left and right
+    together, and the jaw (closing only, see ``ContactObjective``)."""
+    groups = [(name, [name]) for name in fit2d.sagittal_parameters(rig) if name not in held]
     if jaw:
         groups.append((rig.jaw["parameter"], [rig.jaw["parameter"]]))
     for section in sections:
@@ -156,7 +156,7 @@ class ContactObjective:
 
 def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weights=None,
                 section: MidSagittalSection | None = None, sections=SECTIONS, jaw=True,
-                coronal=CORONAL_GROUPS,
+                coronal=CORONAL_GROUPS, held=(),
                 epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
                 press_mm=PRESS_MM,
                 volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
@@ -164,11 +164,12 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weight
     """Fit the sagittal and grouped coronal parameters to an outline (n, 2) and a wanted EPG
     pattern (``EpgObjective``'s ``wanted``: per electrode or an (8, 8) grid) from ``base`` (P,)
     values (normally the 2D fit's result, which also holds the jaw and the other parameters).
-    ``contact_margin``: the wanted contacts' own margin (``EpgObjective``), default ``margin``."""
+    ``contact_margin``: the wanted contacts' own margin (``EpgObjective``), default ``margin``;
+    ``held``: sagittal parameters that keep their ``base`` value."""
     epg = EpgObjective(probes, wanted, rig.triangles, weights=weights, margin=margin,
                        contact_margin=contact_margin, press_mm=press_mm)
     objective = ContactObjective(rig, outline, epg, base=base,
-                                 groups=free_groups(rig, sections, jaw, coronal),
+                                 groups=free_groups(rig, sections, jaw, coronal, held),
                                  section=section, epg_weight=epg_weight,
                                  volume_bound_weight=volume_bound_weight)
     started = time.perf_counter()

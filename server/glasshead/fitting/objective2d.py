@@ -36,13 +36,14 @@ The objective a fit minimises (mm^2) adds optional, weighted terms to the square
 dV / V0 is the relative volume change from the rest volume (the tongue is incompressible: a
 mid-sagittal fit could otherwise swell it to match a 2D outline); the neutral term pulls each
 free parameter, normalised by its range, toward its neutral value, so parameters the outline
-does not determine stay there instead of wandering to a range limit. The bound term is a steep
+does not determine stay there instead of wandering to a range limit (``neutral_weights`` gives
+some parameters a weight of their own, see ``fit2d.WIDTH_WEIGHT``). The bound term is a steep
 wall: nothing inside the band, and outside it every percent costs as much as a large misfit, so
 a fit keeps the volume within the band unless the outline cannot be matched any other way.
 """
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -242,7 +243,8 @@ class Objective2D:
     def __init__(self, rig: TongueRig, outline, free: Sequence[str], *, base=None, origin=None,
                  volume_weight=0.0, neutral_weight=0.0, volume_bound_pct=None,
                  volume_bound_weight=0.0, root_cut_deg=ROOT_CUT_DEG,
-                 spacing_mm=SPACING_MM, section: MidSagittalSection | None = None):
+                 spacing_mm=SPACING_MM, section: MidSagittalSection | None = None,
+                 neutral_weights: Mapping[str, float] | None = None):
         unknown = [name for name in free if name not in rig.parameters]
         if unknown or not free:
             raise ValueError(f"free parameters must be known rig parameters; got {list(free)}")
@@ -264,6 +266,11 @@ class Objective2D:
                                                        spacing_mm=spacing_mm))
         self.volume_weight = float(volume_weight)
         self.neutral_weight = float(neutral_weight)
+        # The pull toward neutral per free parameter: neutral_weight unless named otherwise.
+        weights = dict(neutral_weights or {})
+        if any(w < 0 for w in weights.values()):
+            raise ValueError("the volume and neutral weights cannot be negative")
+        self.pull = np.array([float(weights.get(name, neutral_weight)) for name in self.free])
         self.volume_bound_pct = None if volume_bound_pct is None else float(volume_bound_pct)
         self.volume_bound_weight = float(volume_bound_weight)
         self.evaluations = 0
@@ -301,7 +308,7 @@ class Objective2D:
             if bound:
                 value += self.volume_bound_weight * max(0.0, abs(change)
                                                         - self.volume_bound_pct) ** 2
-        if self.neutral_weight:
-            value += self.neutral_weight * float(
-                np.sum(((x - self.neutral) / (self.upper - self.lower)) ** 2))
+        if np.any(self.pull):
+            share = (x - self.neutral) / (self.upper - self.lower)
+            value += float(np.sum(self.pull * share**2))
         return value

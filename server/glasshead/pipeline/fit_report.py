@@ -13,10 +13,11 @@ Writes, under the assets directory:
 - ``fit-report.html`` (``FIT_REPORT_PAGE``): a page with the table and every plot
   (``pipeline.fit_report_html``).
 
-The fits are ``fit2d.fit_shape``'s (BOBYQA, the sagittal parameters free from neutral, the jaw
-from VTL's JA, default weights): the same fits ``python -m glasshead.fitting.fit2d`` prints. The
-rays, their origin and the per-ray errors are read from an ``Objective2D`` made with the fit's own
-start, so the errors are those the fit minimised, at the fitted values.
+The fits are ``fit2d.fit_shape``'s (BOBYQA, the sagittal parameters and the widths free from
+neutral, the jaw from VTL's JA, default weights): the same fits ``python -m
+glasshead.fitting.fit2d`` prints. The rays, their origin and the per-ray errors are read from an
+``Objective2D`` made with the fit's own start, so the errors are those the fit minimised, at the
+fitted values.
 
 The step is skipped when the SHA-256 of its inputs (the built rig and observations, and the code
 of this module, the fit and its objective, the optimiser, the tongue surface and the two
@@ -116,7 +117,7 @@ def fit_entry(ctx: Context, shape: dict) -> tuple[dict, dict | None]:
     entry = {"name": shape["name"], "label": shape_label(shape), "source": SOURCE}
     base = start_values(rig, shape)
     try:
-        objective = Objective2D(rig, shape["tongue_outline"], fit2d.sagittal_parameters(rig),
+        objective = Objective2D(rig, shape["tongue_outline"], fit2d.outline_parameters(rig),
                                 base=base, section=ctx.section)
         report = fit2d.fit_shape(rig, shape, method=METHOD, section=ctx.section)
     except ValueError as exc:
@@ -243,6 +244,7 @@ def build_fit_report(assets_dir, force=False, workers=WORKERS):
         "method": METHOD,
         "objective": {"volume_weight": fit2d.VOLUME_WEIGHT,
                       "neutral_weight": fit2d.NEUTRAL_WEIGHT,
+                      "width_weight": fit2d.WIDTH_WEIGHT,
                       "volume_bound_pct": fit2d.VOLUME_BOUND_PCT,
                       "root_cut_deg": objective2d.ROOT_CUT_DEG,
                       "spacing_mm": objective2d.SPACING_MM, "jaw": "from VTL's JA"},
