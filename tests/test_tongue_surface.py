@@ -92,6 +92,27 @@ def test_every_corner_of_the_sagittal_and_jaw_ranges_keeps_the_pages_in_order(ri
         assert rig.pages_in_order(values), dict(zip(names, corner, strict=True))
 
 
+def test_no_radius_goes_through_the_hub_with_the_deepest_grooves_at_any_corner(rig):
+    # The root forward with the back of the dorsum down brings stations within 6 mm of the hub;
+    # there the coronal offsets shrink (min(1, 2 R / R0)), or a deep groove would take the
+    # midline through it (1,024 of these corners did before they shrank).
+    names = [n for n, p in rig.parameters.items() if p["group"] in ("tongue sagittal", "jaw")]
+    index = [rig.parameter_names.index(n) for n in names]
+    deepest = rig.neutral.copy()
+    for section in ("middle", "back"):
+        for name, end in (("groove_depth", rig.maximum), ("groove_width", rig.maximum),
+                          ("left_edge_height", rig.minimum),
+                          ("right_edge_height", rig.minimum)):
+            k = rig.parameter_names.index(f"{section}_{name}")
+            deepest[k] = end[k]
+    smallest = np.inf
+    for corner in itertools.product(*[(rig.minimum[k], rig.maximum[k]) for k in index]):
+        values = deepest.copy()
+        values[index] = corner
+        smallest = min(smallest, rig.page_radii(values)[3].min())
+    assert smallest > 1.0
+
+
 def test_pages_out_of_order_are_detected(rig):
     values = rig.neutral.copy()
     moved = rig.rest_points.copy()
