@@ -145,6 +145,9 @@ COLLISION_TOL = CollisionTolerance()
 
 #: Format version of the tongue rig definition; both evaluators refuse any other version.
 TONGUE_RIG_FORMAT_VERSION = 1
+#: The least radial control value of the tongue surface, mm: no control of a page comes nearer
+#: the hub (a deep groove where the curve has come close to it would take the radius through it).
+TONGUE_CONTROL_FLOOR_MM = 1.0
 #: mm. Largest difference allowed between the Python and JavaScript tongue vertices (JS returns
 #: float32 positions: about 4e-6 mm of rounding at 50 mm, far inside this).
 TONGUE_VERTEX_TOLERANCE_MM = 1e-3

@@ -271,6 +271,7 @@ class Objective2D:
         if any(w < 0 for w in weights.values()):
             raise ValueError("the volume and neutral weights cannot be negative")
         self.pull = np.array([float(weights.get(name, neutral_weight)) for name in self.free])
+        self.own_pulls = bool(weights)
         self.volume_bound_pct = None if volume_bound_pct is None else float(volume_bound_pct)
         self.volume_bound_weight = float(volume_bound_weight)
         self.evaluations = 0
@@ -308,7 +309,9 @@ class Objective2D:
             if bound:
                 value += self.volume_bound_weight * max(0.0, abs(change)
                                                         - self.volume_bound_pct) ** 2
-        if np.any(self.pull):
-            share = (x - self.neutral) / (self.upper - self.lower)
+        share = (x - self.neutral) / (self.upper - self.lower)
+        if self.own_pulls:
             value += float(np.sum(self.pull * share**2))
+        elif self.neutral_weight:
+            value += self.neutral_weight * float(np.sum(share**2))
         return value

@@ -13,7 +13,7 @@ then a few small matrix products:
 3. stations: S = B_sagittal @ points; page direction e = (S - H) / |S - H|;
 4. radial control values per station, with R = |S - H|, R0 its rest value and w the pole
    half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets times the
-   coronal weight times min(1, 2 R / R0) (the pole controls are w itself);
+   coronal weight, at least ``TONGUE_CONTROL_FLOOR_MM`` (the pole controls are w itself);
 5. radii at the page samples: lambda = values @ B_coronal^T; vertex = H + lambda * (cos(phi) e
    + sin(phi) (1 + k (1 - sin(phi)^4)) z), k the blended sideways stretch of the sections.
 
@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from glasshead.constants import TONGUE_CONTROL_FLOOR_MM
 from glasshead.geometry.bspline import basis_matrix
 from glasshead.geometry.jaw import apply_jaw_pose, jaw_pose
 from glasshead.geometry.mesh_volume import mesh_volume, vertex_normals
@@ -205,13 +206,13 @@ class TongueRig:
         radius = np.linalg.norm(towards, axis=1)
         direction = towards / radius[:, None]
         pole = self.pole_half_width
-        # Where the curve has come within half its rest radius of the hub, the offsets shrink
-        # with the radius: a groove cannot be deeper than the tongue there is, so no radius goes
-        # through the hub (poses further out are as they were).
-        squeeze = np.minimum(1.0, 2.0 * radius / self.rest_radius)
         controls = pole + (self.rest_radius[:, None] - pole) * self.station_ratios \
             + (radius - self.rest_radius)[:, None] * self.follow \
-            + squeeze[:, None] * (self.station_offset_blend @ offsets)
+            + self.station_offset_blend @ offsets
+        # No control comes nearer the hub than the floor: a deep groove where the curve has come
+        # close to the hub would otherwise take the radius through it. The B-spline basis is
+        # positive and sums to 1, so every radius keeps at least the floor.
+        np.maximum(controls, TONGUE_CONTROL_FLOOR_MM, out=controls)
         controls[:, self.pole_controls] = self.pole_half_width
         return hub, stations, direction, controls @ self.page_basis.T, self.station_blend @ stretch
 

@@ -260,11 +260,6 @@ CORONAL_DEFAULT = ("width", "edge_height", "side_bulge")
 #: left /k/ before /i/ ("Kim") without a closed back row, under the dominance constants trained
 #: on targets without it. Until the constants are trained with it, the targets hold it.
 HELD_IN_TARGETS = ("tongue_retraction",)
-#: Sagittal parameters a goal's contact fit also holds at the 2D fit's values. A velar stop's
-#: pattern says nothing of the tip but to keep it off the front rows, and with the EPG weighted
-#: 100 times the outline its fits raised the tip of /k/(i) from JD3's to above /d/'s: in "Ted and
-#: Kim" the tip then peaked in /k/, not in /d/. JD3's outline decides the tip.
-HELD_OF_GOAL = {"velar_stop": ("tip_advancement", "tip_height", "tip_thickness")}
 #: Goals made from only those of the class's real frames that meet its realism rule. Of the 32
 #: real /k g/ frames 8 close a back row (R8, in every one of the 8); the other 24 close behind
 #: the palate's last row, where no electrode sees the closure, so the majority of all 32 (R8
@@ -280,11 +275,11 @@ EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0}
 #: tolerance: a stop must keep its closure when the pose moves a little. Fitted to reach R8 only
 #: just, /k/(a) lost R8 with the jaw 0.22 deg more open, as running speech leaves it; aimed 0.5 mm
 #: in, /k/(a) and /k/(u) keep a closed row under +-0.3 deg of jaw or +-0.3 mm of any body
-#: parameter (tests/test_phoneme_targets.py). Before /i/ a small margin, 0.2 mm: with the tip
-#: held (``HELD_OF_GOAL``) it closes R7 with the highest point of the outline 1.3 mm in front of
-#: /k/(u)'s; at 0.1 and 0.3 mm, 0.7 mm. (Before the tip was held, 0.2 mm and more drew the dorsum
-#: back to its limit and lost the fronting, and at the plain margin it closed no row.)
-PENETRATION_OF_GOAL = {"velar_stop": {"a": 0.5, "u": 0.5, "i": 0.2}}
+#: parameter (tests/test_phoneme_targets.py). Before /i/ a small margin: at 0.2 mm and more the
+#: dorsum is drawn back to its limit (dorsum_advancement -6.0 mm) and /k/ is no longer fronted
+#: before /i/ against /u/; at 0.1 mm it closes R8; at the plain margin it closed no row (R7
+#: ``01111110``).
+PENETRATION_OF_GOAL = {"velar_stop": {"a": 0.5, "u": 0.5, "i": 0.1}}
 
 
 def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -366,7 +361,7 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
                                        weights=goal["weights"])
     before_grid = ctx.epg(report.params)["grid"]
     coronal = CORONAL_OF_GOAL.get(goal["name"], CORONAL_DEFAULT)
-    held = HELD_IN_TARGETS + HELD_OF_GOAL.get(goal["name"], ())
+    held = HELD_IN_TARGETS
     penetration = goal.get("penetration_mm")
     contact_margin = None if penetration is None else ctx.probes.tolerance + penetration
     epg = objective_epg.EpgObjective(ctx.probes, goal["wanted"], rig.triangles,
@@ -701,7 +696,6 @@ def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
                         "penetration_mm_of_goal": {k: dict(v) for k, v
                                                    in PENETRATION_OF_GOAL.items()},
                         "held": list(HELD_IN_TARGETS),
-                        "held_of_goal": {k: list(v) for k, v in HELD_OF_GOAL.items()},
                         "rule_frames_of_goal": {name: test.__name__ for name, test
                                                 in RULE_FRAMES_OF_GOAL.items()},
                         "weights": "|2 p - 1| per electrode, p the share of the class's real "

@@ -156,6 +156,11 @@ export const COLLISION_TOL = Object.freeze( {
 /** Format version of the tongue rig definition; both evaluators refuse any other version. */
 export const TONGUE_RIG_FORMAT_VERSION = 1;
 /**
+ * The least radial control value of the tongue surface, mm: no control of a page comes nearer the
+ * hub (a deep groove where the curve has come close to it would take the radius through it).
+ */
+export const TONGUE_CONTROL_FLOOR_MM = 1.0;
+/**
  * mm. Largest difference allowed between the Python and JavaScript tongue vertices (JS returns
  * float32 positions: about 4e-6 mm of rounding at 50 mm, far inside this).
  */

@@ -11,7 +11,7 @@
 //   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 //   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
 //   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets * coronal weight
-//      * min( 1, 2 R / R0 ) (poles: w);
+//      , at least TONGUE_CONTROL_FLOOR_MM (poles: w);
 //   5. vertex = H + lambda ( cos( phi ) e + sin( phi ) ( 1 + k ( 1 - sin( phi )^4 ) ) z ), lambda = page
 //      basis * controls, k the blended sideways stretch (the sections' widths).
 // Cohen, Beskow and Massaro (1998), section 3: sagittal and coronal B-splines whose control
@@ -19,7 +19,7 @@
 
 import { basisTable } from './bspline.js';
 import { jawPose, applyJawPose, POSE_LENGTH } from './jaw.js';
-import { TONGUE_RIG_FORMAT_VERSION } from './constants.js';
+import { TONGUE_CONTROL_FLOOR_MM, TONGUE_RIG_FORMAT_VERSION } from './constants.js';
 import { vertexNormals } from './meshVolume.js';
 
 /** Sections blended along the tongue, in the order of each point's section_weights. */
@@ -360,17 +360,16 @@ export class TongueRig {
 			const b1 = stationBlend[ i * SECTION_COUNT + 1 ];
 			const b2 = stationBlend[ i * SECTION_COUNT + 2 ];
 			stationStretch[ i ] = b0 * stretch[ 0 ] + b1 * stretch[ 1 ] + b2 * stretch[ 2 ];
-			// Offsets shrink where the curve has come within half its rest radius of the hub: no
-			// radius goes through it.
-			const squeeze = Math.min( 1, 2 * r / rest );
-			const o0 = squeeze * stationOffsetBlend[ i * SECTION_COUNT ];
-			const o1 = squeeze * stationOffsetBlend[ i * SECTION_COUNT + 1 ];
-			const o2 = squeeze * stationOffsetBlend[ i * SECTION_COUNT + 2 ];
+			const o0 = stationOffsetBlend[ i * SECTION_COUNT ];
+			const o1 = stationOffsetBlend[ i * SECTION_COUNT + 1 ];
+			const o2 = stationOffsetBlend[ i * SECTION_COUNT + 2 ];
 			for ( let k = 0; k < c; k ++ ) {
 
+				// No control nearer the hub than the floor: a deep groove where the curve has come
+				// close to the hub would otherwise take the radius through it.
 				controls[ i * c + k ] = isPole[ k ] ? pole
-					: pole + ( rest - pole ) * stationRatios[ i * c + k ] + ( r - rest ) * follow[ k ]
-						+ o0 * offsets[ k ] + o1 * offsets[ c + k ] + o2 * offsets[ 2 * c + k ];
+					: Math.max( TONGUE_CONTROL_FLOOR_MM, pole + ( rest - pole ) * stationRatios[ i * c + k ] + ( r - rest ) * follow[ k ]
+						+ o0 * offsets[ k ] + o1 * offsets[ c + k ] + o2 * offsets[ 2 * c + k ] );
 
 			}
 
