@@ -49,9 +49,10 @@ NEUTRAL_WEIGHT = 0.02
 VOLUME_BOUND_PCT = 4.5
 VOLUME_BOUND_WEIGHT = 1.0
 #: The widths' own pull toward neutral (in place of NEUTRAL_WEIGHT): narrowing the three
-#: sections by 1 mm each (2.1 % of the volume) costs 0.10 mm^2, what the volume penalty charges for
-#: going from 3.5 to 4.5 %. So a width moves little (about 1 mm at most) while the volume keeps
-#: within its bound, and gives way where the bound presses: the uvulars narrow 2 to 3 mm.
+#: sections by 1 mm each (2.1 % of the volume) costs 0.10 mm^2, about what the volume penalty
+#: charges for going from 3.5 to 4.5 % (0.08). So a width moves little (about 1 mm at most)
+#: while the volume keeps within its bound, and gives way where the bound presses: the uvulars
+#: narrow 2 to 3 mm.
 WIDTH_WEIGHT = 5.0
 #: The turn of the tongue's body is pulled harder than the other sagittal parameters (its whole
 #: range costs 0.5 mm^2): with the body's straight moves it can make the same outline in several
