@@ -310,6 +310,8 @@ class Objective2D:
                 value += self.volume_bound_weight * max(0.0, abs(change)
                                                         - self.volume_bound_pct) ** 2
         share = (x - self.neutral) / (self.upper - self.lower)
+        # One weight for all sums as before: the contact fits of the phoneme targets follow
+        # different paths on a change in the last bit of their objective.
         if self.own_pulls:
             value += float(np.sum(self.pull * share**2))
         elif self.neutral_weight:
