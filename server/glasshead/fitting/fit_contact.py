@@ -23,7 +23,7 @@ most 0.5 mm from its electrode, a free electrode at least 1.5 mm away): the corr
 the synthetic EPG reads can differ from the uncorrected one by a fraction of a millimetre near
 the palate, and a margin of 0.3 mm left /t/'s first row open by its two middle electrodes.
 
-Free variables: the 14 sagittal parameters; the jaw, closing only (from the 2D fit's opening,
+Free variables: the 12 sagittal parameters; the jaw, closing only (from the 2D fit's opening,
 VTL's JA, a mapping of intent, toward 0); and, left and right alike, coronal groups per section
 (``free_groups``): width, edge height and side bulge for side contact, and for the sibilants
 also the groove's depth and width (``coronal``). The asymmetries stay at 0. BOBYQA
@@ -40,7 +40,7 @@ from glasshead.epg.contacts import Probes
 from glasshead.fitting import fit2d
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.fitting.objective_epg import EpgObjective
-from glasshead.fitting.optimizer import minimize_restarted
+from glasshead.fitting.optimizer import minimize
 from glasshead.geometry.tongue_surface import TongueRig
 
 #: mm^2 per mm^2: weight of the squared EPG error against the squared outline RMS.
@@ -175,11 +175,21 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weight
     started = time.perf_counter()
     # BOBYQA's quadratic models stall where a ray's crossing jumps (a ray slipping off an edge of
     # the tongue): restart it from its best point, with fresh models, while that still gains.
-    result = minimize_restarted(objective, objective.x0, objective.lower, objective.upper,
-                                method=method, max_evals=max_evals, restarts=RESTARTS,
-                                restart_gain=RESTART_GAIN, ftol_abs=fit2d.FTOL_ABS,
-                                xtol_abs=fit2d.XTOL_ABS)
+    result = minimize(objective, objective.x0, objective.lower, objective.upper, method=method,
+                      max_evals=max_evals, ftol_abs=fit2d.FTOL_ABS, xtol_abs=fit2d.XTOL_ABS)
     evaluations = result.evaluations
+    for _ in range(RESTARTS):
+        left = max_evals - evaluations
+        if left < 4 * len(result.x):
+            break
+        again = minimize(objective, result.x, objective.lower, objective.upper, method=method,
+                         max_evals=left, ftol_abs=fit2d.FTOL_ABS, xtol_abs=fit2d.XTOL_ABS)
+        evaluations += again.evaluations
+        gained = result.error - again.error
+        if again.error < result.error:
+            result = again
+        if gained <= RESTART_GAIN * abs(result.error):
+            break
     full = objective.expand @ result.x
     errors = objective.plane.errors(full)
     margin_x = fit2d.LIMIT_FRACTION * (objective.upper - objective.lower)

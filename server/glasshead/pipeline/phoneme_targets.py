@@ -259,10 +259,7 @@ CORONAL_DEFAULT = ("width", "edge_height", "side_bulge")
 #: in other mixes with the body's straight moves, and in running speech the blend of those mixes
 #: left /k/ before /i/ ("Kim") without a closed back row, under the dominance constants trained
 #: on targets without it. Until the constants are trained with it, the targets hold it.
-#: The front of the dorsum lowered and the root's base drawn in along their rays
-#: (``dorsum_front_lowering``, ``root_base_advancement``) bring the last outline fits of /O/, /a/
-#: and the velar closure in /a/ within 1 mm; they are held for the same reason.
-HELD_IN_TARGETS = ("tongue_retraction", "dorsum_front_lowering", "root_base_advancement")
+HELD_IN_TARGETS = ("tongue_retraction",)
 #: Goals made from only those of the class's real frames that meet its realism rule. Of the 32
 #: real /k g/ frames 8 close a back row (R8, in every one of the 8); the other 24 close behind
 #: the palate's last row, where no electrode sees the closure, so the majority of all 32 (R8
