@@ -185,3 +185,32 @@ def test_the_contact_fit_leaves_out_the_held_parameters_and_the_sections_not_nam
     assert not any(name.startswith("front_") for name in names)
     assert "dorsum_height" in names and "middle_edge_height" in names
     assert len(every) - len(body) == 2 + sum(name.startswith("front_") for name, _ in every)
+
+
+
+def test_a_jaw_slack_asks_the_wanted_contacts_again_with_the_jaw_more_open(scene):
+    """``jaw_slack_deg``: the contact objective adds the wanted contacts' error with the jaw that
+    much more open. For the raised back's own pattern the plain error is 0; with the jaw 3 deg
+    more open the back's contacts are short, and only the wanted electrodes count there."""
+    from glasshead.fitting import fit_contact
+    from glasshead.fitting.objective2d import MidSagittalSection
+
+    rig, _tables, probes = scene
+    values, frame = _own(scene, POSES["back"])
+    section = MidSagittalSection(rig)
+    groups = fit_contact.free_groups(rig)
+    made = {slack: fit_contact.contact_objective(
+        rig, section.outline(values), probes, frame.grid, base=values, groups=groups,
+        section=section, margin=0.0, press_mm=None, jaw_slack_deg=slack)
+        for slack in (0.0, 3.0)}
+    x = made[0.0].x0
+    assert made[0.0].slack_epg is None and made[0.0].slack_error(x) == 0.0
+    assert made[3.0].epg_error(x) == made[0.0].epg_error(x) == 0.0
+    assert made[3.0].slack_error(x) > 0.05
+    assert made[3.0](x) > made[0.0](x)
+    k = rig.jaw_parameter
+    assert made[3.0].slackened(values)[k] == pytest.approx(values[k] + 3.0)
+    top = rig.maximum.copy()
+    assert made[3.0].slackened(top)[k] == rig.maximum[k]
+    # The free electrodes weigh nothing in the slack term.
+    np.testing.assert_array_equal(made[3.0].slack_epg.weights > 0, frame.contacts.astype(bool))

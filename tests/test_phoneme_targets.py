@@ -9,11 +9,14 @@ import pytest
 from fastapi.testclient import TestClient
 
 from glasshead.constants import FACE_RIG_LIP_PARAMETERS, PHONEME_TARGETS_FILE, VELUM_PARAMETER
+from glasshead.epg import synthetic
 from glasshead.fitting import epg_observations as obs
 from glasshead.phonemes import INVENTORY
 from glasshead.pipeline.phoneme_targets import (
     HELD_IN_TARGETS,
+    HELD_OF_GOAL,
     INPUT_FILES,
+    JAW_SLACK_OF_GOAL,
     PENETRATION_OF_GOAL,
     VOLUME_GOAL_PCT,
     Context,
@@ -148,7 +151,8 @@ def test_the_velar_closure_holds_when_the_jaw_or_the_body_moves_a_little(built, 
     the jaw 0.3 deg more open or closed, or one body parameter 0.3 mm up or down. Fitted to reach
     R8 only just (no margin), /k/(a) lost R8 with the jaw 0.3 deg more open. /k/(i) has only a
     0.1 mm margin (more would draw the dorsum back and undo the fronting before /i/), so it is not
-    asked here."""
+    asked here. Every context keeps it with the jaw ``JAW_SLACK_OF_GOAL`` more open, as its
+    neighbours leave the jaw in running speech."""
     contexts = {c for c, mm in PENETRATION_OF_GOAL["velar_stop"].items() if mm >= 0.3}
     assert contexts == {"a", "u"}
     ctx = Context(built["dir"])
@@ -156,12 +160,14 @@ def test_the_velar_closure_holds_when_the_jaw_or_the_body_moves_a_little(built, 
     moves = [("jaw_opening", d) for d in (-0.3, 0.3)] + [
         (name, d) for name in ("dorsum_height", "back_dorsum_height", "body_height",
                                "dorsum_advancement") for d in (-0.3, 0.3)]
+    slack = [("jaw_opening", JAW_SLACK_OF_GOAL["velar_stop"])]
+    assert slack[0][1] >= 1.0
     failed = []
     for symbol in ("K", "G", "NG"):
-        for context in sorted(contexts):
+        for context in ("a", "i", "u"):
             variant = targets[symbol]["contexts"][context]
             tongue = {n: v for n, v in variant["params"].items() if n in rig.parameter_names}
-            for name, change in moves:
+            for name, change in (moves if context in contexts else []) + slack:
                 k = rig.parameter_names.index(name)
                 moved = {**tongue, name: float(np.clip(tongue[name] + change, rig.minimum[k],
                                                        rig.maximum[k]))}
@@ -169,6 +175,28 @@ def test_the_velar_closure_holds_when_the_jaw_or_the_body_moves_a_little(built, 
                 if not obs.back_closure(epg["grid"]):
                     failed.append((symbol, context, name, change, epg["rows"][5:]))
     assert failed == []
+
+
+def test_the_velars_keep_the_tip_below_the_alveolars_in_every_context(built, targets):
+    """The velar contact fits hold the tip where the 2D fit put it (``HELD_OF_GOAL``): the
+    frontmost point of the corrected tongue, the tip the speech player follows, lies at least
+    0.5 mm lower in /k g ng/ than in /t d n/ of the same vowel context. With the tip free the
+    fits raised it (/k/(i) 4.4 mm above /t/(i)), and in "and Kim" it peaked in /k/."""
+    assert built["document"]["contact_fit"]["held_of_goal"]["velar_stop"] \
+        == list(HELD_OF_GOAL["velar_stop"]) == ["tip_advancement", "tip_height", "tip_thickness"]
+    ctx = Context(built["dir"])
+
+    def tip_y(params):
+        tongue = {n: v for n, v in params.items() if n in ctx.rig.parameters}
+        corrected, _ = synthetic.corrected_tongue(ctx.rig, ctx.rig.values_from(tongue),
+                                                  ctx.tables)
+        return corrected[np.argmax(corrected[:, 0]), 1]
+
+    for context in ("a", "i", "u"):
+        alveolar = tip_y(targets["T"]["contexts"][context]["params"])
+        for symbol in ("K", "G", "NG"):
+            velar = tip_y(targets[symbol]["contexts"][context]["params"])
+            assert velar <= alveolar - 0.5, (symbol, context, velar, alveolar)
 
 
 def test_the_contact_fits_raise_the_agreement_and_keep_the_volume(built, targets):
@@ -182,7 +210,10 @@ def test_the_contact_fits_raise_the_agreement_and_keep_the_volume(built, targets
             contact = variant["fit"]["contact"]
             assert contact["goal"] in shares
             assert contact["epg_error_mm"] < contact["before"]["epg_error_mm"], (symbol, context)
-            assert contact["agreement"] >= 0.75, (symbol, context)
+            # /k/ before /i/ closes further forward (R6 to R8, fronted and held on a looser
+            # jaw) than the majority of the real closing frames (R8): 0.71-0.74 measured.
+            least = 0.68 if (symbol in ("K", "G", "NG") and context == "i") else 0.75
+            assert contact["agreement"] >= least, (symbol, context, contact["agreement"])
             assert abs(variant["volume_change_pct"]) <= VOLUME_GOAL_PCT
             assert variant["fit"]["rms_mm"] > 0
     iy = targets["IY"]["source"]["contact"]

@@ -18,6 +18,11 @@ pattern decides where the tongue meets the palate and the outline shapes the res
 weights (4, 10) left /t/'s front row open and its sides free: JD3's outline holds the blade
 4 mm under our first row.
 
+A stop must keep its closure when its neighbours in running speech hold the jaw a little more
+open than its target does. With ``jaw_slack_deg`` the wanted contacts are asked a second time,
+with the jaw that much more open (``ContactObjective.slack_epg``: the wanted electrodes only, so
+the target's own pattern is still the first term's): + epg_weight * S(x)^2.
+
 The error aims ``MARGIN_MM`` inside the contact tolerance on both sides (a wanted contact at
 most 0.5 mm from its electrode, a free electrode at least 1.5 mm away): the corrected tongue
 the synthetic EPG reads can differ from the uncorrected one by a fraction of a millimetre near
@@ -107,8 +112,11 @@ class ContactObjective:
 
     def __init__(self, rig: TongueRig, outline, epg: EpgObjective, *, base, groups,
                  section: MidSagittalSection | None = None, epg_weight=EPG_WEIGHT,
-                 volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT):
+                 volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
+                 slack_epg: EpgObjective | None = None, jaw_slack_deg=0.0):
         self.rig = rig
+        self.slack_epg = slack_epg
+        self.jaw_slack_deg = float(jaw_slack_deg)
         self.groups = groups
         members = [m for _, ms in groups for m in ms]
         self.plane = Objective2D(rig, outline, members, base=base,
@@ -145,13 +153,46 @@ class ContactObjective:
     def epg_error(self, x) -> float:
         return self.epg(self.rig.vertices(self.values(x)))
 
+    def slackened(self, values) -> np.ndarray:
+        """values with the jaw ``jaw_slack_deg`` more open, within its range."""
+        out = np.array(values, dtype=np.float64)
+        k = self.rig.jaw_parameter
+        out[k] = min(out[k] + self.jaw_slack_deg, float(self.rig.maximum[k]))
+        return out
+
+    def slack_error(self, x) -> float:
+        """The wanted contacts' error with the jaw slackened (0 without ``slack_epg``)."""
+        if self.slack_epg is None:
+            return 0.0
+        return self.slack_epg(self.rig.vertices(self.slackened(self.values(x))))
+
     def __call__(self, x) -> float:
         self.evaluations += 1
         x = np.asarray(x, dtype=np.float64)
         value = self.plane(self.expand @ x)
         if self.epg_weight:
-            value += self.epg_weight * self.epg_error(x) ** 2
+            value += self.epg_weight * (self.epg_error(x) ** 2 + self.slack_error(x) ** 2)
         return value
+
+
+def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, *, base, groups,
+                      weights=None, section: MidSagittalSection | None = None,
+                      epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
+                      press_mm=PRESS_MM, jaw_slack_deg=0.0,
+                      volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
+                      ) -> ContactObjective:
+    """The ``ContactObjective`` of ``fit_contact`` (see there for the arguments)."""
+    epg = EpgObjective(probes, wanted, rig.triangles, weights=weights, margin=margin,
+                       contact_margin=contact_margin, press_mm=press_mm)
+    slack_epg = None
+    if jaw_slack_deg:
+        # Only the wanted contacts, at the plain margin: the closure must be there, and what the
+        # looser jaw frees elsewhere is no error.
+        slack_epg = EpgObjective(probes, wanted, rig.triangles,
+                                 weights=epg.weights * epg.wanted, margin=margin)
+    return ContactObjective(rig, outline, epg, base=base, groups=groups, section=section,
+                            epg_weight=epg_weight, volume_bound_weight=volume_bound_weight,
+                            slack_epg=slack_epg, jaw_slack_deg=jaw_slack_deg)
 
 
 def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weights=None,
@@ -160,18 +201,20 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weight
                 epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
                 press_mm=PRESS_MM,
                 volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
-                max_evals=MAX_EVALS, name="", method="bobyqa") -> ContactFitReport:
+                jaw_slack_deg=0.0, max_evals=MAX_EVALS, name="",
+                method="bobyqa") -> ContactFitReport:
     """Fit the sagittal and grouped coronal parameters to an outline (n, 2) and a wanted EPG
     pattern (``EpgObjective``'s ``wanted``: per electrode or an (8, 8) grid) from ``base`` (P,)
     values (normally the 2D fit's result, which also holds the jaw and the other parameters).
     ``contact_margin``: the wanted contacts' own margin (``EpgObjective``), default ``margin``;
-    ``held``: sagittal parameters that keep their ``base`` value."""
-    epg = EpgObjective(probes, wanted, rig.triangles, weights=weights, margin=margin,
-                       contact_margin=contact_margin, press_mm=press_mm)
-    objective = ContactObjective(rig, outline, epg, base=base,
-                                 groups=free_groups(rig, sections, jaw, coronal, held),
-                                 section=section, epg_weight=epg_weight,
-                                 volume_bound_weight=volume_bound_weight)
+    ``held``: sagittal parameters that keep their ``base`` value; ``jaw_slack_deg``: the wanted
+    contacts are also asked with the jaw this much more open (module docstring)."""
+    objective = contact_objective(rig, outline, probes, wanted, base=base, weights=weights,
+                                  groups=free_groups(rig, sections, jaw, coronal, held),
+                                  section=section, epg_weight=epg_weight, margin=margin,
+                                  contact_margin=contact_margin, press_mm=press_mm,
+                                  jaw_slack_deg=jaw_slack_deg,
+                                  volume_bound_weight=volume_bound_weight)
     started = time.perf_counter()
     # BOBYQA's quadratic models stall where a ray's crossing jumps (a ray slipping off an edge of
     # the tongue): restart it from its best point, with fresh models, while that still gains.
