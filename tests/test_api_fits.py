@@ -125,7 +125,7 @@ def test_an_unknown_kind_or_method_is_422_naming_the_field(client, outline):
 def test_real_epg_frames_fit_to_their_majority_with_the_agreement_reported(client, data_dir):
     document = json.loads((data_dir / "epg" / "emur-engassim.json").read_bytes())
     document["segments"] = [s for s in document["segments"] if s["label"].startswith("n")][:3]
-    answer = post_fit(client, json.dumps(document).encode(), "epg", "n.json", max_evals=600)
+    answer = post_fit(client, json.dumps(document).encode(), "epg", "n.json", max_evals=900)
     assert answer.status_code == 202, answer.json()
     job = answer.json()
     assert job["method"] == "sbplx" and job["source"]["frames"] == 131
@@ -133,7 +133,8 @@ def test_real_epg_frames_fit_to_their_majority_with_the_agreement_reported(clien
     assert done["state"] == "done", done["message"]
     report = done["report"]
     assert len(report["wanted_rows"]) == 8 and len(report["rows"]) == 8
-    # Measured: 0.87 in 600 subplex evaluations; the rest tongue (no contact) agrees on 0.74.
+    # Measured: 0.87 in 900 subplex evaluations (in 600, 0.87 before the rig had 14 sagittal
+    # parameters and wider coronal ranges, 0.84 after); the rest tongue agrees on 0.74.
     assert report["agreement"] >= 0.84
     assert report["epg_error_mm"] < 0.5 and abs(report["volume_change_pct"]) < 5.0
 

@@ -18,6 +18,7 @@ from glasshead.pipeline.phoneme_targets import (
     INPUT_FILES,
     JAW_SLACK_OF_GOAL,
     PENETRATION_OF_GOAL,
+    TARGET_CORONAL_RANGES,
     VOLUME_GOAL_PCT,
     Context,
     build_phoneme_targets,
@@ -221,12 +222,12 @@ def test_the_contact_fits_raise_the_agreement_and_keep_the_volume(built, targets
     assert "contact" not in targets["AA"]["source"]
 
 
-def test_every_target_holds_the_turn_of_the_body(built, targets):
-    assert built["document"]["contact_fit"]["held"] == list(HELD_IN_TARGETS) \
-        == ["tongue_retraction"]
+def test_every_target_holds_the_turn_of_the_body_and_the_radial_moves(built, targets):
+    held = ["tongue_retraction", "dorsum_front_lowering", "root_base_advancement"]
+    assert built["document"]["contact_fit"]["held"] == list(HELD_IN_TARGETS) == held
     for symbol, target in targets.items():
         variants = [target["params"]] + [v["params"] for v in target["contexts"].values()]
-        assert all(v["tongue_retraction"] == 0.0 for v in variants), symbol
+        assert all(v[name] == 0.0 for v in variants for name in held), symbol
 
 
 def test_the_build_report_lists_each_contact_fit(built, built_assets, data_dir):
@@ -292,3 +293,23 @@ def test_an_unbuilt_file_is_a_503(built, tmp_path):
             response = c.get(path)
             assert response.status_code == 503
             assert response.json()["file"] == PHONEME_TARGETS_FILE
+
+
+def test_every_target_keeps_the_coronal_ranges_of_the_targets(built_assets, targets):
+    """The targets' fits keep ``TARGET_CORONAL_RANGES``, narrower than the rig's (widened for the
+    3D fits): every coronal value of every target and context lies within them, and they lie
+    within the rig's."""
+    from glasshead.fitting.fit_contact import SECTIONS, free_groups
+
+    rig = Context(built_assets).rig
+    members = dict(free_groups(rig, jaw=False))
+    for group, (low, high) in TARGET_CORONAL_RANGES.items():
+        names = [n for section in SECTIONS for n in members[f"{section}_{group}"]]
+        assert len(names) >= 3, group
+        for name in names:
+            spec = rig.parameters[name]
+            assert spec["min"] <= low < high <= spec["max"], name
+            for symbol, target in targets.items():
+                for params in [target["params"]] + [v["params"] for v in
+                                                     target["contexts"].values()]:
+                    assert low - 1e-9 <= params[name] <= high + 1e-9, (symbol, name)

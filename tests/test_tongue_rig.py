@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from glasshead.constants import TONGUE_CONTROL_FLOOR_MM
 from glasshead.geometry.tongue_rig import (
     CORONAL_CONTROLS,
     POLE_CONTROLS,
@@ -29,9 +30,9 @@ def moves_of(name):
     return next(p for p in parameter_table() if p["name"] == name)["moves"]
 
 
-def test_there_are_twelve_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
+def test_there_are_fourteen_sagittal_parameters_three_times_seven_coronal_and_the_jaw():
     groups = [p["group"] for p in parameter_table()]
-    assert groups.count("tongue sagittal") == 12
+    assert groups.count("tongue sagittal") == 14
     for section in ("front", "middle", "back"):
         assert groups.count(f"tongue coronal {section}") == 7
     assert groups.count("jaw") == 1
@@ -92,6 +93,10 @@ def test_the_shared_definition_passes_its_own_checks(definition):
      "bad sagittal move"),
     (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "turn": 1.0}), "bad turn"),
     (lambda d: d["parameters"][0]["moves"].append({"point": "E", "turn": "far"}), "bad turn"),
+    (lambda d: d["parameters"][0]["moves"].append({"point": "Z", "radial": -1.0}),
+     "bad radial move"),
+    (lambda d: d["parameters"][0]["moves"].append({"point": "E", "radial": None}),
+     "bad radial move"),
     (lambda d: d["parameters"][12]["moves"].append(
         {"section": "front", "control": "left pole", "by": 1.0}), "pole controls cannot move"),
     (lambda d: d["sagittal"]["control_points"][0].update(section_weights=[0.5, 0.1, 0.1]),
@@ -183,6 +188,50 @@ def test_the_retracted_tongue_turns_back_about_the_hub_keeping_each_points_dista
                                np.linalg.norm(rest - hub, axis=1), atol=1e-9)
     assert posed[names.index("G"), 0] < rest[names.index("G"), 0] - 5.0
     assert posed[names.index("K"), 1] < rest[names.index("K"), 1] - 5.0
+
+
+def _directions_and_distances(rig, values):
+    points, hub, _, _ = rig.control_points(values)
+    away = points - hub
+    return np.arctan2(away[:, 1], away[:, 0]), np.linalg.norm(away, axis=1)
+
+
+@pytest.mark.parametrize("name, value, moved", [
+    ("dorsum_front_lowering", 6.0, {"D": 0.5, "E": 1.0, "F": 0.8, "G": 0.3}),
+    ("root_base_advancement", 16.0, {"M": 1.0, "N": 0.6, "O": 0.2}),
+])
+def test_a_radial_move_draws_points_in_along_their_own_rays_after_the_straight_moves(
+        definition, name, value, moved):
+    # The dorsum forward and the blade back carry D..G off their rest rays; moved along those
+    # rest rays they would cross the rays of their neighbours. A radial move keeps each point's
+    # direction from the hub exactly, so it cannot turn one point past another.
+    rig = TongueRig(definition)
+    names = [p["name"] for p in definition["sagittal"]["control_points"]]
+    before = rig.values_from({"dorsum_advancement": 6.0, "blade_advancement": -4.0,
+                              "root_advancement": 12.0, "tip_height": 8.0})
+    after = before.copy()
+    after[rig.parameter_names.index(name)] = value
+    angle0, distance0 = _directions_and_distances(rig, before)
+    angle1, distance1 = _directions_and_distances(rig, after)
+    np.testing.assert_allclose(angle1, angle0, atol=1e-12)
+    drawn_in = dict(zip(names, distance0 - distance1, strict=True))
+    for point in names:
+        assert drawn_in[point] == pytest.approx(value * moved.get(point, 0.0), abs=1e-9), point
+
+
+def test_a_radial_move_stops_at_the_floor_and_leaves_the_points_it_does_not_move(definition):
+    broken = copy.deepcopy(definition)
+    spec = next(p for p in broken["parameters"] if p["name"] == "root_base_advancement")
+    spec["moves"] = [{"point": "M", "radial": -100.0}]
+    rig = TongueRig(broken)
+    values = rig.values_from({"root_base_advancement": 16.0})
+    points, hub, _, _ = rig.control_points(values)
+    rest, _, _, _ = rig.control_points(rig.neutral)
+    distance = np.linalg.norm(points - hub, axis=1)
+    m = [p["name"] for p in broken["sagittal"]["control_points"]].index("M")
+    assert distance[m] == pytest.approx(TONGUE_CONTROL_FLOOR_MM, abs=1e-9)
+    others = np.arange(len(points)) != m
+    np.testing.assert_array_equal(points[others], rest[others])
 
 
 def test_the_root_comes_forward_and_the_raised_back_of_the_dorsum_goes_up():

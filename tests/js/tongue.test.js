@@ -237,6 +237,37 @@ test( 'the tip pair moves forward with tip advancement and the rest of the tongu
 
 } );
 
+test( 'a radial move draws points in along their own rays, after the straight moves carried them off their rest rays', () => {
+
+	// The dorsum forward and the blade back carry D..G off their rest rays; the lowering keeps
+	// each point's direction from the hub and takes it 6 mm times its weight nearer.
+	const names = SURFACES.fixtures.rig.sagittal.control_points.map( ( p ) => p.name );
+	const weights = { D: 0.5, E: 1.0, F: 0.8, G: 0.3 };
+	const straight = { dorsum_advancement: 6, blade_advancement: - 4, tip_height: 8 };
+	const polar = ( values ) => {
+
+		rig.posedControls( values );
+		return names.map( ( _, i ) => {
+
+			const x = rig.points[ 2 * i ] - rig.hub[ 0 ];
+			const y = rig.points[ 2 * i + 1 ] - rig.hub[ 1 ];
+			return [ Math.atan2( y, x ), Math.hypot( x, y ) ];
+
+		} );
+
+	};
+
+	const before = polar( rig.valuesFrom( straight ) );
+	const after = polar( rig.valuesFrom( { ...straight, dorsum_front_lowering: 6 } ) );
+	names.forEach( ( name, i ) => {
+
+		near( after[ i ][ 0 ], before[ i ][ 0 ], 1e-12, `${name} direction` );
+		near( before[ i ][ 1 ] - after[ i ][ 1 ], 6 * ( weights[ name ] ?? 0 ), 1e-9, `${name} drawn in` );
+
+	} );
+
+} );
+
 test( 'jaw poses and posed points match Python', () => {
 
 	const pose = new Float64Array( POSE_LENGTH );

@@ -192,7 +192,7 @@ test( 'the groups come in the workbench order: jaw, lips, velum, tongue sagittal
 	const groups = fresh().groups();
 	assert.deepEqual( groups.map( ( g ) => g.group ), GROUP_ORDER.filter( ( group ) => group !== 'velum' ) );
 	assert.deepEqual( groups[ 0 ].parameters.map( ( p ) => p.name ), [ 'jaw_opening' ] );
-	assert.equal( groups[ 2 ].parameters.length, 12 );
+	assert.equal( groups[ 2 ].parameters.length, 14 );
 	for ( const g of groups.slice( 3 ) ) assert.equal( g.parameters.length, 7 );
 	const velum = { name: 'velum_opening', unit: 'ratio', min: 0, max: 1, neutral: 0.76, group: 'velum' };
 	const extra = new ParamState( [ ...RIG.parameters, { name: 'voicing', unit: 'ratio', min: 0, max: 1, neutral: 0, group: 'cues' }, velum ] );

@@ -4,9 +4,9 @@ The error is the paper's 3D error (``objective3d.RayError3D``): rays from an ori
 tongue to each observed vertex, the residual the distance along the ray from the vertex to the
 rig's first crossing, walked over the triangle adjacency from the previous evaluation's hits.
 
-Which parameters move: the 12 sagittal and the 21 coronal tongue parameters, within their
+Which parameters move: the 14 sagittal and the 21 coronal tongue parameters, within their
 ranges (``fit_surface``), or with ``symmetric`` the coronal ones left and right alike, in
-``fit_contact``'s 15 groups, the three asymmetries held: 25 variables. ``fit_shape3d`` fits
+``fit_contact``'s 15 groups, the three asymmetries held: 29 variables. ``fit_shape3d`` fits
 VTL's sheets symmetrically, since VTL builds each from a half surface and its mirror (a
 symmetric sheet's best fit is symmetric; the grouping saves the method from finding that out).
 The jaw stays where the caller puts it (``fit_shape3d``: from VTL's jaw angle, as ``fit2d`` sets
@@ -46,7 +46,7 @@ quadratic models go stale where rays slip from one rig triangle to the next.
 Speed: an evaluation is the rig's surface (2,978 vertices), the walk of every ray and the coarse
 volume, about 1.2 to 1.7 ms of CPU for VTL's 270 to 360 kept vertices. A surface with more than
 MAX_RAYS kept vertices is fitted, and its RMS reported, on an evenly spread subset (every
-vertex's first hit costs the same, and 1,000 rays resolve 33 parameters many times over).
+vertex's first hit costs the same, and 1,000 rays resolve 35 parameters many times over).
 """
 
 import time
@@ -69,14 +69,14 @@ from glasshead.fitting.fit2d import (
 )
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection
 from glasshead.fitting.objective3d import RayError3D
-from glasshead.fitting.optimizer import minimize
+from glasshead.fitting.optimizer import minimize_restarted
 from glasshead.geometry.tongue_surface import TongueRig
 
 CORONAL_PREFIX = "tongue coronal"
 #: Evaluations of a fit, restarts included: BOBYQA needed 526 to 1,907 on VTL's 69 sheets, and
 #: 2,500 take about 3.5 s of CPU, inside the 5 s goal with the 2D fit.
 MAX_EVALS = 2500
-#: Fewest kept vertices a surface needs: fewer cannot determine 33 parameters.
+#: Fewest kept vertices a surface needs: fewer cannot determine 35 parameters.
 MIN_RAYS = 40
 #: Kept vertices beyond this are thinned to an evenly spread subset for the fit.
 MAX_RAYS = 1000
@@ -297,42 +297,22 @@ def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=No
                             volume_bound_pct=volume_bound_pct,
                             volume_bound_weight=volume_bound_weight, max_rays=max_rays)
     before = objective.residuals(objective.x0)
-    done = {"n": 0, "best": np.inf}
-
-    def counted(evaluations, best):
-        # Each restart's optimiser counts its own best; the caller is told the fit's.
-        done["best"] = min(done["best"], best)
-        if progress is not None:
-            progress(done["n"] + evaluations, done["best"])
-
     options.setdefault("initial_step", step_fraction * (objective.upper - objective.lower))
     started, cpu = time.perf_counter(), time.process_time()
-    result = minimize(objective, objective.x0, objective.lower, objective.upper, method=method,
-                      max_evals=max_evals, progress=counted, ftol_abs=ftol_abs,
-                      xtol_abs=xtol_abs, **options)
-    done["n"] = result.evaluations
     # BOBYQA's models go stale where rays slip from one triangle to the next: restart from
     # the best point, with fresh models, while that still gains.
-    for _ in range(restarts):
-        left = max_evals - done["n"]
-        if left < 4 * len(result.x):
-            break
-        again = minimize(objective, result.x, objective.lower, objective.upper, method=method,
-                         max_evals=left, progress=counted, ftol_abs=ftol_abs,
-                         xtol_abs=xtol_abs, **options)
-        done["n"] += again.evaluations
-        gained = result.error - again.error
-        if again.error < result.error:
-            result = again
-        if gained <= RESTART_GAIN * abs(result.error):
-            break
+    result = minimize_restarted(objective, objective.x0, objective.lower, objective.upper,
+                                method=method, max_evals=max_evals, progress=progress,
+                                restarts=restarts, restart_gain=RESTART_GAIN,
+                                ftol_abs=ftol_abs, xtol_abs=xtol_abs, **options)
     seconds, cpu = time.perf_counter() - started, time.process_time() - cpu
     errors = objective.residuals(result.x)
     margin = LIMIT_FRACTION * (objective.upper - objective.lower)
     near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
     values = objective.values(result.x)
     return FitReport3D(
-        shape=name, method=method, evaluations=done["n"], seconds=seconds, cpu_seconds=cpu,
+        shape=name, method=method, evaluations=result.evaluations, seconds=seconds,
+        cpu_seconds=cpu,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         volume_change_pct=objective.volume_change(result.x),
         at_limit=[n for n, hit in zip(objective.names, near, strict=True) if hit],

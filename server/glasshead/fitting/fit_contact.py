@@ -28,7 +28,7 @@ most 0.5 mm from its electrode, a free electrode at least 1.5 mm away): the corr
 the synthetic EPG reads can differ from the uncorrected one by a fraction of a millimetre near
 the palate, and a margin of 0.3 mm left /t/'s first row open by its two middle electrodes.
 
-Free variables: the 12 sagittal parameters; the jaw, closing only (from the 2D fit's opening,
+Free variables: the 14 sagittal parameters; the jaw, closing only (from the 2D fit's opening,
 VTL's JA, a mapping of intent, toward 0); and, left and right alike, coronal groups per section
 (``free_groups``): width, edge height and side bulge for side contact, and for the sibilants
 also the groove's depth and width (``coronal``). The asymmetries stay at 0. BOBYQA
@@ -45,7 +45,7 @@ from glasshead.epg.contacts import Probes
 from glasshead.fitting import fit2d
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.fitting.objective_epg import EpgObjective
-from glasshead.fitting.optimizer import minimize
+from glasshead.fitting.optimizer import minimize_restarted
 from glasshead.geometry.tongue_surface import TongueRig
 
 #: mm^2 per mm^2: weight of the squared EPG error against the squared outline RMS.
@@ -113,7 +113,7 @@ class ContactObjective:
     def __init__(self, rig: TongueRig, outline, epg: EpgObjective, *, base, groups,
                  section: MidSagittalSection | None = None, epg_weight=EPG_WEIGHT,
                  volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
-                 slack_epg: EpgObjective | None = None, jaw_slack_deg=0.0):
+                 slack_epg: EpgObjective | None = None, jaw_slack_deg=0.0, ranges=None):
         self.rig = rig
         self.slack_epg = slack_epg
         self.jaw_slack_deg = float(jaw_slack_deg)
@@ -134,7 +134,15 @@ class ContactObjective:
                 row += 1
         first = [ms[0] for _, ms in groups]
         index = [rig.parameter_names.index(m) for m in first]
-        self.lower, self.upper = rig.minimum[index], rig.maximum[index].copy()
+        self.lower, self.upper = rig.minimum[index].copy(), rig.maximum[index].copy()
+        # ``ranges``: narrower bounds by coronal group (its name without the section), within
+        # the rig's.
+        for k, (name, _) in enumerate(groups):
+            group = name.split("_", 1)[1] if name.split("_", 1)[0] in SECTIONS else None
+            if ranges and group in ranges:
+                low, high = ranges[group]
+                self.lower[k] = max(self.lower[k], low)
+                self.upper[k] = min(self.upper[k], high)
         base = np.asarray(base, dtype=np.float64)
         jaw = rig.jaw["parameter"]
         if jaw in first:
@@ -178,7 +186,7 @@ class ContactObjective:
 def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, *, base, groups,
                       weights=None, section: MidSagittalSection | None = None,
                       epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
-                      press_mm=PRESS_MM, jaw_slack_deg=0.0,
+                      press_mm=PRESS_MM, jaw_slack_deg=0.0, ranges=None,
                       volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
                       ) -> ContactObjective:
     """The ``ContactObjective`` of ``fit_contact`` (see there for the arguments)."""
@@ -192,7 +200,7 @@ def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, *, base, 
                                  weights=epg.weights * epg.wanted, margin=margin)
     return ContactObjective(rig, outline, epg, base=base, groups=groups, section=section,
                             epg_weight=epg_weight, volume_bound_weight=volume_bound_weight,
-                            slack_epg=slack_epg, jaw_slack_deg=jaw_slack_deg)
+                            slack_epg=slack_epg, jaw_slack_deg=jaw_slack_deg, ranges=ranges)
 
 
 def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weights=None,
@@ -201,38 +209,29 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weight
                 epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
                 press_mm=PRESS_MM,
                 volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
-                jaw_slack_deg=0.0, max_evals=MAX_EVALS, name="",
+                jaw_slack_deg=0.0, ranges=None, max_evals=MAX_EVALS, name="",
                 method="bobyqa") -> ContactFitReport:
     """Fit the sagittal and grouped coronal parameters to an outline (n, 2) and a wanted EPG
     pattern (``EpgObjective``'s ``wanted``: per electrode or an (8, 8) grid) from ``base`` (P,)
     values (normally the 2D fit's result, which also holds the jaw and the other parameters).
     ``contact_margin``: the wanted contacts' own margin (``EpgObjective``), default ``margin``;
     ``held``: sagittal parameters that keep their ``base`` value; ``jaw_slack_deg``: the wanted
-    contacts are also asked with the jaw this much more open (module docstring)."""
+    contacts are also asked with the jaw this much more open (module docstring); ``ranges``:
+    ``{coronal group: (min, max)}`` narrower than the rig's, for every section."""
     objective = contact_objective(rig, outline, probes, wanted, base=base, weights=weights,
                                   groups=free_groups(rig, sections, jaw, coronal, held),
                                   section=section, epg_weight=epg_weight, margin=margin,
                                   contact_margin=contact_margin, press_mm=press_mm,
-                                  jaw_slack_deg=jaw_slack_deg,
+                                  jaw_slack_deg=jaw_slack_deg, ranges=ranges,
                                   volume_bound_weight=volume_bound_weight)
     started = time.perf_counter()
     # BOBYQA's quadratic models stall where a ray's crossing jumps (a ray slipping off an edge of
     # the tongue): restart it from its best point, with fresh models, while that still gains.
-    result = minimize(objective, objective.x0, objective.lower, objective.upper, method=method,
-                      max_evals=max_evals, ftol_abs=fit2d.FTOL_ABS, xtol_abs=fit2d.XTOL_ABS)
+    result = minimize_restarted(objective, objective.x0, objective.lower, objective.upper,
+                                method=method, max_evals=max_evals, restarts=RESTARTS,
+                                restart_gain=RESTART_GAIN, ftol_abs=fit2d.FTOL_ABS,
+                                xtol_abs=fit2d.XTOL_ABS)
     evaluations = result.evaluations
-    for _ in range(RESTARTS):
-        left = max_evals - evaluations
-        if left < 4 * len(result.x):
-            break
-        again = minimize(objective, result.x, objective.lower, objective.upper, method=method,
-                         max_evals=left, ftol_abs=fit2d.FTOL_ABS, xtol_abs=fit2d.XTOL_ABS)
-        evaluations += again.evaluations
-        gained = result.error - again.error
-        if again.error < result.error:
-            result = again
-        if gained <= RESTART_GAIN * abs(result.error):
-            break
     full = objective.expand @ result.x
     errors = objective.plane.errors(full)
     margin_x = fit2d.LIMIT_FRACTION * (objective.upper - objective.lower)

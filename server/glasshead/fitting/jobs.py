@@ -3,7 +3,7 @@ it in a worker process.
 
 What each kind fits (``fit_observation``):
 
-- ``contour``: ``fit2d.fit_outline``, the 12 sagittal parameters from the neutral tongue, the
+- ``contour``: ``fit2d.fit_outline``, the 14 sagittal parameters from the neutral tongue, the
   jaw and the coronal parameters held neutral (a mid-sagittal contour cannot show them);
 - ``surface``: ``fit3d.fit_surface`` to the surface's vertices;
 - ``epg``: the contact fit (``fit_contact.ContactObjective``: the sagittal parameters, the jaw

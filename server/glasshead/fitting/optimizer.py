@@ -130,3 +130,42 @@ def minimize(objective: Callable[[np.ndarray], float], x0, lower, upper, *,
     seconds = time.perf_counter() - started
     return OptimizeResult(x=np.clip(best["x"], lower, upper), error=best["f"],
                           evaluations=best["n"], seconds=seconds, method=method, stop=stop)
+
+
+def minimize_restarted(objective: Callable[[np.ndarray], float], x0, lower, upper, *,
+                       restarts: int, restart_gain: float, max_evals: int = 2000,
+                       progress: Callable[[int, float], None] | None = None,
+                       **options) -> OptimizeResult:
+    """``minimize``, then restarted from its best point with fresh models while a restart
+    lowers the objective by more than ``restart_gain`` of it (at most ``restarts`` times,
+    within ``max_evals`` evaluations in all): a quadratic model goes stale where the objective
+    is piecewise smooth, and BOBYQA then stops early on its ftol test. The result's
+    evaluations and seconds count every run; ``progress`` gets the evaluations so far and the
+    best objective over every run."""
+    done = {"n": 0, "best": math.inf}
+
+    def counted(evaluations, best):
+        # Each run counts its own evaluations and best; the caller is told the whole fit's.
+        done["best"] = min(done["best"], best)
+        if progress is not None:
+            progress(done["n"] + evaluations, done["best"])
+
+    result = minimize(objective, x0, lower, upper, max_evals=max_evals, progress=counted,
+                      **options)
+    done["n"] = result.evaluations
+    seconds = result.seconds
+    for _ in range(restarts):
+        left = max_evals - done["n"]
+        if left < 4 * len(result.x):
+            break
+        again = minimize(objective, result.x, lower, upper, max_evals=left, progress=counted,
+                         **options)
+        done["n"] += again.evaluations
+        seconds += again.seconds
+        gained = result.error - again.error
+        if again.error < result.error:
+            result = again
+        if gained <= restart_gain * abs(result.error):
+            break
+    result.evaluations, result.seconds = done["n"], seconds
+    return result

@@ -125,6 +125,15 @@ def _along_rays(weights):
                  for name, w in weights)
 
 
+def _radial(weights):
+    """Moves along each point's own ray from the hub, mm per unit, outward for a positive weight
+    (see ``geometry.tongue_surface``): the point keeps its direction from the hub whatever the
+    other parameters did to it, so no such move can turn one point past another. Moved along
+    their rest rays instead (``_along_rays``), points that a straight move had already carried
+    off their rays were pushed across them, and the pages folded."""
+    return tuple({"point": name, "radial": w} for name, w in weights)
+
+
 def _turns(weights):
     """Moves that turn points about the hub, degrees per unit (see
     ``geometry.tongue_surface``): a turn keeps each point's distance from the hub, so points that
@@ -135,7 +144,8 @@ def _turns(weights):
 # --- The articulation parameters -------------------------------------------------------------
 # (name, unit, min, max, description, moves); neutral is 0 for every tongue parameter (values
 # are displacements from the rest shape, so the table stays valid when the rest shape is refit).
-# Sagittal moves: (point, (dx, dy)) in mm per unit, or {"point", "turn"} in degrees per unit
+# Sagittal moves: (point, (dx, dy)) in mm per unit, {"point", "radial"} in mm per unit along
+# the point's own ray from the hub (``_radial``), or {"point", "turn"} in degrees per unit
 # about the hub (``_turns``). Coronal moves: (control, offset), radial mm
 # per unit along the control's page direction, given for one section and applied to each.
 #
@@ -157,7 +167,14 @@ def _turns(weights):
 # lower limit of ``body_height``). Made of straight moves that folded the pages wherever another
 # parameter had drawn a point near the hub; ``tongue_retraction`` turns the points instead
 # (``_turns``): D to M together, tapering to nothing at the blade and along the floor, so only
-# the taper changes the angles between pages.
+# the taper changes the angles between pages. Two shapes still missed with those: /O/ wants the
+# front of the dorsum 2 mm lower than ``blade_height``, ``dorsum_front_height`` and
+# ``body_height`` at their floors allow, and /a/ and the velar closure in /a/ want the base of
+# the root drawn in where VTL's root turns forward to the hyoid. Both move points toward the hub
+# along each point's own ray (``_radial``), which keeps every point's direction from the hub, so
+# they fold no corner (the same moves along the rest rays folded 24 to 1,024 corners at a few
+# mm): ``dorsum_front_lowering`` 0..6 mm (at 8 mm, 16 corners fold) and
+# ``root_base_advancement`` 0..24 mm (no corner folds there; /i/'s 3D fit takes all of it).
 
 SAGITTAL_PARAMETERS = (
     ("tip_advancement", "mm", -4.0, 14.0, "Moves the tip pair (A, B) forward.",
@@ -197,6 +214,13 @@ SAGITTAL_PARAMETERS = (
      "pharynx.",
      _turns((("C", 0.2), ("D", 0.5), ("E", 0.8), ("F", 1.0), ("G", 1.0), ("H", 1.0), ("I", 1.0),
              ("J", 1.0), ("K", 1.0), ("L", 1.0), ("M", 1.0), ("N", 0.6), ("O", 0.2)))),
+    ("dorsum_front_lowering", "mm", 0.0, 6.0,
+     "Lowers the front of the dorsum (D to G) toward the hub, each point along its own ray.",
+     _radial((("D", -0.5), ("E", -1.0), ("F", -0.8), ("G", -0.3)))),
+    ("root_base_advancement", "mm", 0.0, 24.0,
+     "Draws the base of the root and the back of the floor (M to O) in toward the hub, each "
+     "point along its own ray.",
+     _radial((("M", -1.0), ("N", -0.6), ("O", -0.2)))),
 )
 
 #: A coronal move that stretches the section sideways instead of moving a control: a page point
@@ -204,32 +228,33 @@ SAGITTAL_PARAMETERS = (
 #: stretch fades to nothing at the poles, which every page shares, with zero slope there (the
 #: poles stay smooth), and for -1 < stretch < 1/4 it keeps each page's rays in order (the
 #: derivative of tan(phi) (1 + stretch (1 - sin(phi)^4)) is at least 1 - 4 stretch), so nothing
-#: folds. The width ranges keep the stretch within +-6 / 32.
+#: folds. The width range keeps the stretch within -10 / 32 and 7.5 / 32.
 STRETCH = None
 #: Full width of the tongue body at the hub, mm: a stretch of 1 / WIDTH_REFERENCE_MM per mm of
 #: ``width`` widens the body by about 1 mm per mm.
 WIDTH_REFERENCE_MM = 32.0
 
 CORONAL_PARAMETERS = (
-    ("width", "mm", -6.0, 6.0, "Widens the section, about 1 mm of width per mm.",
+    ("width", "mm", -10.0, 7.5, "Widens the section, about 1 mm of width per mm.",
      ((STRETCH, 1.0 / WIDTH_REFERENCE_MM),)),
     # -1.35 at the midline: the B-spline spreads a control's move over its neighbours, so this
     # lowers the surface's midline by 1 mm per mm where the section applies fully.
-    ("groove_depth", "mm", -2.0, 6.0, "Lowers the midline: a central groove (negative: a ridge).",
+    ("groove_depth", "mm", -3.0, 10.0,
+     "Lowers the midline: a central groove (negative: a ridge).",
      (("midline", -1.35), ("right paramedian", -0.35), ("left paramedian", -0.35))),
-    ("groove_width", "mm", -2.0, 5.0, "Lowers the paramedian pair: widens the groove.",
+    ("groove_width", "mm", -4.0, 8.0, "Lowers the paramedian pair: widens the groove.",
      (("right paramedian", -1.0), ("left paramedian", -1.0), ("right edge", -0.3),
       ("left edge", -0.3))),
-    ("left_edge_height", "mm", -5.0, 8.0, "Raises the left lateral edge.",
+    ("left_edge_height", "mm", -8.0, 8.0, "Raises the left lateral edge.",
      (("left edge", 1.0), ("left upper side", 0.5), ("left paramedian", 0.25))),
-    ("right_edge_height", "mm", -5.0, 8.0, "Raises the right lateral edge.",
+    ("right_edge_height", "mm", -8.0, 8.0, "Raises the right lateral edge.",
      (("right edge", 1.0), ("right upper side", 0.5), ("right paramedian", 0.25))),
     ("asymmetry", "mm", -4.0, 4.0, "Rolls the section: left side out, right side in.",
      (("left paramedian", 0.25), ("left edge", 0.5), ("left upper side", 0.5),
       ("left side", 0.35), ("left lower side", 0.2), ("right paramedian", -0.25),
       ("right edge", -0.5), ("right upper side", -0.5), ("right side", -0.35),
       ("right lower side", -0.2))),
-    ("side_bulge", "mm", -4.0, 5.0, "Pushes the lower sides out.",
+    ("side_bulge", "mm", -6.0, 8.0, "Pushes the lower sides out.",
      (("right lower side", 1.0), ("right side", 0.6), ("left side", 0.6),
       ("left lower side", 1.0))),
 )
@@ -415,6 +440,10 @@ def _validate_parameters(definition, point_names, control_names, section_names):
             if "turn" in move:
                 if move["point"] not in point_names or not isinstance(move["turn"], (int, float)):
                     raise ValueError(f"parameter {name}: bad turn {move}")
+            elif "radial" in move:
+                if move["point"] not in point_names \
+                        or not isinstance(move["radial"], (int, float)):
+                    raise ValueError(f"parameter {name}: bad radial move {move}")
             elif "point" in move:
                 if move["point"] not in point_names or len(move["by"]) != 2:
                     raise ValueError(f"parameter {name}: bad sagittal move {move}")

@@ -6,9 +6,13 @@ the blended rest ratios, the triangles) is built once in ``TongueRig.__init__``;
 then a few small matrix products:
 
 1. control points: rest + sum over parameters of (value - neutral) * move; then each point
-   turns about the hub by the sum of (value - neutral) * its turn, in degrees (a turn keeps the
-   point's distance from the hub, so a tongue turned back into the pharynx keeps its pages in
-   order where the same move made of straight steps would fold them);
+   moves along its own ray from the hub by the sum of (value - neutral) * its radial move, in
+   mm, its distance from the hub kept at least ``TONGUE_CONTROL_FLOOR_MM`` (a radial move
+   leaves the point's direction from the hub as it is, whatever the straight moves did, so it
+   cannot turn one point past another); then each point turns about the hub by the sum of
+   (value - neutral) * its turn, in degrees (a turn keeps the point's distance from the hub,
+   so a tongue turned back into the pharynx keeps its pages in order where the same move made
+   of straight steps would fold them);
 2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 3. stations: S = B_sagittal @ points; page direction e = (S - H) / |S - H|;
 4. radial control values per station, with R = |S - H|, R0 its rest value and w the pole
@@ -123,11 +127,14 @@ class TongueRig:
         self.coronal_moves = np.zeros((count, len(sections), len(controls)))
         self.stretch_moves = np.zeros((count, len(sections)))
         self.point_turns = np.zeros((count, len(points)))
+        self.point_radials = np.zeros((count, len(points)))
         section_index = {s: k for k, s in enumerate(sections)}
         for k, p in enumerate(table):
             for move in p["moves"]:
                 if "turn" in move:
                     self.point_turns[k, point_index[move["point"]]] += move["turn"]
+                elif "radial" in move:
+                    self.point_radials[k, point_index[move["point"]]] += move["radial"]
                 elif "point" in move:
                     self.sagittal_moves[k, point_index[move["point"]]] += move["by"]
                 elif "stretch" in move:
@@ -185,6 +192,13 @@ class TongueRig:
         values = self._checked(values)
         delta = values - self.neutral
         points = self.rest_points + np.tensordot(delta, self.sagittal_moves, axes=1)
+        radial = delta @ self.point_radials
+        moved = radial != 0
+        if np.any(moved):
+            away = points[moved] - self.hub
+            distance = np.linalg.norm(away, axis=1)
+            reach = np.maximum(distance + radial[moved], TONGUE_CONTROL_FLOOR_MM)
+            points[moved] = self.hub + away * (reach / distance)[:, None]
         turn = np.radians(delta @ self.point_turns)
         if np.any(turn):
             cos, sin = np.cos(turn), np.sin(turn)

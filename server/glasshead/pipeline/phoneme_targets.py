@@ -164,8 +164,10 @@ def coronal_from_vtl(rig: TongueRig, settings: dict) -> dict:
         for side in ("left", "right"):
             parameter = f"{section}_{side}_edge_height"
             if parameter in rig.parameters:
-                values[parameter] = _clip(rig.parameters[parameter],
-                                          float(settings["tongue"][name]))
+                low, high = TARGET_CORONAL_RANGES["edge_height"]
+                values[parameter] = float(np.clip(_clip(rig.parameters[parameter],
+                                                        float(settings["tongue"][name])),
+                                                  low, high))
     return values
 
 
@@ -259,7 +261,10 @@ CORONAL_DEFAULT = ("width", "edge_height", "side_bulge")
 #: in other mixes with the body's straight moves, and in running speech the blend of those mixes
 #: left /k/ before /i/ ("Kim") without a closed back row, under the dominance constants trained
 #: on targets without it. Until the constants are trained with it, the targets hold it.
-HELD_IN_TARGETS = ("tongue_retraction",)
+#: The front of the dorsum lowered and the root's base drawn in along their rays
+#: (``dorsum_front_lowering``, ``root_base_advancement``) bring the last outline fits of /O/, /a/
+#: and the velar closure in /a/ within 1 mm; they are held for the same reason.
+HELD_IN_TARGETS = ("tongue_retraction", "dorsum_front_lowering", "root_base_advancement")
 #: Sagittal parameters a goal's contact fit also holds where the 2D fit put them. The velars'
 #: tip: no real /k g/ frame touches the front rows, so the EPG leaves the tip free, and the fits
 #: raised it past the alveolars' (the frontmost point of /k/(i) 4.4 mm above /t/(i)'s); in "and
@@ -292,6 +297,13 @@ PENETRATION_OF_GOAL = {"velar_stop": {"a": 0.5, "u": 0.5, "i": 0.1}}
 #: open than /k/(i)'s target, and the target's closure, built on a jaw the fit had closed, was
 #: gone (R7 ``11100111``). Asked at 1 deg more open, the closure holds in running speech.
 JAW_SLACK_OF_GOAL = {"velar_stop": 1.0}
+#: mm: the coronal ranges the targets' fits keep, narrower than the rig's. The rig's were
+#: widened for the 3D fits of JD3's surfaces (docs/fitting-3d-fits.md); with them the velar
+#: contact fits took other mixes of grooves and widths, and on builds perturbed in the last
+#: bits /k/ lost its closure with the jaw 1 deg more open and, in "Kim", in running speech.
+TARGET_CORONAL_RANGES = {"width": (-6.0, 6.0), "groove_depth": (-2.0, 6.0),
+                         "groove_width": (-2.0, 5.0), "edge_height": (-5.0, 8.0),
+                         "side_bulge": (-4.0, 5.0)}
 
 
 def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -381,14 +393,14 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
         rig, shape["tongue_outline"], ctx.probes, goal["wanted"], base=fitted,
         weights=goal["weights"], groups=fit_contact.free_groups(rig, coronal=coronal, held=held),
         section=ctx.section, epg_weight=goal["epg_weight"], contact_margin=contact_margin,
-        jaw_slack_deg=jaw_slack)
+        jaw_slack_deg=jaw_slack, ranges=TARGET_CORONAL_RANGES)
     start = _contact_start(ctx, objective, fitted)
     contact = fit_contact.fit_contact(rig, shape["tongue_outline"], ctx.probes, goal["wanted"],
                                       base=objective.values(start), weights=goal["weights"],
                                       section=ctx.section, coronal=coronal, held=held,
                                       name=shape_name,
                                       epg_weight=goal["epg_weight"], contact_margin=contact_margin,
-                                      jaw_slack_deg=jaw_slack)
+                                      jaw_slack_deg=jaw_slack, ranges=TARGET_CORONAL_RANGES)
     tongue = {n: round(v, 4) for n, v in contact.params.items()}
     after_grid = ctx.epg(tongue)["grid"]
     fit = {**fit, "rms_mm": round(contact.rms_mm, 3),

@@ -7,7 +7,9 @@
 // arrays). rig.evaluate( values, surface ) then writes positions and normals into the surface's
 // preallocated Float32Arrays and allocates nothing:
 //   1. control points = rest + sum over parameters of ( value - neutral ) * move; then each point
-//      turns about the hub by the sum of ( value - neutral ) * its turn, degrees;
+//      moves along its own ray from the hub by the sum of ( value - neutral ) * its radial move,
+//      mm, keeping at least TONGUE_CONTROL_FLOOR_MM from the hub; then each point turns about
+//      the hub by the sum of ( value - neutral ) * its turn, degrees;
 //   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
 //   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
 //   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets * coronal weight
@@ -135,11 +137,13 @@ export class TongueRig {
 		const coronalMoves = [];
 		const stretchMoves = [];
 		const turnMoves = [];
+		const radialMoves = [];
 		parameters.forEach( ( p, k ) => {
 
 			for ( const move of p.moves ) {
 
 				if ( move.turn !== undefined ) turnMoves.push( [ k, pointIndex.get( move.point ), move.turn * Math.PI / 180 ] );
+				else if ( move.radial !== undefined ) radialMoves.push( [ k, pointIndex.get( move.point ), move.radial ] );
 				else if ( move.point !== undefined ) sagittalMoves.push( [ k, pointIndex.get( move.point ), move.by[ 0 ], move.by[ 1 ] ] );
 				else if ( move.stretch !== undefined ) stretchMoves.push( [ k, sections.indexOf( move.section ), move.stretch ] );
 				else coronalMoves.push( [ k, sections.indexOf( move.section ) * c + controlIndex.get( move.control ), move.by ] );
@@ -161,6 +165,10 @@ export class TongueRig {
 		this.turnMovePoint = Int32Array.from( turnMoves, ( m ) => m[ 1 ] );
 		this.turnMoveRadians = Float64Array.from( turnMoves, ( m ) => m[ 2 ] );
 		this.pointTurn = new Float64Array( points.length );
+		this.radialMoveParameter = Int32Array.from( radialMoves, ( m ) => m[ 0 ] );
+		this.radialMovePoint = Int32Array.from( radialMoves, ( m ) => m[ 1 ] );
+		this.radialMoveBy = Float64Array.from( radialMoves, ( m ) => m[ 2 ] );
+		this.pointRadial = new Float64Array( points.length );
 
 		this.jaw = jaw;
 		this.jawParameter = this.parameterIndex.get( jaw.parameter );
@@ -260,6 +268,7 @@ export class TongueRig {
 
 		}
 
+		this.moveAlongRays( values );
 		this.turnAboutHub( values );
 
 		const offsets = this.offsets;
@@ -292,7 +301,40 @@ export class TongueRig {
 
 	}
 
-	/** Step 1, second part: turns each control point about the rest hub by its summed turn. */
+	/**
+	 * Step 1, second part: moves each control point along its own ray from the rest hub by its
+	 * summed radial move, at least TONGUE_CONTROL_FLOOR_MM from the hub (its direction stays).
+	 */
+	moveAlongRays( values ) {
+
+		if ( this.radialMoveParameter.length === 0 ) return;
+		const radial = this.pointRadial;
+		radial.fill( 0 );
+		for ( let m = 0; m < this.radialMoveParameter.length; m ++ ) {
+
+			const k = this.radialMoveParameter[ m ];
+			radial[ this.radialMovePoint[ m ] ] += ( values[ k ] - this.neutral[ k ] ) * this.radialMoveBy[ m ];
+
+		}
+
+		const points = this.points;
+		const hx = this.hubRest[ 0 ];
+		const hy = this.hubRest[ 1 ];
+		for ( let i = 0; i < this.pointCount; i ++ ) {
+
+			if ( radial[ i ] === 0 ) continue;
+			const x = points[ 2 * i ] - hx;
+			const y = points[ 2 * i + 1 ] - hy;
+			const distance = Math.hypot( x, y );
+			const scale = Math.max( distance + radial[ i ], TONGUE_CONTROL_FLOOR_MM ) / distance;
+			points[ 2 * i ] = hx + x * scale;
+			points[ 2 * i + 1 ] = hy + y * scale;
+
+		}
+
+	}
+
+	/** Step 1, third part: turns each control point about the rest hub by its summed turn. */
 	turnAboutHub( values ) {
 
 		if ( this.turnMoveParameter.length === 0 ) return;
