@@ -187,7 +187,6 @@ def test_the_contact_fit_leaves_out_the_held_parameters_and_the_sections_not_nam
     assert len(every) - len(body) == 2 + sum(name.startswith("front_") for name, _ in every)
 
 
-
 def test_a_jaw_slack_asks_the_wanted_contacts_again_with_the_jaw_more_open(scene):
     """``jaw_slack_deg``: the contact objective adds the wanted contacts' error with the jaw that
     much more open. For the raised back's own pattern the plain error is 0; with the jaw 3 deg

@@ -138,8 +138,8 @@ class ContactObjective:
         # ``ranges``: narrower bounds by coronal group (its name without the section), within
         # the rig's.
         for k, (name, _) in enumerate(groups):
-            group = name.split("_", 1)[1] if name.split("_", 1)[0] in SECTIONS else None
-            if ranges and group in ranges:
+            section, _, group = name.partition("_")
+            if ranges and section in SECTIONS and group in ranges:
                 low, high = ranges[group]
                 self.lower[k] = max(self.lower[k], low)
                 self.upper[k] = min(self.upper[k], high)

@@ -10,8 +10,8 @@ indices; examples and features. docs/targets.md describes every rule below.
 How a measured target is made (``measured_target``):
 
 1. Coronal: the rig's edge heights from VTL's side elevations, which the mid-sagittal outline
-   cannot show: front edges from TS3 (tip), middle from TS2, back from TS1, each clipped to its
-   range (``coronal_from_vtl``).
+   cannot show: front edges from TS3 (tip), middle from TS2, back from TS1, each clipped to the
+   targets' range (``TARGET_CORONAL_RANGES``, ``coronal_from_vtl``).
 2. Jaw from VTL's JA (``fit2d.jaw_opening_from_vtl``), lips from LP, LD and JX
    (``lips_from_vtl``), the velum by nasality.
 3. The sagittal parameters (but ``HELD_IN_TARGETS``) fitted to the shape's outline
@@ -164,10 +164,9 @@ def coronal_from_vtl(rig: TongueRig, settings: dict) -> dict:
         for side in ("left", "right"):
             parameter = f"{section}_{side}_edge_height"
             if parameter in rig.parameters:
-                low, high = TARGET_CORONAL_RANGES["edge_height"]
-                values[parameter] = float(np.clip(_clip(rig.parameters[parameter],
-                                                        float(settings["tongue"][name])),
-                                                  low, high))
+                # The targets' range lies within the rig's (tested).
+                values[parameter] = float(np.clip(float(settings["tongue"][name]),
+                                                  *TARGET_CORONAL_RANGES["edge_height"]))
     return values
 
 
@@ -389,18 +388,16 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
     penetration = goal.get("penetration_mm")
     jaw_slack = JAW_SLACK_OF_GOAL.get(goal["name"], 0.0)
     contact_margin = None if penetration is None else ctx.probes.tolerance + penetration
+    options = {"weights": goal["weights"], "section": ctx.section,
+               "epg_weight": goal["epg_weight"], "contact_margin": contact_margin,
+               "jaw_slack_deg": jaw_slack, "ranges": TARGET_CORONAL_RANGES}
     objective = fit_contact.contact_objective(
         rig, shape["tongue_outline"], ctx.probes, goal["wanted"], base=fitted,
-        weights=goal["weights"], groups=fit_contact.free_groups(rig, coronal=coronal, held=held),
-        section=ctx.section, epg_weight=goal["epg_weight"], contact_margin=contact_margin,
-        jaw_slack_deg=jaw_slack, ranges=TARGET_CORONAL_RANGES)
+        groups=fit_contact.free_groups(rig, coronal=coronal, held=held), **options)
     start = _contact_start(ctx, objective, fitted)
     contact = fit_contact.fit_contact(rig, shape["tongue_outline"], ctx.probes, goal["wanted"],
-                                      base=objective.values(start), weights=goal["weights"],
-                                      section=ctx.section, coronal=coronal, held=held,
-                                      name=shape_name,
-                                      epg_weight=goal["epg_weight"], contact_margin=contact_margin,
-                                      jaw_slack_deg=jaw_slack, ranges=TARGET_CORONAL_RANGES)
+                                      base=objective.values(start), coronal=coronal, held=held,
+                                      name=shape_name, **options)
     tongue = {n: round(v, 4) for n, v in contact.params.items()}
     after_grid = ctx.epg(tongue)["grid"]
     fit = {**fit, "rms_mm": round(contact.rms_mm, 3),
