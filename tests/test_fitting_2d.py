@@ -85,6 +85,26 @@ def test_objective_is_zero_on_the_rigs_own_outline(rig, section):
     assert objective.rms(x + 1.0) > 0.3
 
 
+def test_the_objective_poses_once_for_its_outline_and_volume_and_sums_the_same_terms(
+        rig, section, shapes):
+    values = rig.values_from(KNOWN_POSE)
+    objective = Objective2D(rig, shapes["u"]["tongue_outline"], list(KNOWN_POSE), base=values,
+                            section=section, volume_weight=0.01, neutral_weight=0.02,
+                            volume_bound_pct=0.1, volume_bound_weight=1.0)
+    x = np.array(list(KNOWN_POSE.values())) * 0.9
+    change = objective.volume_change(x, exact=False)
+    assert abs(change) > 0.1  # the bound presses: every term counts
+    share = (x - objective.neutral) / (objective.upper - objective.lower)
+    expected = float(np.mean(objective.errors(x) ** 2)) + 0.01 * change**2 \
+        + 1.0 * (abs(change) - 0.1) ** 2 + 0.02 * float(np.sum(share**2))
+    assert objective(x) == expected  # the same arithmetic, to the last bit
+    # the rigs that differ only in their sampling pose their control points alike
+    posed = section.control_points(values)
+    np.testing.assert_array_equal(section.volume_rig.vertices(values, posed),
+                                  section.volume_rig.vertices(values))
+    np.testing.assert_array_equal(section.outline(values, posed), section.outline(values))
+
+
 @pytest.mark.parametrize("method", sorted(METHODS))
 def test_fit_recovers_a_known_outline_from_neutral(rig, section, method):
     values = rig.values_from(KNOWN_POSE)

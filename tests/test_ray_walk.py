@@ -254,3 +254,19 @@ def test_a_mesh_that_is_not_consistently_oriented_is_never_certified_by_counting
     hits = walker.first_hits(origin, directions[:200], vertices, previous)
     _assert_exhaustive(hits, origin, directions[:200], vertices, flipped)
     assert not hits.shortcut.any()
+
+
+def test_the_hits_carry_the_enclosed_volume_of_the_pose_from_any_origin(rig, setup):
+    rest, origin, directions, walker = setup
+    rng = np.random.default_rng(11)
+    start = None  # the first two poses search exhaustively, the others walk
+    for k in range(10):
+        values = rng.uniform(rig.minimum, rig.maximum)
+        vertices = rig.vertices(values)
+        # the origin inside (the hub) or well outside the tongue: a closed mesh's volume is
+        # the same seen from anywhere
+        o = origin if k % 2 == 0 else origin + np.array([90.0, 40.0, 25.0])
+        hits = walker.first_hits(o, directions, vertices, start)
+        assert hits.volume == pytest.approx(rig.volume(values), rel=1e-12)
+        assert hits.volume > 0  # outward winding
+        start = None if k < 1 else hits.triangle

@@ -35,18 +35,21 @@ The objective (mm^2) is the 2D fit's, with the squared 3D RMS in place of the 2D
     rms^2 + volume_weight (100 dV / V0)^2 + neutral_weight sum(((x - neutral) / range)^2)
           + volume_bound_weight max(0, |100 dV / V0| - volume_bound_pct)^2
 
-with fit2d's weights: the volume terms on the coarse surface of ``MidSagittalSection``, the
-neutral pull on every free variable. Reports give the plain RMS over the compared rays, the exact
-volume change and the parameters at a range limit (``fit2d.LIMIT_FRACTION``).
+with fit2d's weights, the neutral pull on every free variable. The volume terms take the exact
+volume of the posed surface, which the walk's certificate sums on the way (``FirstHits.volume``:
+free, where the 2D fit's coarse surface of ``MidSagittalSection`` cost a fifth of an
+evaluation). Reports give the plain RMS over the compared rays, the exact volume change and the
+parameters at a range limit (``fit2d.LIMIT_FRACTION``).
 
 The method (BOBYQA by default) is restarted from its best point, with fresh models, while a
 restart gains more than RESTART_GAIN (at most RESTARTS times, within MAX_EVALS in all): its
 quadratic models go stale where rays slip from one rig triangle to the next.
 
-Speed: an evaluation is the rig's surface (2,978 vertices), the walk of every ray and the coarse
-volume, about 1.2 to 1.7 ms of CPU for VTL's 270 to 360 kept vertices. A surface with more than
-MAX_RAYS kept vertices is fitted, and its RMS reported, on an evenly spread subset (every
-vertex's first hit costs the same, and 1,000 rays resolve 35 parameters many times over).
+Speed: an evaluation is the rig's surface (2,978 vertices) and the walk of every ray, about
+1.3 ms of CPU for VTL's 270 to 360 kept vertices, and BOBYQA adds about 0.3 ms of its own. A
+surface with more than MAX_RAYS kept vertices is fitted, and its RMS reported, on an evenly
+spread subset (every vertex's first hit costs the same, and 1,000 rays resolve 35 parameters
+many times over).
 """
 
 import time
@@ -73,8 +76,8 @@ from glasshead.fitting.optimizer import minimize_restarted
 from glasshead.geometry.tongue_surface import TongueRig
 
 CORONAL_PREFIX = "tongue coronal"
-#: Evaluations of a fit, restarts included: BOBYQA needed 526 to 1,907 on VTL's 69 sheets, and
-#: 2,500 take about 3.5 s of CPU, inside the 5 s goal with the 2D fit.
+#: Evaluations of a fit, restarts included: BOBYQA needed 658 to 2,500 on VTL's 69 sheets, and
+#: 2,500 take about 3.8 s of CPU, inside the 5 s goal with the 2D fit.
 MAX_EVALS = 2500
 #: Fewest kept vertices a surface needs: fewer cannot determine 35 parameters.
 MIN_RAYS = 40
@@ -237,7 +240,8 @@ class Objective3D:
         r = self.error.residuals(self.rig.vertices(self.values(x)))
         value = float(np.mean(r * r))
         if self.volume_weight or self.volume_bound_weight:
-            change = self.volume_change(x, exact=False)
+            # the exact volume of the surface just posed: the walk's certificate summed it
+            change = 100.0 * (self.error.hits.volume / self.section.rest_volume - 1.0)
             value += self.volume_weight * change**2
             value += self.volume_bound_weight * max(0.0, abs(change)
                                                     - self.volume_bound_pct) ** 2

@@ -221,9 +221,15 @@ class MidSagittalSection:
         self.volume_rig = _coarse(rig)
         self.coarse_rest_volume = self.volume_rig.volume(rig.neutral)
 
-    def outline(self, values) -> np.ndarray:
-        """(k, 2) float64 mid-sagittal outline, mm, for parameter values (P,)."""
-        hub, _stations, direction, radii, _stretch = self._section_rig.page_radii(values)
+    def control_points(self, values):
+        """The rig's posed control points for values (P,), which ``outline`` and the volume
+        rig can share (``TongueRig.page_radii``'s ``posed``)."""
+        return self._section_rig.control_points(values)
+
+    def outline(self, values, posed=None) -> np.ndarray:
+        """(k, 2) float64 mid-sagittal outline, mm, for parameter values (P,) (``posed``:
+        ``control_points(values)`` when the caller has them)."""
+        hub, _stations, direction, radii, _stretch = self._section_rig.page_radii(values, posed)
         return hub + radii[:, 1, None] * direction
 
     def hub(self, values) -> np.ndarray:
@@ -290,21 +296,23 @@ class Objective2D:
         """Root mean square of the per-ray errors, mm."""
         return float(np.sqrt(np.mean(self.errors(x) ** 2)))
 
-    def volume_change(self, x, exact=True) -> float:
+    def volume_change(self, x, exact=True, posed=None) -> float:
         """Relative volume change from the rest volume, percent; ``exact=False`` uses the
         penalty's coarse surface (within 0.15 % of the exact change over the sagittal and jaw
-        ranges, at a third of the cost)."""
+        ranges, at a third of the cost), from ``posed`` control points when given."""
         rig, rest = (self.rig, self.section.rest_volume) if exact \
             else (self.section.volume_rig, self.section.coarse_rest_volume)
-        return 100.0 * (rig.volume(self.values(x)) / rest - 1.0)
+        return 100.0 * (rig.volume(self.values(x), posed) / rest - 1.0)
 
     def __call__(self, x) -> float:
         self.evaluations += 1
         x = np.asarray(x, dtype=np.float64)
-        value = float(np.mean(self.errors(x) ** 2))
+        values = self.values(x)
+        posed = self.section.control_points(values)  # once, for the outline and the volume
+        value = float(np.mean(self.rays.errors(self.section.outline(values, posed)) ** 2))
         bound = self.volume_bound_pct is not None and self.volume_bound_weight > 0
         if self.volume_weight or bound:
-            change = self.volume_change(x, exact=False)
+            change = self.volume_change(x, exact=False, posed=posed)
             value += self.volume_weight * change**2
             if bound:
                 value += self.volume_bound_weight * max(0.0, abs(change)

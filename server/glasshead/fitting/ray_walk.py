@@ -202,7 +202,9 @@ class FirstHits:
     were searched without a bound, ``overturned`` (k,) bool rays where a nearer triangle than the
     walk's was found (a fold in front of it, or a tie on an edge), ``shortcut`` (k,) bool rays
     answered by the crossing count (no sphere search), ``back_facing`` |B|, the triangles that
-    do not face away from O in this pose."""
+    do not face away from O in this pose, and ``volume`` the signed volume enclosed by the mesh
+    in this pose, mm^3 (the sum of det[a - O, b - O, c - O] / 6, which the certificate computes
+    anyway; a closed mesh's is the same from any O)."""
 
     triangle: Ints
     t: Floats
@@ -211,6 +213,7 @@ class FirstHits:
     overturned: npt.NDArray[np.bool_]
     shortcut: npt.NDArray[np.bool_]
     back_facing: int
+    volume: float
 
 
 def check_rays(origin: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Floats, Floats]:
@@ -314,6 +317,7 @@ class RayWalker:
         np.subtract(e1[2] * e2[0], e1[0] * e2[2], out=n[1])
         np.subtract(e1[0] * e2[1], e1[1] * e2[0], out=n[2])
         facing = (g[:, 0] * n).sum(axis=0)  # D = (a - O) . n
+        self._volume = float(facing.sum()) / 6.0  # each D is six times a signed tetrahedron
         n2 = (n * n).sum(axis=0)
         self._n2 = n2
         vertex_r2 = (rel_t * rel_t).sum(axis=0)  # |v - O|^2 per vertex
@@ -580,7 +584,7 @@ class RayWalker:
             triangle, t = exhaustive_first_hits(o, d, vertices, self.triangles)
             none = np.zeros(k, dtype=bool)
             return FirstHits(triangle, t, _points(o, d, t), none, none.copy(), none.copy(),
-                             back)
+                             back, self._volume)
         walk_tri, walk_t, near = self._walk(d, start)
         found = walk_tri >= 0
         length = np.sqrt(self._norm2(d))
@@ -615,7 +619,7 @@ class RayWalker:
             triangle[rays[first]] = tris[first]
             best_t[rays[first]] = t[first]
         return FirstHits(triangle, best_t, _points(o, d, best_t), ~found & ~shortcut,
-                         found & (triangle != walk_tri), shortcut, back)
+                         found & (triangle != walk_tri), shortcut, back, self._volume)
 
 
 def _points(o: Floats, d: Floats, t: Floats) -> Floats:

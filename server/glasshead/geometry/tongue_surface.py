@@ -40,6 +40,8 @@ from glasshead.geometry.mesh_volume import mesh_volume, vertex_normals
 from glasshead.geometry.tongue_rig import validate_definition
 
 Floats = npt.NDArray[np.float64]
+#: ``TongueRig.control_points``: posed sagittal control points, hub, coronal offsets, stretches.
+Controls = tuple[Floats, Floats, Floats, Floats]
 
 
 class ParameterError(ValueError):
@@ -186,7 +188,7 @@ class TongueRig:
 
     # --- evaluation -----------------------------------------------------------------------------
 
-    def control_points(self, values: npt.ArrayLike) -> tuple[Floats, Floats, Floats, Floats]:
+    def control_points(self, values: npt.ArrayLike) -> Controls:
         """Posed sagittal control points (n, 2), hub (2,), coronal offsets (sections, controls)
         and section stretches (sections,)."""
         values = self._checked(values)
@@ -211,10 +213,12 @@ class TongueRig:
         hub = apply_jaw_pose(self.hub[None, :], pose, [self.hub_jaw_weight])[0]
         return points, hub, offsets, stretch
 
-    def page_radii(self, values: npt.ArrayLike) -> tuple[Floats, Floats, Floats, Floats, Floats]:
+    def page_radii(self, values: npt.ArrayLike, posed: Controls | None = None
+                   ) -> tuple[Floats, Floats, Floats, Floats, Floats]:
         """Hub (2,), stations (s, 2), page directions (s, 2), radii (s, page_samples) and
-        sideways stretch (s,) of the surface."""
-        points, hub, offsets, stretch = self.control_points(values)
+        sideways stretch (s,) of the surface. ``posed``: ``control_points(values)`` when the
+        caller has them already (rigs that differ only in their sampling pose them alike)."""
+        points, hub, offsets, stretch = self.control_points(values) if posed is None else posed
         stations = self.station_basis @ points
         towards = stations - hub
         radius = np.linalg.norm(towards, axis=1)
@@ -230,9 +234,10 @@ class TongueRig:
         controls[:, self.pole_controls] = self.pole_half_width
         return hub, stations, direction, controls @ self.page_basis.T, self.station_blend @ stretch
 
-    def vertices(self, values: npt.ArrayLike) -> Floats:
-        """(vertex_count, 3) float64 surface vertices for parameter values (P,)."""
-        hub, _stations, direction, radii, stretch = self.page_radii(values)
+    def vertices(self, values: npt.ArrayLike, posed: Controls | None = None) -> Floats:
+        """(vertex_count, 3) float64 surface vertices for parameter values (P,) (``posed``: as
+        for ``page_radii``)."""
+        hub, _stations, direction, radii, stretch = self.page_radii(values, posed)
         ring = np.empty((self.stations, self.page_samples, 3))
         planar = radii * self.page_cos
         ring[..., 0] = hub[0] + planar * direction[:, 0, None]
@@ -249,9 +254,10 @@ class TongueRig:
         return TongueSurface(vertices, vertex_normals(vertices, self.triangles), self.triangles,
                              mesh_volume(vertices, self.triangles))
 
-    def volume(self, values: npt.ArrayLike) -> float:
-        """Enclosed volume, mm^3, for parameter values (P,)."""
-        return mesh_volume(self.vertices(values), self.triangles)
+    def volume(self, values: npt.ArrayLike, posed: Controls | None = None) -> float:
+        """Enclosed volume, mm^3, for parameter values (P,) (``posed``: as for
+        ``page_radii``)."""
+        return mesh_volume(self.vertices(values, posed), self.triangles)
 
     def pages_in_order(self, values: npt.ArrayLike) -> bool:
         """True when the pages turn once round the hub in order, every radius is positive and
