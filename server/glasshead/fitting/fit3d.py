@@ -229,19 +229,20 @@ class Objective3D:
         """(rays,) residuals, mm, of the rays compared (every kept vertex, or the subset)."""
         return self.error.residuals(self.rig.vertices(self.values(x)))
 
-    def volume_change(self, x, exact=True) -> float:
-        """Volume change from the rest volume, percent (``exact=False``: the coarse surface)."""
-        rig, rest = (self.rig, self.section.rest_volume) if exact \
-            else (self.section.volume_rig, self.section.coarse_rest_volume)
-        return 100.0 * (rig.volume(self.values(x)) / rest - 1.0)
+    def volume_change(self, x) -> float:
+        """Volume change of the surface from the rest volume, percent."""
+        return self._percent_of_rest(self.rig.volume(self.values(x)))
+
+    def _percent_of_rest(self, volume: float) -> float:
+        return 100.0 * (volume / self.section.rest_volume - 1.0)
 
     def __call__(self, x) -> float:
         x = np.asarray(x, dtype=np.float64)
         r = self.error.residuals(self.rig.vertices(self.values(x)))
         value = float(np.mean(r * r))
         if self.volume_weight or self.volume_bound_weight:
-            # the exact volume of the surface just posed: the walk's certificate summed it
-            change = 100.0 * (self.error.hits.volume / self.section.rest_volume - 1.0)
+            # the volume of the surface just posed: the walk's certificate summed it
+            change = self._percent_of_rest(self.error.hits.volume)
             value += self.volume_weight * change**2
             value += self.volume_bound_weight * max(0.0, abs(change)
                                                     - self.volume_bound_pct) ** 2

@@ -234,7 +234,7 @@ class MidSagittalSection:
 
     def hub(self, values) -> np.ndarray:
         """The rig's hub (2,) posed for parameter values (P,)."""
-        return self._section_rig.control_points(values)[1]
+        return self.control_points(values)[1]
 
 
 class Objective2D:

@@ -27,6 +27,38 @@ import { vertexNormals } from './meshVolume.js';
 /** Sections blended along the tongue, in the order of each point's section_weights. */
 export const SECTION_COUNT = 3;
 
+/**
+ * Moves of single control points by parameter, (parameter, point, amount) as flat arrays, and
+ * the per-point sums that sumPointMoves fills in place (nothing is allocated per frame).
+ */
+function pointMoves( moves, pointCount ) {
+
+	return {
+		parameter: Int32Array.from( moves, ( m ) => m[ 0 ] ),
+		point: Int32Array.from( moves, ( m ) => m[ 1 ] ),
+		amount: Float64Array.from( moves, ( m ) => m[ 2 ] ),
+		sum: new Float64Array( pointCount ),
+	};
+
+}
+
+/** Each point's summed move for parameter values, or null when no parameter moves points so. */
+function sumPointMoves( moves, values, neutral ) {
+
+	if ( moves.parameter.length === 0 ) return null;
+	const sum = moves.sum;
+	sum.fill( 0 );
+	for ( let m = 0; m < moves.parameter.length; m ++ ) {
+
+		const k = moves.parameter[ m ];
+		sum[ moves.point[ m ] ] += ( values[ k ] - neutral[ k ] ) * moves.amount[ m ];
+
+	}
+
+	return sum;
+
+}
+
 export class TongueRig {
 
 	/** @param {object} definition the parsed rig JSON */
@@ -161,14 +193,8 @@ export class TongueRig {
 		this.stretchMoveParameter = Int32Array.from( stretchMoves, ( m ) => m[ 0 ] );
 		this.stretchMoveSection = Int32Array.from( stretchMoves, ( m ) => m[ 1 ] );
 		this.stretchMoveBy = Float64Array.from( stretchMoves, ( m ) => m[ 2 ] );
-		this.turnMoveParameter = Int32Array.from( turnMoves, ( m ) => m[ 0 ] );
-		this.turnMovePoint = Int32Array.from( turnMoves, ( m ) => m[ 1 ] );
-		this.turnMoveRadians = Float64Array.from( turnMoves, ( m ) => m[ 2 ] );
-		this.pointTurn = new Float64Array( points.length );
-		this.radialMoveParameter = Int32Array.from( radialMoves, ( m ) => m[ 0 ] );
-		this.radialMovePoint = Int32Array.from( radialMoves, ( m ) => m[ 1 ] );
-		this.radialMoveBy = Float64Array.from( radialMoves, ( m ) => m[ 2 ] );
-		this.pointRadial = new Float64Array( points.length );
+		this.pointTurns = pointMoves( turnMoves, points.length );
+		this.pointRadials = pointMoves( radialMoves, points.length );
 
 		this.jaw = jaw;
 		this.jawParameter = this.parameterIndex.get( jaw.parameter );
@@ -307,16 +333,8 @@ export class TongueRig {
 	 */
 	moveAlongRays( values ) {
 
-		if ( this.radialMoveParameter.length === 0 ) return;
-		const radial = this.pointRadial;
-		radial.fill( 0 );
-		for ( let m = 0; m < this.radialMoveParameter.length; m ++ ) {
-
-			const k = this.radialMoveParameter[ m ];
-			radial[ this.radialMovePoint[ m ] ] += ( values[ k ] - this.neutral[ k ] ) * this.radialMoveBy[ m ];
-
-		}
-
+		const radial = sumPointMoves( this.pointRadials, values, this.neutral );
+		if ( radial === null ) return;
 		const points = this.points;
 		const hx = this.hubRest[ 0 ];
 		const hy = this.hubRest[ 1 ];
@@ -337,16 +355,8 @@ export class TongueRig {
 	/** Step 1, third part: turns each control point about the rest hub by its summed turn. */
 	turnAboutHub( values ) {
 
-		if ( this.turnMoveParameter.length === 0 ) return;
-		const turn = this.pointTurn;
-		turn.fill( 0 );
-		for ( let m = 0; m < this.turnMoveParameter.length; m ++ ) {
-
-			const k = this.turnMoveParameter[ m ];
-			turn[ this.turnMovePoint[ m ] ] += ( values[ k ] - this.neutral[ k ] ) * this.turnMoveRadians[ m ];
-
-		}
-
+		const turn = sumPointMoves( this.pointTurns, values, this.neutral );
+		if ( turn === null ) return;
 		const points = this.points;
 		const hx = this.hubRest[ 0 ];
 		const hy = this.hubRest[ 1 ];
