@@ -78,6 +78,10 @@ describe( 'the head view', { timeout: 240_000 }, () => {
 
 		} );
 		assert.deepEqual( context, { canvas: true, probe: true } );
+		// Chromium here renders in software (SwiftShader): the Viewer leaves multisampling off.
+		assert.match( state.renderer.name, /SwiftShader/i );
+		assert.equal( state.renderer.antialias, false );
+		assert.equal( await page.evaluate( () => document.querySelector( 'canvas' ).getContext( 'webgl2' ).getContextAttributes().antialias ), false );
 		assert.ok( state.frames >= 3, `only ${ state.frames } frames drawn` );
 		assert.ok( state.frameTimeMs > 0 && Number.isFinite( state.frameTimeMs ), `frame time ${ state.frameTimeMs }` );
 

@@ -17,6 +17,7 @@ import { easeInOut, interpolatePose } from './viewPresets.js';
 import { FrameTimer } from './FrameTimer.js';
 import { attachKeyboardOrbit } from './keyboardOrbit.js';
 import { registerDebug } from '../debug.js';
+import { probeRendererName, rendererOptions } from './rendererChoice.js';
 
 export const BACKGROUND_COLOR = '#dfe3e8';
 
@@ -31,7 +32,9 @@ export class Viewer {
 	constructor( container, { fov = 30 } = {} ) {
 
 		this.container = container;
-		this.renderer = new WebGLRenderer( { antialias: true, stencil: true, powerPreference: 'high-performance' } );
+		const rendererName = probeRendererName();
+		const options = rendererOptions( rendererName );
+		this.renderer = new WebGLRenderer( options );
 		this.renderer.outputColorSpace = SRGBColorSpace;
 		this.renderer.localClippingEnabled = true;
 		this.renderer.setPixelRatio( Math.min( window.devicePixelRatio || 1, 2 ) );
@@ -67,6 +70,7 @@ export class Viewer {
 		this.unregisterCamera = registerDebug( 'camera', () => ( {
 			position: this.camera.position.toArray(), target: this.controls.target.toArray(),
 		} ) );
+		this.unregisterRenderer = registerDebug( 'renderer', () => ( { name: rendererName, antialias: options.antialias } ) );
 
 		this.frameHooks = new Set();
 		this.timer = new FrameTimer( 60 );
@@ -288,6 +292,7 @@ export class Viewer {
 		this.renderer.setAnimationLoop( null );
 		this.detachKeys();
 		this.unregisterCamera();
+		this.unregisterRenderer();
 		this.resizeObserver.disconnect();
 		this.controls.dispose();
 		this.renderer.dispose();
