@@ -1,18 +1,28 @@
 """Phoneme targets (pipeline.phoneme_targets): built from the real rig and JD3 observations, read
-through the asset store and served by GET /phonemes. No mocks: the build runs on the built
-assets."""
+through the asset store and served by GET /phonemes. No mocks: the targets are the ones the
+build made from the built assets (``built_assets`` builds them when they are stale), read from a
+copy whose inputs are checked to give the same cache key."""
 
+import json
 import shutil
 
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from glasshead.constants import FACE_RIG_LIP_PARAMETERS, PHONEME_TARGETS_FILE, VELUM_PARAMETER
+from glasshead.constants import (
+    FACE_RIG_LIP_PARAMETERS,
+    PHONEME_TARGETS_FILE,
+    PHONEME_TARGETS_FORMAT_VERSION,
+    TONGUE_RIG_FILE,
+    VELUM_PARAMETER,
+)
 from glasshead.epg import synthetic
 from glasshead.fitting import epg_observations as obs
 from glasshead.phonemes import INVENTORY
+from glasshead.pipeline.outputs import current_output
 from glasshead.pipeline.phoneme_targets import (
+    BUILDER,
     HELD_IN_TARGETS,
     HELD_OF_GOAL,
     INPUT_FILES,
@@ -22,19 +32,21 @@ from glasshead.pipeline.phoneme_targets import (
     VOLUME_GOAL_PCT,
     Context,
     build_phoneme_targets,
+    input_key,
 )
 
 
 @pytest.fixture(scope="module")
 def built(built_assets, data_dir, tmp_path_factory):
-    """A copy of the built inputs and the targets built from them (twice: the second skips)."""
+    """A copy of the built inputs and of the targets the build made from them, and what building
+    again in that copy gives (skipped: the inputs and the code are the same)."""
     directory = tmp_path_factory.mktemp("targets")
-    for name in INPUT_FILES:
+    for name in (*INPUT_FILES, PHONEME_TARGETS_FILE):
         shutil.copy(built_assets / name, directory / name)
-    document, skipped = build_phoneme_targets(directory, data_dir, force=True)
+    document = json.loads((directory / PHONEME_TARGETS_FILE).read_text())
     again, skipped_again = build_phoneme_targets(directory, data_dir)
-    return {"dir": directory, "document": document, "skipped": skipped,
-            "again": again, "skipped_again": skipped_again}
+    return {"dir": directory, "document": document, "again": again,
+            "skipped_again": skipped_again}
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +59,6 @@ def grid(target):
 
 
 def test_every_phoneme_has_a_target_with_every_parameter_in_range(built, targets, built_assets):
-    import json
     rig = json.loads((built_assets / "tongue-rig.json").read_text())["parameters"]
     face = json.loads((built_assets / "face-rig.json").read_text())["parameters"]
     velum = json.loads((built_assets / "velum-rig.json").read_text())["parameters"]
@@ -241,11 +252,24 @@ def test_the_build_report_lists_each_contact_fit(built, built_assets, data_dir):
     assert report["realism"]["passed"] == built["document"]["realism"]["passed"]
 
 
-def test_the_second_build_is_skipped(built):
-    assert built["skipped"] is False and built["skipped_again"] is True
-    assert built["again"]["source"]["sha256"] == built["document"]["source"]["sha256"]
+def test_the_second_build_is_skipped(built, data_dir):
+    assert built["skipped_again"] is True and built["again"] == built["document"]
+    assert built["document"]["source"]["sha256"] == input_key(built["dir"], data_dir)
     # The time is reported (build report, docs/targets.md), not asserted: it depends on the load.
     assert built["document"]["build_seconds"] > 0
+
+
+def test_a_changed_input_changes_the_cache_key_so_the_targets_are_built_again(built, data_dir,
+                                                                              tmp_path):
+    for name in (*INPUT_FILES, PHONEME_TARGETS_FILE):
+        shutil.copy(built["dir"] / name, tmp_path / name)
+    before = input_key(tmp_path, data_dir)
+    rig = json.loads((tmp_path / TONGUE_RIG_FILE).read_text())
+    rig["parameters"][0]["max"] += 1.0
+    (tmp_path / TONGUE_RIG_FILE).write_text(json.dumps(rig))
+    assert input_key(tmp_path, data_dir) != before
+    assert current_output(tmp_path / PHONEME_TARGETS_FILE, input_key(tmp_path, data_dir),
+                          BUILDER, PHONEME_TARGETS_FORMAT_VERSION) is None
 
 
 @pytest.fixture()
