@@ -16,6 +16,9 @@ from accounts_support import signed_in
 from glasshead.api.limits import BODY_LIMITS, DEFAULT_LIMIT, MIB, body_limit
 
 CHUNK = 64 * 1024
+#: Bytes that may leave the client after the server has read as far as the limit: the socket
+#: buffers of both ends on loopback (a few MiB each) and what is sent while the answer is written.
+IN_FLIGHT_BYTES = 24 * MIB
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "api.md"
 
 
@@ -76,7 +79,11 @@ def test_a_200_mb_chunked_multipart_upload_is_refused_before_it_is_spooled(serve
         _chunked(parts))
     assert status == 413
     assert "limit of POST /api/v1/epg/recordings" in _detail(response)
-    assert sent < total / 5, f"{sent} of {total} bytes were sent before the answer"
+    # The route takes 32 MiB and its framing, so the server reads that much before it can know;
+    # what loopback's socket buffers hold and what arrives while a loaded machine writes the
+    # answer come on top (41.8 MB of the 200 MB had left the client once, with every core busy).
+    bound = body_limit("POST", "/api/v1/epg/recordings") + IN_FLIGHT_BYTES
+    assert sent < bound < total / 3, f"{sent} of {total} bytes were sent before the answer"
 
 
 def test_the_server_answers_health_after_refusing_a_body(server):
