@@ -174,3 +174,17 @@ def test_the_store_refuses_an_unknown_asset_name_and_reports_unavailable_ones(tm
     with pytest.raises(AssetUnavailableError, match="glasshead build"):
         store.get("manifest")
     assert store.status()["ok"] is False
+
+
+@pytest.mark.parametrize("bad", [True, None, "1.5", [1.0]])
+def test_observations_with_a_coordinate_that_is_not_a_number_are_corrupt(assets, bad):
+    path = assets / _file("vtl_observations")
+    document = json.loads(path.read_text())
+    document["shapes"][3]["tongue_surface_vertices"][17][1] = bad
+    path.write_text(json.dumps(document))
+    store = AssetStore(assets)
+    with pytest.raises(AssetUnavailableError, match="corrupt"):
+        store.get("vtl_observations")
+    document["shapes"][3]["tongue_surface_vertices"][17][1] = 2
+    path.write_text(json.dumps(document))
+    assert AssetStore(assets).get("vtl_observations")["shapes"][3]["name"]
