@@ -65,6 +65,18 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 	} );
 
 	const speech = async () => ( await readDebug( page ) ).speech;
+	/** Wait until the target of `symbol` is held and said so; else fail with what the page shows. */
+	const holding = async ( symbol ) => {
+
+		const held = () => page.evaluate( () => ( {
+			hold: window.glasshead.speech.hold, phone: window.glasshead.speech.phone?.symbol ?? null,
+			status: document.querySelector( '.sp-form [role=status]' ).textContent,
+			error: document.querySelector( '.sp-form [role=alert]' ).textContent,
+		} ) );
+		await page.waitForFunction( ( s ) => window.glasshead.speech.hold === s && /Holding/.test( document.querySelector( '.sp-form [role=status]' ).textContent ), symbol, { timeout: 30_000 } )
+			.catch( async ( error ) => assert.fail( `the target of /${ symbol }/ is not held: ${ JSON.stringify( await held() ) } (${ error.message })` ) );
+
+	};
 	const slider = ( name ) => page.getByRole( 'slider', { name, exact: true } );
 	const button = ( name ) => page.getByRole( 'button', { name, exact: true } );
 
@@ -282,7 +294,7 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 		const t = phonesOf( utterance.phones, [ 'T' ] )[ 0 ];
 		await page.getByRole( 'group', { name: 'Phonemes' } ).getByRole( 'button' ).nth( t.index ).click();
 		await button( 'Hold target' ).click();
-		await page.waitForFunction( () => window.glasshead.speech.hold === 'T' && /Holding/.test( document.querySelector( '.sp-form [role=status]' ).textContent ), null, { timeout: 10_000 } );
+		await holding( 'T' );
 		const state = await readDebug( page );
 		assert.equal( state.speech.phone.symbol, 'T' );
 		assert.ok( [ 0, 1, 2 ].some( ( r ) => rowClosed( state.epg.rows, r ) ), `rows ${ state.epg.rows.join( ' ' ) }` );
@@ -300,7 +312,7 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 		const k = phonesOf( utterance.phones, [ 'K' ] )[ 0 ];
 		await page.getByRole( 'group', { name: 'Phonemes' } ).getByRole( 'button' ).nth( k.index ).click();
 		await button( 'Hold target' ).click();
-		await page.waitForFunction( () => window.glasshead.speech.hold === 'K' && /Holding/.test( document.querySelector( '.sp-form [role=status]' ).textContent ), null, { timeout: 10_000 } );
+		await holding( 'K' );
 		// The palatogram follows the held pose with the next drawn frame.
 		await page.waitForFunction( () => [ 5, 6, 7 ].some( ( r ) => window.glasshead.epg?.rows?.[ r ] === '11111111' ), null, { timeout: 10_000 } ).catch( () => {} );
 		const state = await readDebug( page );
