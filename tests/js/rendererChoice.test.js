@@ -2,7 +2,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { isSoftwareRenderer, probeRendererName, rendererOptions } from '../../web/src/scene/rendererChoice.js';
+import { isSoftwareRenderer, pageRendererName, probeRendererName, rendererOptions } from '../../web/src/scene/rendererChoice.js';
 
 test( 'software rasterisers are recognised by their renderer names', () => {
 
@@ -50,5 +50,25 @@ test( 'the probe reads the unmasked name, releases its context, and answers null
 	assert.equal( lost, true );
 	assert.equal( probeRendererName( doc( null ) ), null );
 	assert.equal( probeRendererName( undefined ), null );
+
+} );
+
+test( 'the page is probed once, however many views make a Viewer', () => {
+
+	let contexts = 0;
+	const gl = { RENDERER: 0x1F01, getExtension: () => null, getParameter: () => 'Google SwiftShader' };
+	const saved = globalThis.document;
+	globalThis.document = { createElement: () => ( { getContext: () => ( contexts ++, gl ) } ) };
+	try {
+
+		assert.equal( pageRendererName(), 'Google SwiftShader' );
+		assert.equal( pageRendererName(), 'Google SwiftShader' );
+		assert.equal( contexts, 1 );
+
+	} finally {
+
+		globalThis.document = saved;
+
+	}
 
 } );

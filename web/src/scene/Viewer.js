@@ -17,7 +17,7 @@ import { easeInOut, interpolatePose } from './viewPresets.js';
 import { FrameTimer } from './FrameTimer.js';
 import { attachKeyboardOrbit } from './keyboardOrbit.js';
 import { registerDebug } from '../debug.js';
-import { probeRendererName, rendererOptions } from './rendererChoice.js';
+import { pageRendererName, rendererOptions } from './rendererChoice.js';
 
 export const BACKGROUND_COLOR = '#dfe3e8';
 
@@ -32,7 +32,7 @@ export class Viewer {
 	constructor( container, { fov = 30 } = {} ) {
 
 		this.container = container;
-		const rendererName = probeRendererName();
+		const rendererName = pageRendererName();
 		const options = rendererOptions( rendererName );
 		this.renderer = new WebGLRenderer( options );
 		this.renderer.outputColorSpace = SRGBColorSpace;

@@ -28,6 +28,19 @@ export function probeRendererName( doc = globalThis.document ) {
 
 }
 
+let pageRenderer;
+
+/**
+ * The page's renderer name, probed once: every Viewer of the page (one per view the user opens)
+ * gets the same GPU, so later views make no throwaway context.
+ */
+export function pageRendererName() {
+
+	if ( pageRenderer === undefined ) pageRenderer = probeRendererName();
+	return pageRenderer;
+
+}
+
 /** The WebGLRenderer options for a renderer name: multisampling unless it is software. */
 export function rendererOptions( name ) {
 
