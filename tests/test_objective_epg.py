@@ -8,6 +8,7 @@ import pytest
 from glasshead.constants import COLLISION_TABLES_FILE, EPG_LAYOUT_FILE, TONGUE_RIG_FILE
 from glasshead.epg import synthetic
 from glasshead.epg.contacts import probes_from_layout
+from glasshead.fitting import objective_epg
 from glasshead.fitting.objective_epg import BACK_MM, REACH_MM, EpgObjective, wanted_from_rows
 from glasshead.geometry.collision_exact import ray_triangle_hits
 from glasshead.geometry.collision_format import decode_collision_tables
@@ -113,6 +114,26 @@ def test_distances_are_the_first_entering_crossing_of_every_triangle(scene):
                 assert got[k] == pytest.approx(best, abs=1e-9)
             else:
                 assert got[k] > 0
+
+
+def test_the_cull_gives_the_same_distances_in_any_blocks_and_with_its_work_arrays_reused(
+        scene, monkeypatch):
+    """The cull's work arrays are made once and its products run in blocks: a reused objective
+    reads, pose after pose (fewer and more triangles near the palate in turn), what a new one
+    reads, and blocks of 7 triangles what blocks of 1,024 do."""
+    rig, _tables, probes = scene
+    reused = EpgObjective(probes, np.zeros(probes.count), rig.triangles)
+    poses = [{}, *POSES.values(), {"jaw_opening": 10.0, "body_height": -5.0}, POSES["back"]]
+    expected = []
+    for params in poses:
+        vertices = rig.vertices(rig.values_from(params))
+        fresh = EpgObjective(probes, np.zeros(probes.count), rig.triangles).distances(vertices)
+        np.testing.assert_array_equal(reused.distances(vertices), fresh)
+        expected.append(fresh)
+    monkeypatch.setattr(objective_epg, "CULL_BLOCK", 7)
+    for params, fresh in zip(poses, expected, strict=True):
+        np.testing.assert_array_equal(reused.distances(rig.vertices(rig.values_from(params))),
+                                      fresh)
 
 
 def test_a_tongue_past_the_palate_reads_negative(scene):
