@@ -113,7 +113,7 @@ def regions(rig, shape, report):
     the root (behind the origin and below its horizontal, above the root cut), the lateral
     margins (each rib's two outer points, elsewhere) and the rest of the upper surface."""
     values = rig.values_from(report.params)
-    origin = np.append(rig.control_points(values)[1], 0.0)
+    origin = np.asarray(report.origin)
     vertices = shape_vertices(shape)
     mask = visible_mask(vertices, origin, grid=(VTL_RIBS, VTL_POINTS))
     error = RayError3D(rig.triangles, rig.vertices(values), vertices[mask], origin)

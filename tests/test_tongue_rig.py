@@ -191,8 +191,10 @@ def test_the_retracted_tongue_turns_back_about_the_hub_keeping_each_points_dista
 
 
 def _directions_and_distances(rig, values):
-    points, hub, _, _ = rig.control_points(values)
-    away = points - hub
+    # Radial moves act about the hub at rest (the jaw closed here); the posed hub also follows
+    # the root, by a share that the moved points change.
+    points = rig.control_points(values)[0]
+    away = points - rig.hub
     return np.arctan2(away[:, 1], away[:, 0]), np.linalg.norm(away, axis=1)
 
 

@@ -114,6 +114,49 @@ def test_no_radius_goes_through_the_hub_with_the_deepest_grooves_at_any_corner(r
     assert smallest >= TONGUE_CONTROL_FLOOR_MM - 1e-9
 
 
+def _station_crosses(rig, values, hub):
+    stations = rig.station_basis @ rig.control_points(values)[0] - hub
+    following = np.roll(stations, -1, axis=0)
+    return stations[:, 0] * following[:, 1] - stations[:, 1] * following[:, 0]
+
+
+def test_the_hub_comes_forward_and_up_with_the_root_where_the_pages_allow(rig):
+    by = dict((f["parameter"], f["by"]) for f in rig.definition["hub"]["follows"])
+    assert by["root_advancement"][0] > 0 and by["root_advancement"][1] > 0
+    values = rig.values_from({"root_advancement": 10.0})
+    hub = rig.control_points(values)[1]
+    np.testing.assert_allclose(hub, rig.hub + 10.0 * np.asarray(by["root_advancement"]),
+                               atol=1e-12)
+    np.testing.assert_array_equal(rig.control_points(rig.neutral)[1], rig.hub)
+
+
+def test_a_hub_that_would_close_the_turn_between_two_stations_stops_at_its_share(rig):
+    # The root drawn in as far as it goes with the back of the dorsum down brings the root's
+    # stations within a few mm of the hub: there the whole move would fold the pages.
+    values = rig.values_from({"root_advancement": rig.parameters["root_advancement"]["max"],
+                              "back_dorsum_height": rig.parameters["back_dorsum_height"]["min"],
+                              "jaw_opening": 8.0})
+    unmoved = rig.control_points(rig.values_from({"jaw_opening": 8.0}))[1]
+    hub = rig.control_points(values)[1]
+    follows = np.asarray(rig.definition["hub"]["follows"][0]["by"])
+    full = np.linalg.norm(follows) * rig.parameters["root_advancement"]["max"]
+    assert 0 < np.linalg.norm(hub - unmoved) < 0.9 * full
+    kept = _station_crosses(rig, values, hub) / _station_crosses(rig, values, unmoved)
+    assert kept.min() == pytest.approx(rig.hub_keep, abs=1e-9)
+    assert rig.pages_in_order(values)
+
+
+def test_a_rig_whose_hub_follows_an_unknown_parameter_is_refused(rig):
+    broken = json.loads(json.dumps(rig.definition))
+    broken["hub"]["follows"] = [{"parameter": "root_advance", "by": [0.5, 0.5]}]
+    with pytest.raises(ValueError, match="the hub follows 'root_advance', which is not in"):
+        TongueRig(broken)
+    broken["hub"]["follows"] = []
+    broken["hub"]["keep"] = 1.0
+    with pytest.raises(ValueError, match=r"keep must lie in \[0, 1\)"):
+        TongueRig(broken)
+
+
 def test_pages_out_of_order_are_detected(rig):
     values = rig.neutral.copy()
     moved = rig.rest_points.copy()

@@ -144,7 +144,7 @@ COLLISION_TOL = CollisionTolerance()
 # web/src/core/tongue.js; tests/vectors/tongue-surface.json asserts both evaluate it alike.
 
 #: Format version of the tongue rig definition; both evaluators refuse any other version.
-TONGUE_RIG_FORMAT_VERSION = 1
+TONGUE_RIG_FORMAT_VERSION = 2
 #: The least radial control value of the tongue surface, mm: no control of a page comes nearer
 #: the hub (a deep groove where the curve has come close to it would take the radius through it).
 TONGUE_CONTROL_FLOOR_MM = 1.0

@@ -13,8 +13,10 @@ The jaw stays where the caller puts it (``fit_shape3d``: from VTL's jaw angle, a
 it). ``fit_shape3d`` starts from the mid-sagittal fit of the shape's outline, which sets the
 sagittal parameters; the 3D fit then mostly shapes the cross-sections.
 
-The origin is the rig's hub posed at the starting values (the hub moves with the jaw only), on
-z = 0: the same origin as the 2D fit's, inside the tongue, fixed for the fit.
+The origin is the rig's hub posed at the starting values (the hub moves with the jaw and, as
+far as the pages allow, with the root: ``geometry.tongue_rig``), on z = 0, inside the tongue,
+fixed for the fit. From the 2D fit's result it comes forward with a root drawn in, where the
+2D fit's own origin (the hub at its start) stayed behind.
 
 What is compared (``visible_mask``), the 3D form of the 2D rule (``objective2d``):
 
@@ -102,10 +104,12 @@ VTL_RIBS, VTL_POINTS = 37, 11
 @dataclass
 class FitReport3D(FitReport):
     """A 3D fit's report: fit2d's fields (``seconds`` of wall time), the process CPU time of
-    the fit (the machine is shared: wall time varies with its load), the RMS at the start and
-    the cost of the mid-sagittal fit it started from (0 when it started elsewhere)."""
+    the fit (the machine is shared: wall time varies with its load), the RMS at the start, the
+    cost of the mid-sagittal fit it started from (0 when it started elsewhere) and the rays'
+    origin (x, y, z) mm."""
 
     cpu_seconds: float = 0.0
+    origin: tuple[float, ...] = ()
     start_rms_mm: float = 0.0
     start_evaluations: int = 0
     start_seconds: float = 0.0
@@ -323,7 +327,8 @@ def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=No
         at_limit=[n for n, hit in zip(objective.names, near, strict=True) if hit],
         rays=len(errors), stop=result.stop,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)},
-        start_rms_mm=float(np.sqrt(np.mean(before**2))))
+        start_rms_mm=float(np.sqrt(np.mean(before**2))),
+        origin=tuple(float(x) for x in origin))
 
 
 def shape_vertices(shape) -> np.ndarray:

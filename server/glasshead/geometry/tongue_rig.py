@@ -29,6 +29,11 @@ pairs, under named articulation parameters. Here:
   a section's ``stretch`` (its width) scales its pages sideways, see ``STRETCH``.
   ``jaw_opening`` instead poses the jaw (see ``geometry.jaw``); the tongue rides on it, each
   sagittal control point and the hub by its ``jaw_weight``.
+- The **hub follows** some parameters (``hub.follows``: ``(value - neutral) * by`` mm, before the
+  jaw), but only as far as every turn between neighbouring stations, seen from it, keeps the
+  share ``hub.keep`` of what it is from the hub that has not followed. That turn's cross product
+  is linear in the share of the move taken, so the share is found exactly, and the pages stay
+  in order wherever they are in order about the unmoved hub.
 
 ``build_definition`` assembles the JSON document; ``validate_definition`` checks one that was
 read back. Both evaluators (``geometry.tongue_surface`` and ``web/src/core/tongue.js``) are
@@ -95,6 +100,17 @@ DEFAULT_SECTION_WEIGHTS = {
 HUB_MM = (-19.0, -15.0)
 #: How much the hub follows the jaw.
 HUB_JAW_WEIGHT = 0.95
+#: How far the hub moves (forward, up; mm per unit of the parameter, before the jaw) with the
+#: parameters that carry the body of the tongue. The root drawn in toward a hub that stays put
+#: leaves it a few mm behind the surface, where its pages can no longer hold a root pushed
+#: forward round its midline with the sides behind (VocalTractLab's /i/ and the velar closure in
+#: /i/, docs/fitting-3d-fits.md); a hub that comes forward and up with the root keeps the body
+#: about it.
+HUB_FOLLOWS = (("root_advancement", (0.5, 0.5)),)
+#: Share of the turn between neighbouring stations, seen from the hub that has not followed,
+#: which every such turn keeps when the hub follows: the hub takes only as much of its move as
+#: that allows, so the pages stay in order wherever they were in order about the unmoved hub.
+HUB_KEEP = 0.5
 
 #: Inner knots of the coronal radial B-spline, degrees of page angle (denser near the lateral
 #: edges of the dorsum, where the tongue's cross-section turns fastest).
@@ -336,7 +352,9 @@ def build_definition(*, sagittal_positions, section_weights, ratios, pole_half_w
         "units": "mm",
         "frame": {"name": "project", "axes": dict(FRAME_AXES), "mid_sagittal_plane": "z = 0"},
         "source": source or {},
-        "hub": {"position": _floats(hub), "jaw_weight": HUB_JAW_WEIGHT},
+        "hub": {"position": _floats(hub), "jaw_weight": HUB_JAW_WEIGHT,
+                "follows": [{"parameter": name, "by": _floats(by)} for name, by in HUB_FOLLOWS],
+                "keep": HUB_KEEP},
         "sagittal": {
             "degree": SAGITTAL_DEGREE,
             "closed": True,
@@ -457,6 +475,18 @@ def _validate_parameters(definition, point_names, control_names, section_names):
                 raise ValueError(f"parameter {name}: bad move {move}")
     if jaw_name not in {p["name"] for p in table}:
         raise ValueError(f"the jaw parameter {jaw_name!r} is not in the parameter table")
+    hub = definition["hub"]
+    if not isinstance(hub.get("follows"), list) or not isinstance(hub.get("keep"), (int, float)):
+        raise ValueError("the hub needs 'follows' (a list) and 'keep' (a number)")
+    for follow in hub["follows"]:
+        if follow.get("parameter") not in {p["name"] for p in table}:
+            raise ValueError(f"the hub follows {follow.get('parameter')!r}, which is not in the "
+                             "parameter table")
+        if len(follow.get("by", ())) != 2 or not all(map(math.isfinite, follow["by"])):
+            raise ValueError(f"the hub's follow of {follow['parameter']}: by must be 2 finite "
+                             "numbers")
+    if not 0 <= hub["keep"] < 1:
+        raise ValueError("the hub's keep must lie in [0, 1)")
 
 
 def _unique(names, what):

@@ -13,7 +13,9 @@ then a few small matrix products:
    (value - neutral) * its turn, in degrees (a turn keeps the point's distance from the hub,
    so a tongue turned back into the pharynx keeps its pages in order where the same move made
    of straight steps would fold them);
-2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
+2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight; then the
+   hub follows its parameters (their summed move, posed with the jaw) as far as every turn
+   between neighbouring stations keeps ``hub.keep`` of its cross product about the unmoved hub;
 3. stations: S = B_sagittal @ points; page direction e = (S - H) / |S - H|;
 4. radial control values per station, with R = |S - H|, R0 its rest value and w the pole
    half-width: w + (R0 - w) * blended ratio + (R - R0) * follow + blended offsets times the
@@ -145,10 +147,21 @@ class TongueRig:
                     self.coronal_moves[k, section_index[move["section"]],
                                        control_index[move["control"]]] += move["by"]
 
+        # the moves as (parameters, everything they move): one product per evaluation
+        self._sagittal_moves_flat = self.sagittal_moves.reshape(count, -1)
+        self._coronal_moves_flat = self.coronal_moves.reshape(count, -1)
+
         self.jaw = definition["jaw"]
         self.jaw_parameter = self._index[self.jaw["parameter"]]
         self.hub = np.array(definition["hub"]["position"], dtype=np.float64)
         self.hub_jaw_weight = float(definition["hub"]["jaw_weight"])
+        self.hub_follows = np.zeros((count, 2))
+        for follow in definition["hub"]["follows"]:
+            self.hub_follows[self._index[follow["parameter"]]] += follow["by"]
+        self.hub_keep = float(definition["hub"]["keep"])
+        # each station's basis row, then its following station's: the pairs hub_share reads
+        self.station_pair_basis = np.concatenate([self.station_basis,
+                                                  np.roll(self.station_basis, -1, axis=0)])
         self.follow = np.array(coronal["follow"], dtype=np.float64)
         self.rest_radius = np.linalg.norm(self.station_basis @ self.rest_points - self.hub, axis=1)
         self.stations = len(self.station_params)
@@ -193,7 +206,7 @@ class TongueRig:
         and section stretches (sections,)."""
         values = self._checked(values)
         delta = values - self.neutral
-        points = self.rest_points + np.tensordot(delta, self.sagittal_moves, axes=1)
+        points = self.rest_points + (delta @ self._sagittal_moves_flat).reshape(-1, 2)
         radial = delta @ self.point_radials
         moved = radial != 0
         if np.any(moved):
@@ -206,12 +219,32 @@ class TongueRig:
             cos, sin = np.cos(turn), np.sin(turn)
             x, y = (points - self.hub).T
             points = self.hub + np.column_stack((cos * x - sin * y, sin * x + cos * y))
-        offsets = np.tensordot(delta, self.coronal_moves, axes=1)
+        offsets = (delta @ self._coronal_moves_flat).reshape(self.coronal_moves.shape[1:])
         stretch = delta @ self.stretch_moves
         pose = jaw_pose(values[self.jaw_parameter], self.jaw)
         points = apply_jaw_pose(points, pose, self.point_jaw_weights)
         hub = apply_jaw_pose(self.hub[None, :], pose, [self.hub_jaw_weight])[0]
+        follow = delta @ self.hub_follows
+        if np.any(follow):
+            # posed with the jaw: the hub's pose is affine, so only its linear part acts
+            move = follow + self.hub_jaw_weight * (np.asarray(pose)[:2, :2] @ follow - follow)
+            hub = hub + self.hub_share(points, hub, move) * move
         return points, hub, offsets, stretch
+
+    def hub_share(self, points: Floats, hub: Floats, move: Floats) -> float:
+        """The share of ``move`` that the hub may take from ``hub`` with the posed ``points``:
+        at most 1, and so much that the cross product of every two neighbouring stations seen
+        from the hub keeps ``hub_keep`` of its value about ``hub``. With a = S_i - hub and
+        b = S_i+1 - hub, the cross product from hub + t * move is a x b - t (a - b) x move:
+        linear in t, so its bound is exact."""
+        pairs = self.station_pair_basis @ points - hub
+        seen, following = pairs[:self.stations], pairs[self.stations:]
+        cross = seen[:, 0] * following[:, 1] - seen[:, 1] * following[:, 0]
+        step = seen - following
+        loss = step[:, 0] * move[1] - step[:, 1] * move[0]
+        bound = np.divide(cross, loss, out=np.full(self.stations, np.inf),
+                          where=(loss > 0) & (cross > 0))
+        return min(1.0, (1.0 - self.hub_keep) * float(bound.min()))
 
     def page_radii(self, values: npt.ArrayLike, posed: Controls | None = None
                    ) -> tuple[Floats, Floats, Floats, Floats, Floats]:

@@ -154,7 +154,7 @@ export const COLLISION_TOL = Object.freeze( {
 	depth: 0.1,
 } );
 /** Format version of the tongue rig definition; both evaluators refuse any other version. */
-export const TONGUE_RIG_FORMAT_VERSION = 1;
+export const TONGUE_RIG_FORMAT_VERSION = 2;
 /**
  * The least radial control value of the tongue surface, mm: no control of a page comes nearer the
  * hub (a deep groove where the curve has come close to it would take the radius through it).

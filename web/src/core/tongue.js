@@ -10,7 +10,10 @@
 //      moves along its own ray from the hub by the sum of ( value - neutral ) * its radial move,
 //      mm, keeping at least TONGUE_CONTROL_FLOOR_MM from the hub; then each point turns about
 //      the hub by the sum of ( value - neutral ) * its turn, degrees;
-//   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight;
+//   2. the jaw pose moves the sagittal control points and the hub, each by its jaw weight; then
+//      the hub follows its parameters (their summed move, posed with the jaw) as far as every
+//      turn between neighbouring stations keeps hub.keep of its cross product about the unmoved
+//      hub (hubShare);
 //   3. stations S = sagittal basis * points; page direction e = ( S - H ) / |S - H|;
 //   4. radial controls: w + ( R0 - w ) * ratio + ( R - R0 ) * follow + offsets * coronal weight
 //      , at least TONGUE_CONTROL_FLOOR_MM (poles: w);
@@ -109,6 +112,15 @@ export class TongueRig {
 		this.follow = Float64Array.from( coronal.follow );
 		this.hubRest = Float64Array.from( hub.position );
 		this.hubJawWeight = hub.jaw_weight;
+		this.hubFollowParameter = Int32Array.from( hub.follows, ( f ) => {
+
+			const k = this.parameterIndex.get( f.parameter );
+			if ( k === undefined ) throw new Error( `the hub follows ${f.parameter}, which is not in the parameter table` );
+			return k;
+
+		} );
+		this.hubFollowBy = Float64Array.from( hub.follows.flatMap( ( f ) => f.by ) );
+		this.hubKeep = hub.keep;
 		for ( let i = 0; i < this.stationCount; i ++ ) {
 
 			let sx = 0;
@@ -208,6 +220,7 @@ export class TongueRig {
 		// Scratch for evaluate(): nothing is allocated per call.
 		this.points = new Float64Array( 2 * n );
 		this.hub = new Float64Array( 2 );
+		this.stationXY = new Float64Array( 2 * this.stationCount );
 		this.offsets = new Float64Array( SECTION_COUNT * c );
 		this.stretch = new Float64Array( SECTION_COUNT );
 		this.stationStretch = new Float64Array( this.stationCount );
@@ -324,6 +337,63 @@ export class TongueRig {
 		const hy = this.hub[ 1 ];
 		this.hub[ 0 ] = hx + w * ( pose[ 0 ] * hx + pose[ 1 ] * hy + pose[ 3 ] - hx );
 		this.hub[ 1 ] = hy + w * ( pose[ 4 ] * hx + pose[ 5 ] * hy + pose[ 7 ] - hy );
+		this.writeStations();
+		this.followWithHub( values );
+
+	}
+
+	/** Step 2, second part: the hub takes what hubShare allows of its parameters' move. */
+	followWithHub( values ) {
+
+		let fx = 0;
+		let fy = 0;
+		for ( let m = 0; m < this.hubFollowParameter.length; m ++ ) {
+
+			const k = this.hubFollowParameter[ m ];
+			fx += ( values[ k ] - this.neutral[ k ] ) * this.hubFollowBy[ 2 * m ];
+			fy += ( values[ k ] - this.neutral[ k ] ) * this.hubFollowBy[ 2 * m + 1 ];
+
+		}
+
+		if ( fx === 0 && fy === 0 ) return;
+		// The move posed with the jaw: the hub's pose is affine, so only its linear part acts.
+		const w = this.hubJawWeight;
+		const pose = this.pose;
+		const mx = fx + w * ( pose[ 0 ] * fx + pose[ 1 ] * fy - fx );
+		const my = fy + w * ( pose[ 4 ] * fx + pose[ 5 ] * fy - fy );
+		const share = this.hubShare( mx, my );
+		this.hub[ 0 ] += share * mx;
+		this.hub[ 1 ] += share * my;
+
+	}
+
+	/**
+	 * The share of the move ( mx, my ) that the hub may take: at most 1, and so much that the
+	 * cross product of every two neighbouring stations seen from the hub keeps hubKeep of its
+	 * value about the present hub. With a = S_i - H and b = S_i+1 - H, the cross product from
+	 * H + t * move is a x b - t ( a - b ) x move: linear in t, so its bound is exact.
+	 */
+	hubShare( mx, my ) {
+
+		const hx = this.hub[ 0 ];
+		const hy = this.hub[ 1 ];
+		const stationXY = this.stationXY;
+		const count = this.stationCount;
+		let bound = Infinity;
+		for ( let i = 0; i < count; i ++ ) {
+
+			const j = ( i + 1 ) % count;
+			const ax = stationXY[ 2 * i ] - hx;
+			const ay = stationXY[ 2 * i + 1 ] - hy;
+			const bx = stationXY[ 2 * j ] - hx;
+			const by = stationXY[ 2 * j + 1 ] - hy;
+			const cross = ax * by - ay * bx;
+			const loss = ( ax - bx ) * my - ( ay - by ) * mx;
+			if ( loss > 0 && cross > 0 ) bound = Math.min( bound, cross / loss );
+
+		}
+
+		return Math.min( 1, ( 1 - this.hubKeep ) * bound );
 
 	}
 
@@ -374,20 +444,12 @@ export class TongueRig {
 
 	}
 
-	/**
-	 * Steps 3 to 5: stations, radial controls and the float64 vertices. The rig's arrays are read
-	 * into locals first: the compiled loops then load no property per step.
-	 */
-	writeVertices() {
+	/** Step 3, first part: the stations S = sagittal basis * points, posed with the jaw. */
+	writeStations() {
 
 		const n = this.pointCount;
-		const c = this.controlCount;
 		const points = this.points;
-		const hx = this.hub[ 0 ];
-		const hy = this.hub[ 1 ];
-		const pole = this.poleHalfWidth;
-		const sagittalWidth = this.sagittalWidth;
-		const { stationBasis, stationFirst, radius, direction, restRadius, stationBlend, stationStretch, stretch, stationOffsetBlend, controls, isPole, stationRatios, follow, offsets } = this;
+		const { stationBasis, stationFirst, sagittalWidth, stationXY } = this;
 		for ( let i = 0; i < this.stationCount; i ++ ) {
 
 			let sx = 0;
@@ -401,8 +463,28 @@ export class TongueRig {
 
 			}
 
-			const dx = sx - hx;
-			const dy = sy - hy;
+			stationXY[ 2 * i ] = sx;
+			stationXY[ 2 * i + 1 ] = sy;
+
+		}
+
+	}
+
+	/**
+	 * Steps 3 to 5: page directions, radial controls and the float64 vertices. The rig's arrays
+	 * are read into locals first: the compiled loops then load no property per step.
+	 */
+	writeVertices() {
+
+		const c = this.controlCount;
+		const hx = this.hub[ 0 ];
+		const hy = this.hub[ 1 ];
+		const pole = this.poleHalfWidth;
+		const { stationXY, radius, direction, restRadius, stationBlend, stationStretch, stretch, stationOffsetBlend, controls, isPole, stationRatios, follow, offsets } = this;
+		for ( let i = 0; i < this.stationCount; i ++ ) {
+
+			const dx = stationXY[ 2 * i ] - hx;
+			const dy = stationXY[ 2 * i + 1 ] - hy;
 			const r = Math.sqrt( dx * dx + dy * dy );
 			radius[ i ] = r;
 			direction[ 2 * i ] = dx / r;
