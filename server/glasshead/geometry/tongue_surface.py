@@ -224,10 +224,12 @@ class TongueRig:
         pose = jaw_pose(values[self.jaw_parameter], self.jaw)
         points = apply_jaw_pose(points, pose, self.point_jaw_weights)
         hub = apply_jaw_pose(self.hub[None, :], pose, [self.hub_jaw_weight])[0]
-        follow = delta @ self.hub_follows
-        if np.any(follow):
+        fx, fy = (float(f) for f in delta @ self.hub_follows)
+        if fx or fy:
             # posed with the jaw: the hub's pose is affine, so only its linear part acts
-            move = follow + self.hub_jaw_weight * (np.asarray(pose)[:2, :2] @ follow - follow)
+            w, m = self.hub_jaw_weight, pose
+            move = np.array([fx + w * (m[0, 0] * fx + m[0, 1] * fy - fx),
+                             fy + w * (m[1, 0] * fx + m[1, 1] * fy - fy)])
             hub = hub + self.hub_share(points, hub, move) * move
         return points, hub, offsets, stretch
 
