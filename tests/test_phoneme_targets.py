@@ -155,6 +155,8 @@ def test_k_g_ng_close_a_back_row_in_every_context_fitted_to_the_real_frames_that
             assert abs(variant["volume_change_pct"]) <= VOLUME_GOAL_PCT
             contact = variant["fit"]["contact"]
             assert contact["goal"] == "velar_stop" and contact["goal_frames"] == 8
+            # fronted before /i/: R6 and R7 wanted closed too (FRONTED_ROWS_OF_GOAL)
+            assert contact["fronted_rows"] == ([6, 7] if context == "i" else []), context
 
 
 def test_the_velar_closure_holds_when_the_jaw_or_the_body_moves_a_little(built, targets):

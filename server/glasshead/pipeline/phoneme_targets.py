@@ -291,6 +291,13 @@ EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0}
 #: was gone with the jaw 1 deg more open (R8 ``11000011``); at the plain margin it closed no
 #: row (R7 ``01111110``).
 PENETRATION_OF_GOAL = {"velar_stop": {"a": 0.5, "u": 0.5, "i": 0.15}}
+#: Rows (0 = R1) wanted closed across, by goal and vowel context, besides the class's majority:
+#: velars are fronted before front vowels, their closure made further forward on the palate
+#: (Keating and Lahiri 1993). The engassim closing frames close R8 whatever follows; fitted to
+#: them alone, the highest point of /k/(i)'s dorsum came out level with /k/(u)'s or 0.6 mm in
+#: front of it, as the last bits of the build fell; wanted closed in R6 and R7 too, it lies
+#: about 2 mm in front (docs/targets.md).
+FRONTED_ROWS_OF_GOAL = {"velar_stop": {"i": (5, 6)}}
 #: Degrees, by goal: the wanted contacts are also asked with the jaw this much more open
 #: (``fit_contact``'s ``jaw_slack_deg``). The velar body dominates its neighbours but the jaw
 #: does not (docs/coarticulation.md): in "and Kim" the jaw at /k/'s centre stood 0.76 deg more
@@ -337,7 +344,13 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
                 frames = frames[[RULE_FRAMES_OF_GOAL[name](f) for f in frames]]
             share = frames.mean(axis=0)
             weights = np.abs(2.0 * share - 1.0) * epg_observations.ELECTRODES
-            return {"name": name, "wanted": epg_observations.majority_pattern(frames),
+            wanted = epg_observations.majority_pattern(frames)
+            fronted = list(FRONTED_ROWS_OF_GOAL.get(name, {}).get(_context(shape_name), ()))
+            if fronted:
+                wanted, weights = wanted.copy(), weights.copy()
+                wanted[fronted] = epg_observations.ELECTRODES[fronted]
+                weights[fronted] = epg_observations.ELECTRODES[fronted]
+            return {"name": name, "wanted": wanted, "fronted_rows": fronted,
                     "weights": weights, "frames": int(len(frames)),
                     "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT),
                     "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(_context(shape_name))}
@@ -410,6 +423,7 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
                        "evaluations": contact.evaluations, "seconds": round(contact.seconds, 2),
                        "stop": contact.stop, "coronal": list(coronal),
                        "epg_weight": goal["epg_weight"], "goal_frames": goal.get("frames"),
+                       "fronted_rows": [r + 1 for r in goal.get("fronted_rows", [])],
                        "penetration_mm": penetration,
                        "before": {"rms_mm": fit["rms_mm"],
                                   "epg_error_mm": round(plain(rig.vertices(fitted)), 3),
