@@ -15,6 +15,7 @@ from glasshead.fitting.fit2d import (
     fit_outline,
     fit_shape,
     jaw_opening_from_vtl,
+    outline_parameters,
     width_parameters,
 )
 from glasshead.fitting.objective2d import (
@@ -201,13 +202,22 @@ def test_the_widths_stay_near_neutral_unless_the_volume_bound_presses(rig, secti
     assert uvular.rms_mm <= 1.0
     held = fit_shape(rig, shapes["tb-uvular-fricative(a)"], section=section)
     assert held.params == uvular.params  # deterministic
-    sagittal_only = fit_outline(rig, shapes["tb-uvular-fricative(a)"]["tongue_outline"],
+    outline = shapes["tb-uvular-fricative(a)"]["tongue_outline"]
+    sagittal_only = fit_outline(rig, outline,
                                 free=[n for n in rig.parameter_names
                                       if rig.parameters[n]["group"] == "tongue sagittal"],
                                 base=rig.values_from({"jaw_opening": uvular.params["jaw_opening"]}),
                                 section=section, restarts=RESTARTS)
-    # 0.79 against 0.66 mm here (the root's base drawn in took the rest of the gap of 0.3 mm)
-    assert sagittal_only.rms_mm > uvular.rms_mm + 0.1
+    # Freed from the sagittal-only fit, the widths narrow the tongue and the outline fits better
+    # (0.79 to 0.60 mm here). Compared from its own start, not against the fit from neutral:
+    # that one came out between 0.65 and 0.77 mm with its start moved by 1e-9 (BOBYQA's paths
+    # part on the last bits), so a margin against it was luck.
+    freed = fit_outline(rig, outline, free=outline_parameters(rig),
+                        base=rig.values_from(sagittal_only.params), section=section,
+                        restarts=RESTARTS)
+    assert sum(freed.params[w] for w in widths) < -3.0
+    assert abs(freed.volume_change_pct) <= 5.0
+    assert freed.rms_mm < sagittal_only.rms_mm - 0.1
 
 
 def test_fit_all_reports_each_named_shape(rig, observations):
