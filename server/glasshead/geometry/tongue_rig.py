@@ -473,13 +473,14 @@ def _validate_parameters(definition, point_names, control_names, section_names):
                     raise ValueError(f"parameter {name}: stretch must be a number")
             else:
                 raise ValueError(f"parameter {name}: bad move {move}")
-    if jaw_name not in {p["name"] for p in table}:
+    parameter_names = {p["name"] for p in table}
+    if jaw_name not in parameter_names:
         raise ValueError(f"the jaw parameter {jaw_name!r} is not in the parameter table")
     hub = definition["hub"]
     if not isinstance(hub.get("follows"), list) or not isinstance(hub.get("keep"), (int, float)):
         raise ValueError("the hub needs 'follows' (a list) and 'keep' (a number)")
     for follow in hub["follows"]:
-        if follow.get("parameter") not in {p["name"] for p in table}:
+        if follow.get("parameter") not in parameter_names:
             raise ValueError(f"the hub follows {follow.get('parameter')!r}, which is not in the "
                              "parameter table")
         if len(follow.get("by", ())) != 2 or not all(map(math.isfinite, follow["by"])):

@@ -159,9 +159,6 @@ class TongueRig:
         for follow in definition["hub"]["follows"]:
             self.hub_follows[self._index[follow["parameter"]]] += follow["by"]
         self.hub_keep = float(definition["hub"]["keep"])
-        # each station's basis row, then its following station's: the pairs hub_share reads
-        self.station_pair_basis = np.concatenate([self.station_basis,
-                                                  np.roll(self.station_basis, -1, axis=0)])
         self.follow = np.array(coronal["follow"], dtype=np.float64)
         self.rest_radius = np.linalg.norm(self.station_basis @ self.rest_points - self.hub, axis=1)
         self.stations = len(self.station_params)
@@ -239,8 +236,8 @@ class TongueRig:
         from the hub keeps ``hub_keep`` of its value about ``hub``. With a = S_i - hub and
         b = S_i+1 - hub, the cross product from hub + t * move is a x b - t (a - b) x move:
         linear in t, so its bound is exact."""
-        pairs = self.station_pair_basis @ points - hub
-        seen, following = pairs[:self.stations], pairs[self.stations:]
+        seen = self.station_basis @ points - hub
+        following = np.concatenate((seen[1:], seen[:1]))
         cross = seen[:, 0] * following[:, 1] - seen[:, 1] * following[:, 0]
         step = seen - following
         loss = step[:, 0] * move[1] - step[:, 1] * move[0]

@@ -345,7 +345,8 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
             share = frames.mean(axis=0)
             weights = np.abs(2.0 * share - 1.0) * epg_observations.ELECTRODES
             wanted = epg_observations.majority_pattern(frames)
-            fronted = list(FRONTED_ROWS_OF_GOAL.get(name, {}).get(_context(shape_name), ()))
+            context = _context(shape_name)
+            fronted = list(FRONTED_ROWS_OF_GOAL.get(name, {}).get(context, ()))
             if fronted:
                 wanted, weights = wanted.copy(), weights.copy()
                 wanted[fronted] = epg_observations.ELECTRODES[fronted]
@@ -353,7 +354,7 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
             return {"name": name, "wanted": wanted, "fronted_rows": fronted,
                     "weights": weights, "frames": int(len(frames)),
                     "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT),
-                    "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(_context(shape_name))}
+                    "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(context)}
     if shape_name in RULE_GOALS:
         wanted, weights = rule_pattern(shape_name)
         return {"name": RULE_GOALS[shape_name][0], "wanted": wanted, "weights": weights,
