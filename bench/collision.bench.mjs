@@ -1,5 +1,8 @@
 // Benchmark: tongue-palate collision per frame in JavaScript, on the built scene maxilla and
 // 1,000 seeded random tongue poses (every parameter uniform over its range, the jaw included).
+// The maxilla is read as the app reads it (bench/support/assets.mjs: GLTFLoader and
+// web/src/scene/gltfGeometry.js, the quantised positions dequantised), and checked first against
+// the liner's node radii, so that the reference is the surface the tables were built from.
 //
 // Methods, all timed in this run over the same poses:
 //   ours  voxel table + exact liner (web/src/core/collision.js);
@@ -16,67 +19,32 @@
 // Goals: ours under 0.1 ms median per frame in Node, at least 30 times faster than (c), exact.
 //
 //   node bench/collision.bench.mjs [poses]     (GLASSHEAD_ASSETS_DIR overrides assets/build)
-import { readFileSync } from 'node:fs';
-import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+//   GLASSHEAD_BENCH_QUICK=1: 60 poses, one timed round, (a) on 2 and (b) on 10 of them.
 import { DoubleSide, Ray, Triangle, Vector3 } from 'three';
-import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { MeshBVH } from 'three-mesh-bvh';
 
 import { COLLISION_TOL } from '../web/src/core/constants.js';
 import { correctVertices } from '../web/src/core/collision.js';
-import { decodeCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
+import { builtCollisionTables, builtJson, builtMesh } from './support/assets.mjs';
+import { check, count } from './support/quick.mjs';
 import { median, random } from './support/stats.mjs';
 
-const HERE = dirname( fileURLToPath( import.meta.url ) );
-const ASSETS = process.env.GLASSHEAD_ASSETS_DIR ?? resolve( HERE, '..', 'assets', 'build' );
-const POSES = Number( process.argv[ 2 ] ?? 1000 );
+const POSES = Number( process.argv[ 2 ] ?? count( 1000, 60 ) );
 const SEED = 1998;
-const ROUNDS = 7; // timed passes over all poses for the fast kernels (after one warm-up pass)
-const SLOW_POSES = 10; // (a) is about a second per frame
+const ROUNDS = count( 7, 1 ); // timed passes over all poses for the fast kernels (after one warm-up pass)
+const SLOW_POSES = count( 10, 2 ); // (a) is about a second per frame
+const BVH_POSES = count( POSES, 10 ); // (b) is about 60 ms per frame
 const GOAL_MS = 0.1;
 const GOAL_RATIO = 30;
-
-function file( name ) {
-
-	try {
-
-		return readFileSync( join( ASSETS, name ) );
-
-	} catch {
-
-		console.error( `${ join( ASSETS, name ) } is missing: run \`glasshead build\` first` );
-		process.exit( 2 );
-
-	}
-
-}
-
-const arrayBuffer = ( b ) => b.buffer.slice( b.byteOffset, b.byteOffset + b.byteLength );
-
-async function sceneMaxilla() {
-
-	const manifest = JSON.parse( file( 'manifest.json' ).toString( 'utf8' ) );
-	const entry = manifest.meshes.find( ( m ) => m.name === 'maxilla' && m.scene !== false );
-	const gltf = await new GLTFLoader().parseAsync( arrayBuffer( file( entry.file ) ), '' );
-	gltf.scene.updateMatrixWorld( true );
-	let geometry = null;
-	gltf.scene.traverse( ( o ) => {
-
-		if ( o.isMesh && geometry === null ) geometry = o.geometry.clone().applyMatrix4( o.matrixWorld );
-
-	} );
-	return geometry;
-
-}
 
 const now = () => Number( process.hrtime.bigint() ) / 1e6;
 
 // --- set-up -------------------------------------------------------------------------------------
-const tables = decodeCollisionTables( file( 'collision-tables.bin' ) );
-const rig = new TongueRig( JSON.parse( file( 'tongue-rig.json' ).toString( 'utf8' ) ) );
-const geometry = await sceneMaxilla();
+const tables = builtCollisionTables();
+const rig = new TongueRig( builtJson( 'tongue-rig.json' ) );
+// The scene maxilla as the app makes it of the quantised GLB: float32 millimetres.
+const geometry = await builtMesh( 'maxilla' );
 const bvh = new MeshBVH( geometry );
 const n = rig.vertexCount;
 const surface = rig.createSurface();
@@ -260,6 +228,35 @@ function firstHitRadii( offset, target ) {
 
 }
 
+// The reference mesh must be the one the tables were built from, or the exactness below means
+// nothing: the ray through each liner node (every one in a full run, a sample in the quick pass)
+// must first hit this maxilla at the node's radius. A mesh read another way (positions rounded,
+// a transform lost) fails here by far more than float32 rounding.
+function nodeAgreement( stride ) {
+
+	const { nodeRadius, nlon, nlat } = tables;
+	const { lon0, lat0, step } = tables.header.liner;
+	let worst = 0, disagree = 0, rays = 0;
+	for ( let k = 0; k < nodeRadius.length; k += stride ) {
+
+		const i = k % ( nlon + 1 ), j = Math.floor( k / ( nlon + 1 ) );
+		if ( j > nlat ) break;
+		const lon = lon0 + i * step, lat = lat0 + j * step;
+		ray.direction.set( Math.sin( lon ) * Math.cos( lat ), Math.cos( lon ) * Math.cos( lat ), Math.sin( lat ) );
+		const hit = bvh.raycastFirst( ray, DoubleSide, 0, Infinity );
+		const radius = hit === null ? Infinity : hit.distance;
+		rays ++;
+		if ( radius === nodeRadius[ k ] ) continue;
+		const gap = Math.abs( radius - nodeRadius[ k ] );
+		if ( ! ( gap <= COLLISION_TOL.surface ) ) disagree ++;
+		if ( Number.isFinite( gap ) ) worst = Math.max( worst, gap );
+
+	}
+
+	return { worst, disagree, rays };
+
+}
+
 // Per pose, the median time over `rounds` timed passes (after one warm-up pass when rounds > 0).
 function timeMethod( method, poseCount, rounds ) {
 
@@ -324,6 +321,8 @@ console.log( `Collision: ${ POSES } seeded tongue poses (seed ${ SEED }), ${ n }
 	`maxilla ${ triCount } triangles; liner ${ tables.nlon } x ${ tables.nlat } at ${ tables.header.liner.step_deg } deg; ` +
 	`voxels ${ Array.from( tables.voxelShape ).join( ' x ' ) }` );
 
+const nodes = nodeAgreement( count( 1, 7 ) );
+console.log( `reference maxilla against the liner's node radii: ${ nodes.rays } rays, ${ nodes.disagree } differ by more than ${ COLLISION_TOL.surface } mm, worst finite difference ${ nodes.worst.toExponential( 2 ) } mm` );
 const exact = judge( ours );
 const plain = judge( paperLiner );
 const oursPerPose = timeMethod( ours, POSES, ROUNDS );
@@ -334,7 +333,7 @@ const results = [
 	[ 'ours, frames with contact only', median( contact ), contact.length ],
 	[ 'paper: plain bilinear liner', median( timeMethod( paperLiner, POSES, ROUNDS ) ), POSES ],
 	[ '(a) closest triangle, brute force', median( timeMethod( projectBruteForce, SLOW_POSES, 0 ) ), SLOW_POSES ],
-	[ '(b) three-mesh-bvh closestPointToPoint', median( timeMethod( projectBVH, POSES, 0 ) ), POSES ],
+	[ '(b) three-mesh-bvh closestPointToPoint', median( timeMethod( projectBVH, BVH_POSES, 0 ) ), BVH_POSES ],
 	[ '(c) three-mesh-bvh raycastFirst from O', median( raycastPerPose ), POSES ],
 	[ '(c), frames with contact only', median( raycastPerPose.filter( ( _, p ) => exact.corrected[ p ] > 0 ) ), contact.length ],
 ];
@@ -359,4 +358,5 @@ console.log( `\ngoals: median ${ oursMs.toFixed( 4 ) } ms < ${ GOAL_MS } ms: ${ 
 	`${ ratioC.toFixed( 1 ) }x faster than (c) >= ${ GOAL_RATIO }x: ${ ratioC >= GOAL_RATIO ? 'yes' : 'NO' } ` +
 	`(${ ratioContact.toFixed( 1 ) }x on frames with contact); ` +
 	`exact: ${ isExact ? 'yes' : 'NO' }` );
-process.exit( isExact ? 0 : 1 );
+check( 'ours is exact against (c)', isExact, `worst depth ${ exact.worst.toExponential( 2 ) } mm, ${ exact.innocent } innocent moved, ${ exact.missed } left inside` );
+check( 'the poses touch the palate', contact.length > 0, 'no pose was corrected: nothing was checked' );
