@@ -6,9 +6,13 @@ phoneme targets, a temporary cache directory). Uncached: the cache directory is 
 each request, so each one pronounces, synthesises (espeak-ng), coarticulates and writes the JSON
 and WAV. Cached: the same request again, answered with the stored JSON. The first request of the
 process (CMUdict loaded, espeak-ng initialised) is printed apart. Also printed: the uncached
-request's parts, timed alone.
+request's parts, timed alone. The cached answer is checked to be the uncached one.
+
+The client speaks to the application as a browser on this machine does: its Host header is a
+name the server's allow-list accepts (api/security.py; by default the loopback names).
 
     .venv/bin/python bench/utterances.py [uncached_runs] [cached_runs]
+    GLASSHEAD_BENCH_QUICK=1: 1 uncached and 10 cached runs.
 """
 
 import os
@@ -23,6 +27,7 @@ REPO = Path(__file__).resolve().parents[1]
 SENTENCE = "The quick brown fox jumps over the lazy dog today."
 CACHED_GOAL_MS = 50.0
 UNCACHED_GOAL_MS = 1000.0
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 
 
 def timed(fn):
@@ -41,8 +46,8 @@ def median_ms(fn, runs, before=None):
 
 
 def main():
-    uncached_runs = int(sys.argv[1]) if len(sys.argv) > 1 else 15
-    cached_runs = int(sys.argv[2]) if len(sys.argv) > 2 else 200
+    uncached_runs = int(sys.argv[1]) if len(sys.argv) > 1 else (1 if QUICK else 15)
+    cached_runs = int(sys.argv[2]) if len(sys.argv) > 2 else (10 if QUICK else 200)
     if not (REPO / "assets" / "build" / "phoneme-targets.json").is_file():
         sys.exit("assets/build/phoneme-targets.json is missing: run `glasshead build` first")
     cache = Path(tempfile.mkdtemp(prefix="glasshead-bench-utterances-"))
@@ -51,6 +56,8 @@ def main():
     from fastapi.testclient import TestClient
 
     from glasshead.api.app import create_app
+    from glasshead.api.security import allowed_host_names
+    from glasshead.settings import get_settings
     from glasshead.speech import coarticulation, espeak, pronounce
     from glasshead.speech.utterance import RATE_HZ
 
@@ -62,8 +69,11 @@ def main():
         for path in cache.glob("*.wav"):
             path.unlink()
 
+    hosts = allowed_host_names(get_settings())
+    host = "127.0.0.1" if "127.0.0.1" in hosts else sorted(hosts)[0]
+    base_url = f"http://[{host}]" if ":" in host else f"http://{host}"
     try:
-        with TestClient(create_app()) as client:
+        with TestClient(create_app(), base_url=base_url) as client:
             def post():
                 response = client.post("/api/v1/utterances", json=body)
                 assert response.status_code == 200, response.text
@@ -74,6 +84,7 @@ def main():
             uncached = median_ms(post, uncached_runs, before=clear)
             post()
             cached = median_ms(post, cached_runs)
+            same = post().content == first.content
 
             engine = espeak.get_engine()
             said = pronounce.pronounce(SENTENCE, engine)
@@ -100,7 +111,9 @@ def main():
     print(f"    pronounce {pronounce_ms:.2f} ms, espeak-ng synthesis {synth_ms:.2f} ms, "
           f"coarticulation {coart_ms:.2f} ms")
     print(f"  first request of the process (CMUdict loaded, espeak-ng started) {cold_ms:.0f} ms")
+    print(f"check: the cached answer is the uncached one: {'ok' if same else 'FAILED'}")
+    return 0 if same else 1
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
