@@ -5,7 +5,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { fewestGarbageCollections, garbageCollections } from './support/garbage.js';
 
-import { TongueRig, surfaceTriangles } from '../../web/src/core/tongue.js';
+import { TongueRig } from '../../web/src/core/tongue.js';
+import { surfaceTriangles } from '../../web/src/core/tongueSurface.js';
 import { meshVolume } from '../../web/src/core/meshVolume.js';
 import { applyJawPose, jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import {

@@ -6,7 +6,7 @@
 // arrays read from the articulation and the rig.
 
 import { fitTransform, PANEL_COLORS, tracePolyline } from './SagittalPanel.js';
-import { SECTION_COUNT } from '../core/tongue.js';
+import { SECTION_COUNT } from '../core/tongueStations.js';
 
 export const SECTION_NAMES = Object.freeze( [ 'front', 'middle', 'back' ] );
 export const SECTION_COLORS = Object.freeze( [ '#2f6db5', '#2e8b57', '#7b4ea3' ] );
