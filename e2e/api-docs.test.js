@@ -3,26 +3,14 @@
 // with no violation (a violation is a console error, recorded in page.problems).
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openPage, startServer } from './harness.js';
+import { describe, test } from 'node:test';
+import { openPage, serverAndBrowser } from './harness.js';
 
 describe( 'the API docs pages', { timeout: 120_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
-
-		server = await startServer();
-		browser = await launchBrowser();
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
-
-	} );
+	serverAndBrowser( ( running ) => ( { server, browser } = running ) );
 
 	async function openDocs( path ) {
 

@@ -5,9 +5,9 @@
 // author's edits, and overwrites knowingly. Screenshots: e2e/screenshots/author-*.png.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { account, apiSession, authHeaders, signIn } from './accounts.js';
-import { launchBrowser, openPage, saveScreenshot, startServer } from './harness.js';
+import { openPage, saveScreenshot, serverAndBrowser } from './harness.js';
 
 /** Smallest touch target, CSS pixels. */
 const TOUCH_PX = 44;
@@ -16,18 +16,10 @@ describe( 'the lesson editor', { timeout: 900_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		await account( server, 'author' );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -4,9 +4,9 @@
 
 import assert from 'node:assert/strict';
 import { join, resolve } from 'node:path';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders, signIn } from './accounts.js';
-import { launchBrowser, openPage, readDebug, REPO, startServer } from './harness.js';
+import { openPage, readDebug, REPO, serverAndBrowser } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 /** Real recordings (the emuR engassim set) to import for a child. */
@@ -16,19 +16,7 @@ describe( 'recordings of a caseload', { timeout: 300_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
-
-		server = await startServer();
-		browser = await launchBrowser();
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
-
-	} );
+	serverAndBrowser( ( running ) => ( { server, browser } = running ) );
 
 	test( 'a clinician imports a recording for a child of their caseload, chosen in the import box', async () => {
 

@@ -8,9 +8,9 @@
 
 import assert from 'node:assert/strict';
 import { join, resolve } from 'node:path';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders, openSignedIn } from './accounts.js';
-import { launchBrowser, readDebug, REPO, SCREENSHOT_DIR, settle, startServer } from './harness.js';
+import { readDebug, REPO, SCREENSHOT_DIR, serverAndBrowser, settle } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const EMUR = join( DATA_DIR, 'epg', 'emur-engassim.json' );
@@ -45,20 +45,12 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 
 	};
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		// A clinician saves the pose and reads the recordings.
 		page = await openSignedIn( browser, server, 'clinician', `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
 		session = await apiSession( server, 'clinician' );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -3,9 +3,9 @@
 // 1024 x 768) are for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { colourDistance as distance, pagePixel as pixel } from './png.js';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { openPage, readDebug, saveScreenshot, serverAndBrowser, settle, waitForLoaded } from './harness.js';
 
 /** [r, g, b] of '#rrggbb'. */
 const rgb = ( hex ) => [ 1, 3, 5 ].map( ( i ) => parseInt( hex.slice( i, i + 2 ), 16 ) );
@@ -14,19 +14,7 @@ describe( 'the cutaway shows air and the velum', { timeout: 300_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
-
-		server = await startServer();
-		browser = await launchBrowser();
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
-
-	} );
+	serverAndBrowser( ( running ) => ( { server, browser } = running ) );
 
 	for ( const [ device, width, height ] of [ [ 'projector', 1920, 1080 ], [ 'tablet', 1024, 768 ] ] ) {
 

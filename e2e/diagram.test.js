@@ -5,26 +5,18 @@
 
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { decodePng } from './png.js';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, SCREENSHOT_DIR, settle, startServer } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, SCREENSHOT_DIR, serverAndBrowser, settle } from './harness.js';
 
 describe( 'the diagram', { timeout: 240_000 }, () => {
 
 	let server, browser, page;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -6,9 +6,9 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders, signIn } from './accounts.js';
-import { launchBrowser, openPage, readDebug, REPO, SCREENSHOT_DIR, startServer, waitForLoaded } from './harness.js';
+import { openPage, readDebug, REPO, SCREENSHOT_DIR, serverAndBrowser, waitForLoaded } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const EMUR = join( DATA_DIR, 'epg', 'emur-engassim.json' );
@@ -22,9 +22,9 @@ describe( 'synthetic EPG and the clinician view', { timeout: 300_000 }, () => {
 
 	let server, browser, page, api, recording, detail, poses;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
+		( { server, browser } = running );
 		// Recordings and saved poses are a clinician's: the test's requests and the page are one's.
 		const session = await apiSession( server, 'clinician' );
 		api = async ( method, path, body ) => {
@@ -50,16 +50,8 @@ describe( 'synthetic EPG and the clinician view', { timeout: 300_000 }, () => {
 
 		}
 
-		browser = await launchBrowser();
 		page = await openPage( browser, { width: 1400, height: 1020 } );
 		await signIn( page, server, 'clinician' );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -3,25 +3,17 @@
 // in e2e/screenshots/ are for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { describe, test } from 'node:test';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 describe( 'the eyes', { timeout: 240_000 }, () => {
 
 	let server, browser, page;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		page = await openLoaded( browser, `${ server.baseUrl }/#/` );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -2,12 +2,23 @@
 // SwiftShader) through playwright-core, for the end-to-end tests.
 //
 // GLASSHEAD_E2E_BASE_URL=http://host:port runs the tests against a server that is already running.
+//
+// Every test file starts the same way, in the body of its describe block:
+//
+//   let server, browser, page;
+//   serverAndBrowser( async ( running ) => {
+//
+//   	( { server, browser } = running );
+//   	page = await openLoaded( browser, `${ server.baseUrl }/#/workbench` ); // the file's own set-up
+//
+//   } );
 
 import { spawn } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { createServer } from 'node:net';
 import { dirname, join } from 'node:path';
+import { after, before } from 'node:test';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 
@@ -163,6 +174,33 @@ export async function launchBrowser() {
 	}
 
 	return chromium.launch( { executablePath: CHROMIUM, headless: true, args: CHROMIUM_ARGS } );
+
+}
+
+/**
+ * The start-up and shut-down of a describe block's tests, called in its body: before the tests,
+ * start the server (startServer) and launch the browser (launchBrowser), then run
+ * `prepare( { server, browser } )`, the file's own set-up (accounts, data, a first page); after
+ * them, close the browser and stop the server, whatever failed. Returns that { server, browser }
+ * object, filled in once the tests' `before` has run.
+ */
+export function serverAndBrowser( prepare = () => {} ) {
+
+	const running = { server: null, browser: null };
+	before( async () => {
+
+		running.server = await startServer();
+		running.browser = await launchBrowser();
+		await prepare( running );
+
+	} );
+	after( async () => {
+
+		await running.browser?.close();
+		await running.server?.stop();
+
+	} );
+	return running;
 
 }
 

@@ -3,30 +3,22 @@
 // Assertions read `window.glasshead`; screenshots in e2e/screenshots/ are for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { decodePng, compareImages } from './png.js';
-import { launchBrowser, openLoaded, openPage, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { openLoaded, openPage, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 describe( 'the head view', { timeout: 240_000 }, () => {
 
 	let server, browser, page, anatomy;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
+		( { server, browser } = running );
 		const response = await fetch( `${ server.baseUrl }/api/v1/anatomy` );
 		const body = await response.text();
 		assert.equal( response.status, 200, `GET /api/v1/anatomy answered ${ response.status }: ${ body }` );
 		anatomy = JSON.parse( body );
-		browser = await launchBrowser();
 		page = await openLoaded( browser, `${ server.baseUrl }/#/` );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -4,26 +4,18 @@
 // 1024 x 768; screenshots of both in e2e/screenshots/ are for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { describe, test } from 'node:test';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 describe( 'the label layer', { timeout: 240_000 }, () => {
 
 	let server, browser, page, landmarks;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
+		( { server, browser } = running );
 		landmarks = await ( await fetch( `${ server.baseUrl }/api/v1/anatomy/landmarks` ) ).json();
-		browser = await launchBrowser();
 		page = await openLoaded( browser, `${ server.baseUrl }/?still#/`, { width: 1920, height: 1080 } ); // no blinks: a still head must draw nothing
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

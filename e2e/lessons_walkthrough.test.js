@@ -11,9 +11,9 @@
 
 import assert from 'node:assert/strict';
 import { join, resolve } from 'node:path';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders, signIn } from './accounts.js';
-import { launchBrowser, openPage, readDebug, REPO, saveScreenshot, startServer } from './harness.js';
+import { openPage, readDebug, REPO, saveScreenshot, serverAndBrowser } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const EMUR = join( DATA_DIR, 'epg', 'emur-engassim.json' );
@@ -42,19 +42,11 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 
 	};
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		sessions = {};
 		for ( const role of [ 'author', 'teacher', 'clinician' ] ) sessions[ role ] = await apiSession( server, role );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -4,9 +4,9 @@
 // e2e/screenshots/nav-*.png for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { openSignedIn } from './accounts.js';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle, waitForLoaded } from './harness.js';
 
 const VIEWS = [
 	{ path: '/', label: 'Head' },
@@ -22,19 +22,11 @@ describe( 'finding one\'s way', { timeout: 1_200_000 }, () => {
 
 	let server, browser, page;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		// A clinician: the clinician view and saving poses need one signed in.
 		page = await openSignedIn( browser, server, 'clinician', `${ server.baseUrl }/#/`, { width: 1366, height: 768 } );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -4,8 +4,8 @@
 // screenshots in e2e/screenshots/ are for a person.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { describe, test } from 'node:test';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 /** The shape the tests choose: the contract's example, a tongue-tip closure. */
 const SHAPE = 'tt-alveolar-closure(a)';
@@ -23,9 +23,9 @@ describe( 'the workbench shows observations and phoneme targets', { timeout: 300
 
 	let server, browser, page, listed, shape, phoneme;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
+		( { server, browser } = running );
 		const get = async ( path ) => {
 
 			const response = await fetch( `${ server.baseUrl }/api/v1/${ path }` );
@@ -37,15 +37,7 @@ describe( 'the workbench shows observations and phoneme targets', { timeout: 300
 		listed = ( await get( 'observations' ) ).observations;
 		shape = await get( `observations/${ encodeURIComponent( SHAPE ) }` );
 		phoneme = await get( 'phonemes/T' );
-		browser = await launchBrowser();
 		page = await openLoaded( browser, `${ server.baseUrl }/#/workbench`, { width: 1366, height: 768 } );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

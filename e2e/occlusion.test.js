@@ -4,9 +4,9 @@
 // it, as it is with the cut off (no see-through pass). Screenshots are for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { colourDistance as distance, pagePixel as pixel } from './png.js';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 /** RGB distance within which two renders of the same skin count as the same colour. */
 const SAME_COLOUR = 10;
@@ -17,19 +17,7 @@ describe( 'nothing draws through opaque skin', { timeout: 240_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
-
-		server = await startServer();
-		browser = await launchBrowser();
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
-
-	} );
+	serverAndBrowser( ( running ) => ( { server, browser } = running ) );
 
 	test( 'in the Front view with the cutaway on, the electrodes behind the opaque skin are not seen', async () => {
 

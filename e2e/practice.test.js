@@ -8,9 +8,9 @@
 // person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders } from './accounts.js';
-import { launchBrowser, readDebug, saveScreenshot, startServer } from './harness.js';
+import { readDebug, saveScreenshot, serverAndBrowser } from './harness.js';
 
 /** The smallest touch target of the child's view, CSS pixels. */
 const TOUCH_PX = 64;
@@ -47,10 +47,9 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 		overflow: document.documentElement.scrollWidth - window.innerWidth,
 	} ), TOUCH_PX );
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		teacher = await apiSession( server, 'teacher' );
 		const author = await apiSession( server, 'author' );
 		schoolClass = ( await api( teacher, 'POST', 'classes', { name: 'Class 3B' } ) ).body;
@@ -70,13 +69,6 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 		page = await context.newPage();
 		page.problems = [];
 		page.on( 'pageerror', ( error ) => page.problems.push( `uncaught: ${ error.message }` ) );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -6,27 +6,19 @@
 
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders, createAccounts, signIn } from './accounts.js';
-import { launchBrowser, openPage, saveScreenshot, startServer } from './harness.js';
+import { openPage, saveScreenshot, serverAndBrowser } from './harness.js';
 
 describe( 'a child’s data', { timeout: 900_000 }, () => {
 
 	let server, browser, setting;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		await createAccounts( server, [ 'clinician', 'admin' ] );
 		setting = await makeSetting( server );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

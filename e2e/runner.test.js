@@ -8,9 +8,9 @@
 // a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { apiSession, authHeaders, signIn } from './accounts.js';
-import { launchBrowser, openPage, readDebug, saveScreenshot, startServer } from './harness.js';
+import { openPage, readDebug, saveScreenshot, serverAndBrowser } from './harness.js';
 
 const SIZE = Object.freeze( { width: 1366, height: 768 } );
 
@@ -28,21 +28,13 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 
 	}, [ lesson, item ], { timeout: 180_000, polling: 200 } );
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		const teacher = await apiSession( server, 'teacher' );
 		lessons = ( await ( await fetch( `${ server.baseUrl }/api/v1/lessons`, { headers: authHeaders( teacher ) } ) ).json() ).lessons;
 		page = await openPage( browser, SIZE );
 		await signIn( page, server, 'teacher' );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -4,10 +4,10 @@
 // longer takes turns into "Please sign in". Screenshots: e2e/screenshots/signin-*.png.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { account, apiSession, signIn } from './accounts.js';
 import { axeViolations } from './axe.js';
-import { launchBrowser, openLoaded, openPage, readDebug, saveScreenshot, startServer, waitForLoaded } from './harness.js';
+import { openLoaded, openPage, readDebug, saveScreenshot, serverAndBrowser, waitForLoaded } from './harness.js';
 
 /** Smallest touch target, CSS pixels. */
 const TOUCH_PX = 44;
@@ -17,18 +17,10 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		await account( server, 'teacher' );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

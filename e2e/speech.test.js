@@ -8,8 +8,8 @@
 // Screenshots speech-1920 and speech-768 are for a person.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openLoaded, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { describe, test } from 'node:test';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 /** Has /t d k p b m n ŋ/, each more than once or next to a vowel. */
 const SENTENCE = 'Ted and Kim bring a pink map.';
@@ -47,20 +47,12 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 	let server, browser, page, utterance;
 	const samples = [];
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
-		browser = await launchBrowser();
+		( { server, browser } = running );
 		page = await openLoaded( browser, `${ server.baseUrl }/#/speak`, { width: 1920, height: 1080 } );
 		// The example in the box is said as the page loads.
 		await page.waitForFunction( () => window.glasshead.speech?.id && ! window.glasshead.speech.busy, null, { timeout: 60_000 } );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 

@@ -8,10 +8,10 @@
 // tablet-<view>-<width> are for a person.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { join, resolve } from 'node:path';
 import { openSignedIn, signIn } from './accounts.js';
-import { launchBrowser, openPage, readDebug, REPO, saveScreenshot, settle, startServer } from './harness.js';
+import { openPage, readDebug, REPO, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 /** Recordings for the clinician view, imported through its file input (the first time only). */
@@ -62,19 +62,7 @@ describe( 'every view on a tablet', { timeout: 900_000 }, () => {
 	let server, browser;
 	const problems = [];
 
-	before( async () => {
-
-		server = await startServer();
-		browser = await launchBrowser();
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
-
-	} );
+	serverAndBrowser( ( running ) => ( { server, browser } = running ) );
 
 	let imported = false;
 	async function open( view, size ) {

@@ -3,26 +3,14 @@
 // the screenshot (profile cutaway, 1920 x 1080) is for a person to look at.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
-import { launchBrowser, openPage, readDebug, saveScreenshot, settle, startServer, waitForLoaded } from './harness.js';
+import { describe, test } from 'node:test';
+import { openPage, readDebug, saveScreenshot, serverAndBrowser, settle, waitForLoaded } from './harness.js';
 
 describe( 'the tongue against the velum and the pharyngeal wall', { timeout: 300_000 }, () => {
 
 	let server, browser;
 
-	before( async () => {
-
-		server = await startServer();
-		browser = await launchBrowser();
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
-
-	} );
+	serverAndBrowser( ( running ) => ( { server, browser } = running ) );
 
 	test( 'a raised back of the tongue flattens against a lowered velum, and a retracted root against the wall', async () => {
 

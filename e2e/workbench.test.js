@@ -3,10 +3,10 @@
 // Assertions read `window.glasshead`; the screenshots in e2e/screenshots/ are for a person.
 
 import assert from 'node:assert/strict';
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import { compareImages, decodePng } from './png.js';
 import { authHeaders, openSignedIn } from './accounts.js';
-import { launchBrowser, readDebug, saveScreenshot, settle, startServer } from './harness.js';
+import { readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 /** Poses of the screenshots (rig parameter names, mm and degrees). */
 const POSES = Object.freeze( {
@@ -21,23 +21,15 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 
 	let server, browser, page, rig, author;
 
-	before( async () => {
+	serverAndBrowser( async ( running ) => {
 
-		server = await startServer();
+		( { server, browser } = running );
 		const response = await fetch( `${ server.baseUrl }/api/v1/tongue/rig` );
 		assert.equal( response.status, 200, `GET /api/v1/tongue/rig answered ${ response.status }` );
 		rig = await response.json();
-		browser = await launchBrowser();
 		// Saving poses needs an author (or a clinician or admin) signed in.
 		page = await openSignedIn( browser, server, 'author', `${ server.baseUrl }/#/workbench` );
 		author = JSON.parse( await page.evaluate( () => window.localStorage.getItem( 'glasshead.session' ) ) );
-
-	} );
-
-	after( async () => {
-
-		await browser?.close();
-		await server?.stop();
 
 	} );
 
