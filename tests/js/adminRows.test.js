@@ -1,6 +1,6 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { confirmWords, deletedWords, exportName } from '../../web/src/ui/adminRows.js';
+import { confirmWords, deletedWords, exportName } from '../../web/src/ui/admin/adminRows.js';
 
 test( 'a deletion is told in words, one and many and none', () => {
 

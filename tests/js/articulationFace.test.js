@@ -14,7 +14,7 @@ import { BoxGeometry, BufferAttribute, BufferGeometry, Group, Matrix4 } from 'th
 import { Head } from '../../web/src/scene/Head.js';
 import { Articulation, parameterDefinitions } from '../../web/src/scene/Articulation.js';
 import { createApi } from '../../web/src/api.js';
-import { loadArticulation } from '../../web/src/ui/loaders.js';
+import { loadArticulation } from '../../web/src/ui/shared/loaders.js';
 import { FacePose, seamGroups, weldSeam } from '../../web/src/scene/FacePose.js';
 import { FACE_RIG_MESHES } from '../../web/src/core/constants.js';
 import { TongueRig } from '../../web/src/core/tongue.js';

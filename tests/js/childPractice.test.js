@@ -1,12 +1,12 @@
-// The child's practice without a browser (ui/ChildPracticeFlow.js, ui/ChildPracticePictures.js):
+// The child's practice without a browser (ui/practice/ChildPracticeFlow.js, ui/shared/ChildPracticePictures.js):
 // a class code as typed by an adult, a round through a lesson counting the replays of each target
 // and making its practice record, and a picture for every avatar the server offers and every face.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
-import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from '../../web/src/ui/ChildPracticeFlow.js';
-import { AVATAR_NAMES, pictureShapes, RATINGS } from '../../web/src/ui/ChildPracticePictures.js';
+import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from '../../web/src/ui/practice/ChildPracticeFlow.js';
+import { AVATAR_NAMES, pictureShapes, RATINGS } from '../../web/src/ui/shared/ChildPracticePictures.js';
 
 /** The server's avatars, read from the store module that defines them. */
 function serverAvatars() {

@@ -1,7 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { childChoices, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinicianChildRows.js';
-import { downloadFile } from '../../web/src/ui/download.js';
+import { childChoices, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinician/clinicianChildRows.js';
+import { downloadFile } from '../../web/src/ui/shared/download.js';
 
 test( 'the chooser groups the caseload’s children by class, classes by name, and leaves out empty classes', () => {
 

@@ -1,10 +1,10 @@
-// The clinician view's data source (web/src/ui/clinicianData.js) on a fake HTTP client: what it
+// The clinician view's data source (web/src/ui/clinician/clinicianData.js) on a fake HTTP client: what it
 // asks the API for and what it makes of the answers.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { ApiError, createApi } from '../../web/src/api.js';
-import { ClinicianData, recordingLabel } from '../../web/src/ui/clinicianData.js';
+import { ClinicianData, recordingLabel } from '../../web/src/ui/clinician/clinicianData.js';
 import { EPG_CELLS } from '../../web/src/core/constants.js';
 import { near, nearArray } from './support/near.js';
 

@@ -1,9 +1,9 @@
-// The clinician view's playback clock (web/src/ui/playbackClock.js) on a stand-in time source and
+// The clinician view's playback clock (web/src/ui/clinician/playbackClock.js) on a stand-in time source and
 // scheduler: frames come at their own times, times the speed, and playing ends on the last one.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { PlaybackClock } from '../../web/src/ui/playbackClock.js';
+import { PlaybackClock } from '../../web/src/ui/clinician/playbackClock.js';
 
 /** A clock on manual time: advance( ms ) moves time on and runs the tick that was scheduled. */
 function manualClock() {

@@ -2,7 +2,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 
 import { EPG_CELLS } from '../../web/src/core/constants.js';
-import { clinicianEpgReport, clinicianReport, formatIndexValue } from '../../web/src/ui/clinicianReport.js';
+import { clinicianEpgReport, clinicianReport, formatIndexValue } from '../../web/src/ui/clinician/clinicianReport.js';
 
 function framesWith( ...contactedPerFrame ) {
 

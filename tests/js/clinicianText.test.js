@@ -1,15 +1,15 @@
-// What the clinician view says in words (web/src/ui/clinicianText.js, clinicianUrl.js) and how it
+// What the clinician view says in words (web/src/ui/clinician/clinicianText.js, clinicianUrl.js) and how it
 // imports a file (clinicianImport.js, on a fake fetch): readable index names, recording titles,
 // kappa beside the raw share, the selection in the URL and bad values there, plain-word errors.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
-import { agreementText, indexLabel, INDEX_LABELS, recordingTitle, speakerOf } from '../../web/src/ui/clinicianText.js';
-import { missingChoiceMessage, parseSelection, SelectionUrl, selectionHash } from '../../web/src/ui/clinicianUrl.js';
-import { importErrorMessage, importRecordingFile, MAX_IMPORT_BYTES } from '../../web/src/ui/clinicianImport.js';
-import { DEFAULT_SPEED, SPEEDS, speedLabel } from '../../web/src/ui/clinicianLayout.js';
-import { TABLE_INDICES } from '../../web/src/ui/clinicianRender.js';
-import { recordingLabel } from '../../web/src/ui/clinicianData.js';
+import { agreementText, indexLabel, INDEX_LABELS, recordingTitle, speakerOf } from '../../web/src/ui/clinician/clinicianText.js';
+import { missingChoiceMessage, parseSelection, SelectionUrl, selectionHash } from '../../web/src/ui/clinician/clinicianUrl.js';
+import { importErrorMessage, importRecordingFile, MAX_IMPORT_BYTES } from '../../web/src/ui/clinician/clinicianImport.js';
+import { DEFAULT_SPEED, SPEEDS, speedLabel } from '../../web/src/ui/clinician/clinicianLayout.js';
+import { TABLE_INDICES } from '../../web/src/ui/clinician/clinicianRender.js';
+import { recordingLabel } from '../../web/src/ui/clinician/clinicianData.js';
 
 test( 'every index of the table has a readable name that says its unit or range', () => {
 

@@ -11,7 +11,7 @@ import {
 import { correctVertices, STAT_CORRECTED, STAT_SCREENED, STAT_TESTED } from '../../web/src/core/collision.js';
 import { CollisionTablesError, crc32, decodeCollisionTables } from '../../web/src/core/tables.js';
 import { createApi } from '../../web/src/api.js';
-import { loadCollisionTables } from '../../web/src/ui/loaders.js';
+import { loadCollisionTables } from '../../web/src/ui/shared/loaders.js';
 import { near, nearRelative, readVectors, tolerance } from './support/vectors.js';
 
 const CASES = readVectors( 'collision-correct.json' );

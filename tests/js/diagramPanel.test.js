@@ -1,10 +1,10 @@
-// The diagram panel (web/src/ui/DiagramPanel.js) drawn into a recording 2D context: every part's
+// The diagram panel (web/src/ui/shared/DiagramPanel.js) drawn into a recording 2D context: every part's
 // chains are traced, closed loops filled, and the constriction marked with its width and place.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { createSectionPart, cutSection } from '../../web/src/core/midSection.js';
-import { DIAGRAM_COLORS, drawDiagram } from '../../web/src/ui/DiagramPanel.js';
+import { DIAGRAM_COLORS, drawDiagram } from '../../web/src/ui/shared/DiagramPanel.js';
 
 /** A 2D context that records its calls and the fill style at each fill. */
 function recorder() {

@@ -5,11 +5,11 @@ import assert from 'node:assert/strict';
 
 import {
 	CODE_BOTH_ON, CODE_ONLY_RECORDING, CODE_ONLY_REFERENCE, drawPalatogram, PALATOGRAM_COLORS, palatogramLayout,
-} from '../../web/src/ui/Palatogram.js';
-import { drawPalatogramStrip, frameAtX, stripWindow } from '../../web/src/ui/PalatogramStrip.js';
-import { drawIndexPlot, scaleLinear } from '../../web/src/ui/IndexPlot.js';
-import { alignTarget, codesFromRows, frameAtElapsed, framesFromRows, indexTracks } from '../../web/src/ui/clinicianFrames.js';
-import { parseTargetName } from '../../web/src/ui/targets.js';
+} from '../../web/src/ui/shared/Palatogram.js';
+import { drawPalatogramStrip, frameAtX, stripWindow } from '../../web/src/ui/clinician/PalatogramStrip.js';
+import { drawIndexPlot, scaleLinear } from '../../web/src/ui/clinician/IndexPlot.js';
+import { alignTarget, codesFromRows, frameAtElapsed, framesFromRows, indexTracks } from '../../web/src/ui/clinician/clinicianFrames.js';
+import { parseTargetName } from '../../web/src/ui/shared/targets.js';
 import { createEpgLive } from '../../web/src/scene/EpgLive.js';
 import { debugObject, installDebug } from '../../web/src/debug.js';
 import { TongueRig } from '../../web/src/core/tongue.js';

@@ -1,10 +1,10 @@
-// The fitted targets source (web/src/ui/targets.js FittedTargets) on a fake HTTP client: the
+// The fitted targets source (web/src/ui/shared/targets.js FittedTargets) on a fake HTTP client: the
 // finished fits it lists, and a fit's frame from POST /epg/contacts with its params.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { createApi } from '../../web/src/api.js';
-import { FittedTargets, fitDescription, targetSources } from '../../web/src/ui/targets.js';
+import { FittedTargets, fitDescription, targetSources } from '../../web/src/ui/shared/targets.js';
 
 const FRONT = [ '01111110', '11000011', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000' ];
 const PARAMS = { tip_height: 4.5, jaw_opening: 0, lip_opening: 1, velum_opening: 0.76 };

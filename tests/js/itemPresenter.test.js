@@ -1,11 +1,11 @@
-// A lesson item on the speech player (ui/LessonRunnerViews.js's ItemPresenter), against a stand-in
+// A lesson item on the speech player (ui/lessons/LessonRunnerViews.js's ItemPresenter), against a stand-in
 // for SpeechView that records what it is asked: the views set before the target is said, the
 // request for the target, the item's speed, a static item held on its first spoken phone and held
 // again when played to its end, replays counted, and a newer item winning over a slower older one.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { firstSpokenPhone, ItemPresenter } from '../../web/src/ui/LessonRunnerViews.js';
+import { firstSpokenPhone, ItemPresenter } from '../../web/src/ui/lessons/LessonRunnerViews.js';
 
 /** Just enough of a mounted SpeechView, with its calls in `log`. */
 function fakeView( { sayDelays = [] } = {} ) {

@@ -1,12 +1,12 @@
-// The label layer's pure parts (web/src/ui/labelPlacement.js): the entries it shows, labels kept
+// The label layer's pure parts (web/src/ui/shared/labelPlacement.js): the entries it shows, labels kept
 // apart on the screen, and the part a pointer over a mesh names. Also the landmarks loader.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { createApi } from '../../web/src/api.js';
 import { LANDMARKS_FORMAT_VERSION } from '../../web/src/core/constants.js';
-import { labelEntries, partAt, placeLabels, preferredAngles } from '../../web/src/ui/labelPlacement.js';
-import { loadLandmarks } from '../../web/src/ui/loaders.js';
+import { labelEntries, partAt, placeLabels, preferredAngles } from '../../web/src/ui/shared/labelPlacement.js';
+import { loadLandmarks } from '../../web/src/ui/shared/loaders.js';
 
 const TONGUE = [ 'tongue_rest' ];
 const DOCUMENT = Object.freeze( {

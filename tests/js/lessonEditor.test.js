@@ -3,9 +3,9 @@ import assert from 'node:assert/strict';
 import {
 	authorHref, blankLesson, draftOf, fieldErrors, insertItem, isDirty, itemErrors, itemSummary,
 	itemsWithErrors, lessonBody, moveItem, newItem, parseAuthorHash, parseLessonFile, readNumber, removeItem, setField,
-} from '../../web/src/ui/LessonEditorModel.js';
-import { createLessonClient } from '../../web/src/ui/LessonEditorClient.js';
-import { attachmentName } from '../../web/src/ui/download.js';
+} from '../../web/src/ui/author/LessonEditorModel.js';
+import { createLessonClient } from '../../web/src/ui/author/LessonEditorClient.js';
+import { attachmentName } from '../../web/src/ui/shared/download.js';
 
 const SERVER_LESSON = {
 	id: 7, title: 'sip, ship', language: 'en-US', description: '', format_version: 1,
@@ -154,7 +154,7 @@ test( 'the client reads ETags, sends If-Match and the token, and a stale save is
 
 test( 'a draft is kept per lesson with the ETag it was made on, read back as a draft, and forgotten', async () => {
 
-	const { DRAFT_KEY, forgetDraft, keepDraft, keptDraft } = await import( '../../web/src/ui/LessonEditorDrafts.js' );
+	const { DRAFT_KEY, forgetDraft, keepDraft, keptDraft } = await import( '../../web/src/ui/author/LessonEditorDrafts.js' );
 	const items = new Map();
 	const win = { localStorage: { getItem: ( k ) => items.get( k ) ?? null, setItem: ( k, v ) => items.set( k, String( v ) ), removeItem: ( k ) => items.delete( k ) } };
 	const draft = draftOf( SERVER_LESSON );

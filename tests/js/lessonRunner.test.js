@@ -1,4 +1,4 @@
-// The lesson runner's pure parts (ui/LessonRunnerItems.js, ui/LessonRunnerPanel.js): what an item
+// The lesson runner's pure parts (ui/lessons/LessonRunnerItems.js, ui/lessons/LessonRunnerPanel.js): what an item
 // asks of the head (the POST /utterances body, the views, the speed, holding a static target), the
 // runner's address and keys, and the practice table of the side panel. The item defaults are
 // checked against the published lesson schema (docs/lesson.schema.json), which the server makes.
@@ -8,8 +8,8 @@ import { readFileSync } from 'node:fs';
 
 import {
 	DEFAULT_VIEWS, itemRequest, itemSettings, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, SLOW_SPEED, stepItem, targetLabel,
-} from '../../web/src/ui/LessonRunnerItems.js';
-import { practiceRows } from '../../web/src/ui/LessonRunnerPanel.js';
+} from '../../web/src/ui/lessons/LessonRunnerItems.js';
+import { practiceRows } from '../../web/src/ui/lessons/LessonRunnerPanel.js';
 
 const SCHEMA = JSON.parse( readFileSync( new URL( '../../docs/lesson.schema.json', import.meta.url ), 'utf8' ) );
 

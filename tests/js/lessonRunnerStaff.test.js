@@ -1,9 +1,9 @@
-// Sharing a class from the lesson runner (ui/LessonRunnerStaff.js): who may change whom a class is
+// Sharing a class from the lesson runner (ui/lessons/LessonRunnerStaff.js): who may change whom a class is
 // shared with (its owner, an admin; not its staff), and how a member is named in the list.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { changesStaff, memberLabel } from '../../web/src/ui/LessonRunnerStaff.js';
+import { changesStaff, memberLabel } from '../../web/src/ui/lessons/LessonRunnerStaff.js';
 
 const staff = { owner: { user_id: 3, username: 'ann@school.example', display_name: 'Ann', role: 'teacher' }, staff: [ { user_id: 7, username: 'cleo@clinic.example', display_name: 'Cleo', role: 'clinician' } ] };
 

@@ -1,10 +1,10 @@
-// What the views load through the HTTP client (web/src/ui/loaders.js), on a client whose fetch is a
+// What the views load through the HTTP client (web/src/ui/shared/loaders.js), on a client whose fetch is a
 // stand-in: the requests made, and what a missing asset leaves behind.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { ApiError, createApi } from '../../web/src/api.js';
-import { loadArticulationData, loadEpgLayout, loadTablesWhenMoved } from '../../web/src/ui/loaders.js';
+import { loadArticulationData, loadEpgLayout, loadTablesWhenMoved } from '../../web/src/ui/shared/loaders.js';
 
 /** A client answering `routes` (path under /api/v1 -> [status, body]) and recording the paths asked. */
 function fakeApi( routes ) {

@@ -4,9 +4,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { NAV_VIEWS, NavBar, navItems } from '../../web/src/ui/NavBar.js';
-import { dismissHint, hintDismissed, HINT_KEY } from '../../web/src/ui/FirstRunHint.js';
-import { knownParams } from '../../web/src/ui/HeadTargets.js';
+import { NAV_VIEWS, NavBar, navItems } from '../../web/src/ui/shared/NavBar.js';
+import { dismissHint, hintDismissed, HINT_KEY } from '../../web/src/ui/head/FirstRunHint.js';
+import { knownParams } from '../../web/src/ui/head/HeadTargets.js';
 
 /** Just enough of a document for NavBar: elements with attributes and children. */
 function fakeWindow( hash ) {

@@ -4,8 +4,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { ApiError, createApi } from '../../web/src/api.js';
-import { savePose } from '../../web/src/ui/PoseBox.js';
-import { poseSaveMessage } from '../../web/src/ui/poseMessages.js';
+import { savePose } from '../../web/src/ui/workbench/PoseBox.js';
+import { poseSaveMessage } from '../../web/src/ui/workbench/poseMessages.js';
 
 /** The error the client makes of an answer with `status` and `detail`. */
 const refused = ( status, detail ) => new ApiError( `POST /api/v1/poses failed with HTTP ${ status }: ${ detail }`, { method: 'POST', url: '/api/v1/poses', status, detail } );

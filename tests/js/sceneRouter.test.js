@@ -1,8 +1,8 @@
-// The hash router and its view registry (web/src/ui/router.js), with a minimal stand-in DOM.
+// The hash router and its view registry (web/src/ui/shared/router.js), with a minimal stand-in DOM.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { Router, routePath } from '../../web/src/ui/router.js';
+import { Router, routePath } from '../../web/src/ui/shared/router.js';
 
 /** Just enough of a document and window for the router. */
 function fakePage( hash = '' ) {

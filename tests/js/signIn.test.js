@@ -8,7 +8,7 @@ import { ApiError } from '../../web/src/api.js';
 import {
 	hasRole, isForbidden, isSignedOut, nextFromHash, retryAfterSeconds, rolesWords, safeNext, signIn, signInHref,
 	signInMessage, signOut, waitWords, whoLabel,
-} from '../../web/src/ui/signIn.js';
+} from '../../web/src/ui/shared/signIn.js';
 
 function fakeWindow() {
 

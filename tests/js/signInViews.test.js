@@ -4,9 +4,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { accountItem } from '../../web/src/ui/NavBar.js';
-import { sourceShown } from '../../web/src/ui/HeadTargets.js';
-import { importErrorMessage, importRecordingFile, REFERENCE } from '../../web/src/ui/clinicianImport.js';
+import { accountItem } from '../../web/src/ui/shared/NavBar.js';
+import { sourceShown } from '../../web/src/ui/head/HeadTargets.js';
+import { importErrorMessage, importRecordingFile, REFERENCE } from '../../web/src/ui/clinician/clinicianImport.js';
 
 const teacher = { kind: 'user', token: 't-1', expires_at: '2099-01-01T00:00:00Z', user: { id: 2, username: 'ann@school.example', display_name: 'Ann', role: 'teacher' } };
 const child = { kind: 'child', token: 'c-1', expires_at: '2099-01-01T00:00:00Z', child: { id: 5, display_name: 'Fox' } };

@@ -1,11 +1,11 @@
-// The speech player's pure parts: the clock (ui/speechClock.js) with a fake audio element and a
+// The speech player's pure parts: the clock (ui/speak/speechClock.js) with a fake audio element and a
 // fake time source, the phone lookup against a linear scan, the request built from what was typed
-// (ui/SpeechControls.js) and the dominance plot drawn through a recording 2D context.
+// (ui/speak/SpeechControls.js) and the dominance plot drawn through a recording 2D context.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { phoneIndexAt, SpeechClock } from '../../web/src/ui/speechClock.js';
-import { utteranceRequest } from '../../web/src/ui/SpeechControls.js';
-import { drawDominance } from '../../web/src/ui/DominancePlot.js';
+import { phoneIndexAt, SpeechClock } from '../../web/src/ui/speak/speechClock.js';
+import { utteranceRequest } from '../../web/src/ui/speak/SpeechControls.js';
+import { drawDominance } from '../../web/src/ui/speak/DominancePlot.js';
 
 /** Seconds compared to this (float sums of milliseconds). */
 const TOL = 1e-9;

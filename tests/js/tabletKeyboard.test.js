@@ -4,8 +4,8 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { keyMove, ROTATE_STEP_DEG, ZOOM_FACTOR } from '../../web/src/scene/keyboardOrbit.js';
-import { arrowValue, keyStep } from '../../web/src/ui/ParameterPanel.js';
-import { chooseCorner, cornerRect, overlapArea } from '../../web/src/ui/epgCardPlacement.js';
+import { arrowValue, keyStep } from '../../web/src/ui/workbench/ParameterPanel.js';
+import { chooseCorner, cornerRect, overlapArea } from '../../web/src/ui/shared/epgCardPlacement.js';
 
 const STEP = ROTATE_STEP_DEG * Math.PI / 180;
 

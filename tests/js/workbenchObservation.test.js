@@ -1,5 +1,5 @@
 // The workbench's Observation and Phoneme target groups without a browser: their controls
-// (web/src/ui/ObservationControl.js, PhonemeChooser.js) over a fake API, on the fitted tongue of
+// (web/src/ui/workbench/ObservationControl.js, PhonemeChooser.js) over a fake API, on the fitted tongue of
 // the shared vectors; the ray error (web/src/core/rayError.js) on small exact cases; the sagittal
 // overlay drawn into a recording context and the 3D layer (web/src/scene/ObservationLayer.js)
 // without a renderer.
@@ -15,9 +15,9 @@ import { TongueRig } from '../../web/src/core/tongue.js';
 import { ParamState } from '../../web/src/core/paramState.js';
 import { createRayFan, rayFirstHits } from '../../web/src/core/rayFirstHit.js';
 import { createRayError, PART_OUTLINE, PART_SURFACE, rayError, STAT_MAX, STAT_MISSES, STAT_RMS } from '../../web/src/core/rayError.js';
-import { assignParams, formatMm, ObservationControl } from '../../web/src/ui/ObservationControl.js';
-import { drawObservationSagittal } from '../../web/src/ui/ObservationOverlay.js';
-import { PhonemeTargetControl } from '../../web/src/ui/PhonemeChooser.js';
+import { assignParams, formatMm, ObservationControl } from '../../web/src/ui/workbench/ObservationControl.js';
+import { drawObservationSagittal } from '../../web/src/ui/workbench/ObservationOverlay.js';
+import { PhonemeTargetControl } from '../../web/src/ui/workbench/PhonemeChooser.js';
 import { OBSERVATION_COLORS, ObservationLayer, sphereRadius } from '../../web/src/scene/ObservationLayer.js';
 import { Color, Matrix4 } from 'three';
 import { debugObject, registerDebug } from '../../web/src/debug.js';

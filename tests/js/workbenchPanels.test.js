@@ -1,4 +1,4 @@
-// The workbench's 2D panels (web/src/ui/SagittalPanel.js, SectionsPanel.js) drawn into a
+// The workbench's 2D panels (web/src/ui/shared/SagittalPanel.js, SectionsPanel.js) drawn into a
 // recording canvas context, from the fitted rig of the shared vectors: what is drawn, where, and
 // how it follows the parameters.
 import { test } from 'node:test';
@@ -11,12 +11,12 @@ import { Articulation, parameterDefinitions } from '../../web/src/scene/Articula
 import { TongueRig } from '../../web/src/core/tongue.js';
 import { jawPose, POSE_LENGTH } from '../../web/src/core/jaw.js';
 import { ParamState } from '../../web/src/core/paramState.js';
-import { drawSagittalPanel, fitTransform, MidlineOutline, PANEL_COLORS, sagittalCurve, SAGITTAL_BOX } from '../../web/src/ui/SagittalPanel.js';
+import { drawSagittalPanel, fitTransform, MidlineOutline, PANEL_COLORS, sagittalCurve, SAGITTAL_BOX } from '../../web/src/ui/shared/SagittalPanel.js';
 import { BoxGeometry, Matrix4 } from 'three';
 import { nearArray } from './support/near.js';
 import {
 	blendingFunctions, coronalSection, drawSectionsPanel, SECTION_NAMES, sectionControls, sectionStations,
-} from '../../web/src/ui/SectionsPanel.js';
+} from '../../web/src/ui/workbench/SectionsPanel.js';
 
 const RIG = JSON.parse( readFileSync( join( dirname( fileURLToPath( import.meta.url ) ), '..', 'vectors', 'tongue-surface.json' ), 'utf8' ) ).fixtures.rig;
 const LETTERS = RIG.sagittal.control_points.map( ( p ) => p.name );

@@ -4,8 +4,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { ApiError, createApi } from '../../web/src/api.js';
-import { savePose } from '../../web/src/ui/PoseBox.js';
-import { formatValue, humanise, shortLabel, sliderStep } from '../../web/src/ui/ParameterPanel.js';
+import { savePose } from '../../web/src/ui/workbench/PoseBox.js';
+import { formatValue, humanise, shortLabel, sliderStep } from '../../web/src/ui/workbench/ParameterPanel.js';
 
 /** A fetch that records its requests and answers with `status` and `body`. */
 function fakeFetch( status, body ) {

@@ -391,7 +391,7 @@ export function parameterDefinitions( rigDefinition, faceRigDefinition = null, v
 /**
  * Put a parametric, collision corrected tongue into `head`, with the face following the jaw and
  * the lip parameters, driven from `viewer`'s loop (none: updates are the caller's). The data are
- * what the views load (ui/loaders.js loadArticulationData): the tongue rig definition, the decoded
+ * what the views load (ui/shared/loaders.js loadArticulationData): the tongue rig definition, the decoded
  * collision tables and the face rig definition. Tables or a face rig that could not be had (null)
  * leave the tongue uncorrected (collision.enabled false) or the lower lip riding rigidly on the
  * jaw, with `tablesError` or `faceRigError` saying why; a velum rig (null: the velum stays at

@@ -6,7 +6,7 @@
 //   articulation.onCorrected( ( positions ) => epg.update( positions ) );
 //
 // `layout` holds the grids of the layout file (GET /api/v1/epg/layout answers one grid of it; the
-// views load both with ui/loaders.js loadEpgLayout). Nothing is allocated per frame: the frames
+// views load both with ui/shared/loaders.js loadEpgLayout). Nothing is allocated per frame: the frames
 // and indices are preallocated and the listeners get the same arrays every time.
 
 import { registerDebug } from '../debug.js';

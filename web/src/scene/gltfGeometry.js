@@ -1,5 +1,5 @@
 // Geometry from a parsed glTF: what the anatomy GLBs (GET /anatomy) become in the Head. The
-// files are fetched by the views (ui/loaders.js); nothing here fetches.
+// files are fetched by the views (ui/shared/loaders.js); nothing here fetches.
 
 import { BufferAttribute } from 'three';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';

@@ -1,0 +1,357 @@
+// The child's practice (route `#/practice`), for a tablet held either way (768 x 1024, 1024 x 768)
+// and with nothing to read: the class code (an adult may type it), then the child taps their own
+// picture and name from the class's roster (POST /auth/class-roster, POST /auth/child-sessions),
+// then a lesson assigned to them (GET /lessons gives only theirs), then one target at a time: the
+// head says it (the speech player, set up by the item as in the lesson runner), a big button
+// hears it again, "I tried it" asks how it went with three faces (or an arrow to go on without),
+// and the try is recorded (POST /practice, with the replays counted) before the next target.
+// Every button is 64 px and more, with a picture and an accessible name.
+
+import { api as pageApi } from '../../api.js';
+import { registerDebug } from '../../debug.js';
+import { clearSession, currentSession, saveSession } from '../../session.js';
+import { h } from '../shared/dom.js';
+import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from './ChildPracticeFlow.js';
+import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
+import { targetLabel } from '../lessons/LessonRunnerItems.js';
+import { ItemPresenter } from '../lessons/LessonRunnerViews.js';
+import { SpeechView } from '../speak/SpeechView.js';
+import './childPractice.css';
+
+/** A big button: a picture, and words under it when given (the name is always there for a screen reader). */
+function bigButton( icon, label, onClick, { words = null, className = 'cp-button' } = {} ) {
+
+	return h( 'button', { type: 'button', className, 'aria-label': label, onClick }, picture( icon ), ...( words ? [ h( 'span', { className: 'cp-words' }, words ) ] : [] ) );
+
+}
+
+export class ChildPractice {
+
+	/** @param {{ api?: object, win?: Window }} options */
+	constructor( { api = pageApi, win = globalThis.window } = {} ) {
+
+		this.api = api;
+		this.window = win;
+		this.screen = null;
+		this.roster = null;
+		this.joinCode = null;
+		this.round = null;
+		this.error = null;
+		this.unregister = [];
+
+	}
+
+	mount( container ) {
+
+		this.root = h( 'div', { className: 'child-practice' } );
+		container.append( this.root );
+		this.unregister.push( registerDebug( 'practice', () => this.report() ) );
+		this.start();
+		return this;
+
+	}
+
+	/** What window.glasshead.practice reports. */
+	report() {
+
+		const round = this.round;
+		return {
+			screen: this.screen, error: this.error, child: this.child ? { id: this.child.id, display_name: this.child.display_name } : null,
+			roster: this.roster?.children.map( ( c ) => c.display_name ) ?? null, lessons: this.lessons?.map( ( l ) => l.id ) ?? null,
+			lesson: round?.lesson.id ?? null, item: round ? round.index : null, items: round?.lesson.items.length ?? 0,
+			replays: round?.replays ?? 0, recorded: round?.records.map( ( r ) => r.id ) ?? [], ready: this.ready ?? false,
+		};
+
+	}
+
+	get child() {
+
+		const session = currentSession( { win: this.window } );
+		return session?.kind === 'child' ? session.child : null;
+
+	}
+
+	/** A child already signed in goes to their lessons; anyone else starts at the class code. */
+	start() {
+
+		if ( this.child ) this.showLessons();
+		else this.showCode();
+
+	}
+
+	/** Show `screen`: a fresh element with the child's picture in the corner once signed in. */
+	setScreen( screen, ...content ) {
+
+		this.screen = screen;
+		this.closeHead();
+		const child = this.child;
+		const top = h( 'div', { className: 'cp-top' } );
+		if ( child ) {
+
+			top.append( h( 'span', { className: 'cp-me' }, picture( child.avatar, { label: child.avatar } ), h( 'span', {}, child.display_name ) ),
+				bigButton( 'back', 'Not me: sign out', () => this.signOut(), { className: 'cp-button cp-small' } ) );
+
+		}
+
+		this.errorLine = h( 'p', { className: 'cp-error', role: 'alert', hidden: '' } );
+		this.root.replaceChildren( top, ...content, this.errorLine );
+
+	}
+
+	showError( message ) {
+
+		this.error = message || null;
+		if ( this.errorLine ) {
+
+			this.errorLine.textContent = message ?? '';
+			this.errorLine.hidden = ! message;
+
+		}
+
+	}
+
+	showCode() {
+
+		this.roster = null;
+		const input = h( 'input', {
+			id: 'cp-code', className: 'cp-code', type: 'text', autocomplete: 'off', autocapitalize: 'characters', spellcheck: 'false',
+			maxlength: '12', 'aria-label': 'Class code', placeholder: 'A B C 3 4 7',
+		} );
+		const form = h( 'form', { className: 'cp-code-form', 'aria-label': 'Class code', onSubmit: ( event ) => {
+
+			event.preventDefault();
+			this.findClass( input.value );
+
+		} }, h( 'label', { className: 'cp-label', for: 'cp-code' }, 'Class code' ), input,
+		h( 'button', { type: 'submit', className: 'cp-button cp-go', 'aria-label': 'Go' }, picture( 'next' ) ) );
+		this.setScreen( 'code', form );
+		input.focus();
+
+	}
+
+	/** POST /auth/class-roster: the class's children to pick from. */
+	async findClass( typed ) {
+
+		const code = normaliseJoinCode( typed );
+		if ( ! looksLikeJoinCode( code ) ) return this.showError( 'A class code has six letters and numbers.' );
+		this.showError( '' );
+		try {
+
+			this.roster = await this.api.post( 'auth/class-roster', { join_code: code } );
+
+		} catch ( error ) {
+
+			return this.showError( error.status === 404 || error.status === 401 ? 'There is no class with this code.' : error.message );
+
+		}
+
+		this.joinCode = code;
+		this.showRoster();
+
+	}
+
+	showRoster() {
+
+		const children = this.roster.children ?? [];
+		const grid = h( 'div', { className: 'cp-roster', role: 'group', 'aria-label': 'Who are you?' },
+			...children.map( ( child ) => h( 'button', { type: 'button', className: 'cp-person', 'aria-label': child.display_name, onClick: () => this.signIn( child ) },
+				picture( child.avatar ), h( 'span', { className: 'cp-words' }, child.display_name ) ) ) );
+		this.setScreen( 'roster', h( 'div', { className: 'cp-heading' }, bigButton( 'back', 'Back to the class code', () => this.showCode(), { className: 'cp-button cp-small' } ),
+			h( 'h1', { className: 'cp-title' }, this.roster.class_name ) ), grid );
+
+	}
+
+	/** POST /auth/child-sessions for the picked child; the session is kept (session.js). */
+	async signIn( child ) {
+
+		try {
+
+			const issued = await this.api.post( 'auth/child-sessions', { join_code: this.joinCode, child_id: child.id } );
+			saveSession( { kind: 'child', token: issued.token, expires_at: issued.expires_at, child: issued.child }, { win: this.window } );
+
+		} catch ( error ) {
+
+			return this.showError( error.message );
+
+		}
+
+		this.showLessons();
+
+	}
+
+	async signOut() {
+
+		try {
+
+			await this.api.delete( 'auth/child-sessions/current' );
+
+		} catch {
+			// Already expired or revoked: forgetting it here is all there is to do.
+		}
+
+		clearSession( { win: this.window } );
+		this.round = null;
+		this.lessons = null;
+		this.showCode();
+
+	}
+
+	/** The lessons assigned to the child: one starts at once; several are big buttons. */
+	async showLessons() {
+
+		this.round = null;
+		this.setScreen( 'lessons' );
+		try {
+
+			this.lessons = ( await this.api.get( 'lessons?limit=100' ) ).lessons ?? [];
+
+		} catch ( error ) {
+
+			if ( error.status === 401 ) return this.signOut();
+			return this.showError( error.message );
+
+		}
+
+		if ( this.lessons.length === 1 ) return this.startLesson( this.lessons[ 0 ].id );
+		const list = h( 'div', { className: 'cp-lessons', role: 'group', 'aria-label': 'Lessons' },
+			...this.lessons.map( ( lesson, k ) => h( 'button', { type: 'button', className: 'cp-person cp-lesson', 'aria-label': lesson.title, onClick: () => this.startLesson( lesson.id ) },
+				h( 'span', { className: 'cp-number', 'aria-hidden': 'true' }, String( k + 1 ) ), h( 'span', { className: 'cp-words' }, lesson.title ) ) ) );
+		this.setScreen( 'lessons', this.lessons.length ? list : h( 'div', { className: 'cp-empty' }, picture( 'star', { label: 'Nothing to practise yet' } ) ) );
+
+	}
+
+	async startLesson( id ) {
+
+		let lesson;
+		try {
+
+			lesson = await this.api.get( `lessons/${ id }` );
+
+		} catch ( error ) {
+
+			return this.showError( error.message );
+
+		}
+
+		this.round = new PracticeRound( lesson, this.child );
+		this.showPractice();
+
+	}
+
+	showPractice() {
+
+		this.target = h( 'p', { className: 'cp-target', 'aria-live': 'polite' } );
+		this.dots = h( 'div', { className: 'cp-dots', 'aria-hidden': 'true' }, ...this.round.lesson.items.map( () => h( 'span', { className: 'cp-dot' } ) ) );
+		this.headBox = h( 'div', { className: 'cp-head' } );
+		this.actions = h( 'div', { className: 'cp-actions', role: 'group', 'aria-label': 'Practice' },
+			bigButton( 'replay', 'Hear it again', () => this.replay(), { className: 'cp-button cp-replay' } ),
+			bigButton( 'tried', 'I tried it', () => this.tried(), { words: 'I tried it', className: 'cp-button cp-tried' } ) );
+		this.faces = h( 'div', { className: 'cp-actions cp-faces', role: 'group', 'aria-label': 'How did it go?', hidden: '' },
+			...RATINGS.map( ( r ) => bigButton( r.face, r.label, () => this.record( r.rating ), { className: 'cp-button cp-face' } ) ),
+			bigButton( 'next', 'Next', () => this.record( null ), { className: 'cp-button cp-face' } ) );
+		this.setScreen( 'practice', h( 'div', { className: 'cp-stage' }, this.headBox, this.target, this.dots ), this.actions, this.faces );
+		this.speech = new SpeechView( { api: this.api, sayOnLoad: false } ).mount( this.headBox );
+		this.presenter = new ItemPresenter( this.speech, { obstacles: () => [ this.target ] } );
+		this.presentItem();
+
+	}
+
+	/** The current target: shown, said once, ready for another go. */
+	async presentItem() {
+
+		const round = this.round;
+		const item = round.item;
+		this.ready = false;
+		this.target.textContent = targetLabel( item );
+		[ ...this.dots.children ].forEach( ( dot, k ) => {
+
+			dot.classList.toggle( 'done', k < round.index );
+			dot.classList.toggle( 'now', k === round.index );
+
+		} );
+		this.actions.hidden = false;
+		this.faces.hidden = true;
+		const shown = await this.presenter.present( item );
+		if ( ! shown || this.round !== round || round.item !== item ) return;
+		this.ready = true;
+		this.presenter.replay(); // the head says it once by itself
+
+	}
+
+	replay() {
+
+		if ( ! this.ready ) return;
+		this.round.replayed();
+		this.presenter.replay();
+
+	}
+
+	tried() {
+
+		this.actions.hidden = true;
+		this.faces.hidden = false;
+
+	}
+
+	/** POST /practice for this try, then the next target (or the end). */
+	async record( rating ) {
+
+		const round = this.round;
+		for ( const button of this.faces.querySelectorAll( 'button' ) ) button.disabled = true;
+		let saved;
+		try {
+
+			saved = await this.api.post( 'practice', round.record( rating ) );
+
+		} catch ( error ) {
+
+			this.showError( error.message );
+			return;
+
+		} finally {
+
+			for ( const button of this.faces.querySelectorAll( 'button' ) ) button.disabled = false;
+
+		}
+
+		if ( this.round !== round ) return;
+		this.showError( '' );
+		if ( round.next( saved ) ) this.presentItem();
+		else this.showDone();
+
+	}
+
+	showDone() {
+
+		this.setScreen( 'done', h( 'div', { className: 'cp-empty' }, picture( 'star', { label: 'Well done' } ) ),
+			h( 'div', { className: 'cp-actions' },
+				bigButton( 'replay', 'Again', () => this.startLesson( this.round.lesson.id ), { className: 'cp-button cp-replay' } ),
+				bigButton( 'back', 'My lessons', () => this.showLessons(), { className: 'cp-button' } ) ) );
+
+	}
+
+	closeHead() {
+
+		this.speech?.unmount();
+		this.speech = null;
+		this.presenter = null;
+		this.ready = false;
+
+	}
+
+	unmount() {
+
+		this.closeHead();
+		for ( const unregister of this.unregister ) unregister();
+		this.root.remove();
+
+	}
+
+}
+
+/** Route entry for the view registry. */
+export function mountChildPractice( container ) {
+
+	return new ChildPractice().mount( container );
+
+}

@@ -1,0 +1,121 @@
+// Where the EPG card sits over the 3D view: in a corner of the stage that does not cover the
+// head's lips. On a tablet the head fills the stage and the lips come close to the bottom-left
+// corner the card started in, so the card moves, whenever the camera or the stage's size changes,
+// to the first corner (bottom left, top left, bottom right, top right) clear of the lips; if
+// none is, to the one that covers least of them.
+//
+// window.glasshead.epgCard = { corner, card, mouth }: the rectangles in CSS px of the page.
+
+import { registerDebug } from '../../debug.js';
+
+/** Corners in order of preference: bottom left reads beside the head without hiding the face. */
+export const CORNERS = Object.freeze( [ 'bottom-left', 'top-left', 'bottom-right', 'top-right' ] );
+/** Space between the card and the stage's edge, CSS px. */
+export const MARGIN_PX = 16;
+
+/** The card's rectangle { x, y, width, height } in `corner` of `stage` (all rectangles in one frame). */
+export function cornerRect( corner, stage, card, margin = MARGIN_PX ) {
+
+	const left = corner.endsWith( 'left' );
+	const top = corner.startsWith( 'top' );
+	return {
+		x: left ? stage.x + margin : stage.x + stage.width - margin - card.width,
+		y: top ? stage.y + margin : stage.y + stage.height - margin - card.height,
+		width: card.width,
+		height: card.height,
+	};
+
+}
+
+/** The area of the overlap of two rectangles. */
+export function overlapArea( a, b ) {
+
+	const w = Math.min( a.x + a.width, b.x + b.width ) - Math.max( a.x, b.x );
+	const h = Math.min( a.y + a.height, b.y + b.height ) - Math.max( a.y, b.y );
+	return w > 0 && h > 0 ? w * h : 0;
+
+}
+
+/** The first corner whose card misses `mouth` (null: no lips known), else the one covering least. */
+export function chooseCorner( stage, card, mouth, margin = MARGIN_PX ) {
+
+	if ( ! mouth ) return CORNERS[ 0 ];
+	let best = CORNERS[ 0 ], least = Infinity;
+	for ( const corner of CORNERS ) {
+
+		const area = overlapArea( cornerRect( corner, stage, card, margin ), mouth );
+		if ( area === 0 ) return corner;
+		if ( area < least ) [ best, least ] = [ corner, area ];
+
+	}
+
+	return best;
+
+}
+
+/**
+ * Keep `panel` (absolutely placed in `view.stage`) clear of the lips of `view.head`, seen by
+ * `view.viewer`. Returns a function that stops.
+ */
+export function keepCardClearOfLips( view, panel ) {
+
+	const { viewer } = view;
+	const seen = new Float64Array( 18 ).fill( Number.NaN );
+	let corner = null, mouth = null;
+
+	const place = () => {
+
+		const stage = view.stage.getBoundingClientRect();
+		const card = { width: panel.offsetWidth, height: panel.offsetHeight };
+		mouth = viewer.screenRect( view.head.mouthBox() );
+		const next = chooseCorner( { x: stage.left, y: stage.top, width: stage.width, height: stage.height }, card, mouth );
+		if ( next === corner ) return;
+		corner = next;
+		panel.dataset.corner = corner;
+		// Through the CSSOM: the page's policy allows no inline style attributes.
+		panel.style.left = corner.endsWith( 'left' ) ? `${ MARGIN_PX }px` : 'auto';
+		panel.style.right = corner.endsWith( 'left' ) ? 'auto' : `${ MARGIN_PX }px`;
+		panel.style.top = corner.startsWith( 'top' ) ? `${ MARGIN_PX }px` : 'auto';
+		panel.style.bottom = corner.startsWith( 'top' ) ? 'auto' : `${ MARGIN_PX }px`;
+
+	};
+
+	const changed = () => {
+
+		const matrix = viewer.camera.matrixWorld.elements;
+		const canvas = viewer.renderer.domElement;
+		let moved = false;
+		for ( let k = 0; k < 16; k ++ ) {
+
+			if ( seen[ k ] !== matrix[ k ] ) moved = true;
+			seen[ k ] = matrix[ k ];
+
+		}
+
+		if ( seen[ 16 ] !== canvas.clientWidth || seen[ 17 ] !== canvas.clientHeight ) moved = true;
+		seen[ 16 ] = canvas.clientWidth;
+		seen[ 17 ] = canvas.clientHeight;
+		return moved;
+
+	};
+
+	const stopFrames = viewer.onFrame( () => {
+
+		if ( changed() ) place();
+		return false; // the card is HTML over the canvas: it never needs a new 3D frame
+
+	} );
+	const unregister = registerDebug( 'epgCard', () => {
+
+		const r = panel.getBoundingClientRect();
+		return { corner, card: { x: r.left, y: r.top, width: r.width, height: r.height }, mouth };
+
+	} );
+	return () => {
+
+		stopFrames();
+		unregister();
+
+	};
+
+}

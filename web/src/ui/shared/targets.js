@@ -1,0 +1,169 @@
+// Where the clinician's targets come from. A target is what a client's EPG is compared with: today
+// a saved pose (a named parameter set from the workbench), a phoneme's articulation target
+// (GET /phonemes) or a target fitted to an author's own data (GET /fits), each shown as its
+// synthetic EPG. The clinician view only ever talks to a TargetSource:
+//
+//   kind                   short name used in ids ('pose', 'phoneme', 'fit')
+//   title                  what the chooser calls the group ('Saved poses', 'Phoneme targets')
+//   list()                 -> Promise<[{ id, label, description }]>, id unique within the source
+//   frames( id )           -> Promise<{ label, rows: string[][], t_s: number[] | null,
+//                              reference: object }>: the target's EPG frames (8 row strings each,
+//                              R1 first), their times (null for one static frame), and what to
+//                              send as the `reference` of POST /epg/recordings/{id}/compare
+//
+// Targets are named `${kind}:${id}` in the view's URL (#/clinician?target=pose:3), so a new
+// source needs no change to the view: add an object with these members to TARGET_SOURCES.
+
+import { api as pageApi } from '../../api.js';
+import { loadPhonemeList, loadPhonemeTarget } from './loaders.js';
+
+/** Saved poses (GET /poses): each is one static frame, its synthetic EPG from POST /epg/contacts. */
+export class SavedPoseTargets {
+
+	/** @param {{ api?: object }} options the HTTP client the poses are read through */
+	constructor( { api = pageApi } = {} ) {
+
+		this.kind = 'pose';
+		this.title = 'Saved poses';
+		this.api = api;
+
+	}
+
+	async list() {
+
+		const body = await this.api.get( 'poses?limit=1000' );
+		return body.poses.map( ( pose ) => ( { id: String( pose.id ), label: pose.name, description: pose.description ?? '' } ) );
+
+	}
+
+	async frames( id ) {
+
+		const pose = await this.api.get( `poses/${ encodeURIComponent( id ) }` );
+		const epg = await this.api.post( 'epg/contacts', { params: pose.params } );
+		return {
+			label: pose.name,
+			rows: [ epg.rows ],
+			t_s: null,
+			params: pose.params,
+			reference: { label: pose.name, pose_id: pose.id, frames: [ epg.rows ] },
+		};
+
+	}
+
+}
+
+/** How a phoneme is listed: its IPA in slashes, its ARPAbet symbol and an example word. */
+export function phonemeLabel( phoneme ) {
+
+	const example = phoneme.examples?.length ? ` as in "${ phoneme.examples[ 0 ] }"` : '';
+	return `/${ phoneme.ipa }/ ${ phoneme.arpabet }${ example }`;
+
+}
+
+/**
+ * The phoneme targets (GET /phonemes, docs/targets.md): each one static frame, the synthetic EPG
+ * the build computed for its parameters (the same contacts the browser computes for them). Ids are
+ * ARPAbet symbols ('phoneme:T').
+ */
+export class PhonemeTargets {
+
+	/** @param {{ api?: object }} options the HTTP client the targets are read through */
+	constructor( { api = pageApi } = {} ) {
+
+		this.kind = 'phoneme';
+		this.title = 'Phoneme targets';
+		this.api = api;
+
+	}
+
+	async list() {
+
+		const body = await loadPhonemeList( { api: this.api } );
+		return body.phonemes.map( ( phoneme ) => ( {
+			id: phoneme.arpabet,
+			label: phonemeLabel( phoneme ),
+			description: phoneme.source?.shapes?.length ? `fitted to ${ phoneme.source.shapes.join( ', ' ) }` : 'from phonetic reasoning',
+		} ) );
+
+	}
+
+	async frames( id ) {
+
+		const target = await loadPhonemeTarget( id, { api: this.api } );
+		const label = phonemeLabel( target );
+		return {
+			label,
+			rows: [ target.epg.rows ],
+			t_s: null,
+			params: target.params,
+			reference: { label, frames: [ target.epg.rows ] },
+		};
+
+	}
+
+}
+
+/** How a fitted target is described: what it was fitted to and how closely. */
+export function fitDescription( fit ) {
+
+	const report = fit.report ?? {};
+	const rms = Number.isFinite( report.rms_mm ) ? `, RMS ${ report.rms_mm.toFixed( 2 ) } mm` : '';
+	const agreement = Number.isFinite( report.agreement ) ? `, EPG agreement ${ Math.round( 100 * report.agreement ) } %` : '';
+	return `${ fit.kind } fit${ rms }${ agreement }`;
+
+}
+
+/**
+ * Targets authors fitted to their own measurements (POST /fits, docs/fits.md): the finished fits
+ * (GET /fits?state=done), each one static frame, its synthetic EPG from POST /epg/contacts with the
+ * fit's params, as a saved pose's. Ids are the fits' ids ('fit:12').
+ */
+export class FittedTargets {
+
+	/** @param {{ api?: object }} options the HTTP client the fits are read through */
+	constructor( { api = pageApi } = {} ) {
+
+		this.kind = 'fit';
+		this.title = 'Fitted targets';
+		this.api = api;
+
+	}
+
+	async list() {
+
+		const body = await this.api.get( 'fits?state=done&limit=1000' );
+		return body.fits.map( ( fit ) => ( { id: String( fit.id ), label: fit.name, description: fitDescription( fit ) } ) );
+
+	}
+
+	async frames( id ) {
+
+		const fit = await this.api.get( `fits/${ encodeURIComponent( id ) }` );
+		if ( fit.state !== 'done' ) throw new Error( `fit ${ fit.id } is ${ fit.state }: it has no target yet` );
+		const epg = await this.api.post( 'epg/contacts', { params: fit.params } );
+		return {
+			label: fit.name,
+			rows: [ epg.rows ],
+			t_s: null,
+			params: fit.params,
+			reference: { label: fit.name, frames: [ epg.rows ] },
+		};
+
+	}
+
+}
+
+/** Every source of targets, in the order the chooser lists them. */
+export function targetSources( options ) {
+
+	return [ new SavedPoseTargets( options ), new PhonemeTargets( options ), new FittedTargets( options ) ];
+
+}
+
+/** Split a target name 'pose:3' into { kind: 'pose', id: '3' } (null when it has no kind). */
+export function parseTargetName( name ) {
+
+	const match = /^([a-z][a-z0-9_-]*):(.+)$/.exec( name ?? '' );
+	return match ? { kind: match[ 1 ], id: match[ 2 ] } : null;
+
+}

@@ -1,0 +1,71 @@
+// The speech player's panels beside the head: the 2D diagram of the vocal tract (redrawn with
+// every recompute of the articulation, so it follows the clock), the cue switches (the workbench's
+// WorkbenchCues, driving the cue layer in the 3D scene) and the dominance plot.
+
+import { DiagramSection } from '../../scene/DiagramSection.js';
+import { h } from '../shared/dom.js';
+import { drawDiagram } from '../shared/DiagramPanel.js';
+import { DominancePlot } from './DominancePlot.js';
+import { WorkbenchCues } from '../shared/WorkbenchCues.js';
+
+/** Sizes of the canvases, CSS pixels (the side panel is 330 px wide). */
+const DIAGRAM_SIZE = Object.freeze( [ 300, 280 ] );
+const DOMINANCE_SIZE = Object.freeze( [ 300, 170 ] );
+const DIAGRAM_PARTS = Object.freeze( [ 'pharynx', 'larynx', 'palate', 'mandible', 'velum', 'upperLip', 'lowerLip', 'tongue' ] );
+
+/** A canvas of `width` x `height` CSS pixels, sharp on high-density screens. */
+function canvas( [ width, height ], label ) {
+
+	const element = h( 'canvas', { className: 'sp-canvas', role: 'img', 'aria-label': label } );
+	const ratio = Math.min( window.devicePixelRatio || 1, 2 );
+	element.width = Math.round( width * ratio );
+	element.height = Math.round( height * ratio );
+	element.style.width = `${ width }px`;
+	element.style.height = `${ height }px`;
+	const ctx = element.getContext( '2d' );
+	ctx.setTransform( ratio, 0, 0, ratio, 0, 0 );
+	return { element, ctx, width, height };
+
+}
+
+export class SpeechPanels {
+
+	/** @param {{ head: object, viewer: object, articulation: object, landmarks: object|null }} parts */
+	constructor( { head, viewer, articulation, landmarks } ) {
+
+		this.unregister = [];
+		this.diagramCanvas = canvas( DIAGRAM_SIZE, 'Diagram: the vocal tract cut at the mid-sagittal plane' );
+		this.diagram = new DiagramSection( head, { landmarks } );
+		this.diagramParts = Object.fromEntries( DIAGRAM_PARTS.map( ( key ) => [ key, this.diagram.parts( key ) ] ) );
+		this.unregister.push( this.diagram.registerDebugField(), articulation.onCorrected( () => this.drawDiagram() ) );
+		this.drawDiagram();
+		/** Whether the voice sounds at the clock's time (the utterance's voicing cue), set by the player. */
+		this.voiced = true;
+		this.cues = new WorkbenchCues( { viewer, articulation, diagram: this.diagram, landmarks, voiced: () => this.voiced } );
+		this.cues.element.className = 'sp-buttons';
+		this.dominance = new DominancePlot( canvas( DOMINANCE_SIZE, 'Dominance of each phoneme over time for the chosen parameter' ), articulation.state );
+		const section = ( title, ...content ) => h( 'section', { className: 'sp-section' }, h( 'h2', { className: 'sp-heading' }, title ), ...content );
+		this.sections = [
+			section( 'Diagram', this.diagramCanvas.element ),
+			section( 'Air and voice', this.cues.element ),
+			section( 'Dominance', this.dominance.element ),
+		];
+
+	}
+
+	drawDiagram() {
+
+		this.diagram.update();
+		drawDiagram( this.diagramCanvas.ctx, { parts: this.diagramParts, air: this.diagram.polygon, constriction: this.diagram.constriction() }, this.diagramCanvas );
+
+	}
+
+	dispose() {
+
+		for ( const unregister of this.unregister ) unregister();
+		this.cues.dispose();
+		for ( const element of this.sections ) element.remove();
+
+	}
+
+}
