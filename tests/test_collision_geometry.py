@@ -151,7 +151,7 @@ def test_a_degenerate_triangle_answers_the_closest_point_of_its_edges(collapse):
 
 
 def test_the_build_surface_distances_use_the_one_closest_point_kernel():
-    from glasshead.pipeline import surface_distance
+    from glasshead.geometry import surface_distance
 
     assert surface_distance.closest_points_on_triangles is closest_points_on_triangles
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import trimesh
 
+from glasshead.geometry.surface_distance import SampledSurface, SurfaceDistance, hausdorff
 from glasshead.pipeline import sources
 from glasshead.pipeline.maxilla_lods import (
     LOD_TARGETS,
@@ -15,7 +16,6 @@ from glasshead.pipeline.maxilla_lods import (
     mouth_point,
     simplify_keeping_borders,
 )
-from glasshead.pipeline.surface_distance import SampledSurface, SurfaceDistance, hausdorff
 
 
 def _glb(built_assets, manifest, name):

@@ -28,7 +28,7 @@ from glasshead.fitting.vtl_registration import (
     point_to_polylines,
     resample,
 )
-from glasshead.pipeline.surface_distance import summarise
+from glasshead.geometry.surface_distance import summarise
 
 TONGUE_FILE = Path("ultrasound/rticulate-it01-tongue.csv")
 PALATE_FILE = Path("ultrasound/rticulate-it01-palate.tsv")

@@ -10,7 +10,7 @@ depends on it.
 Source: VTL's midline of the hard palate and the incisor's lingual face and edge
 (``vtl.palate_geometry()["registration_outline"]``). Target: the mid-sagittal section of the
 project's maxilla (palatal vault and upper incisor). The fit is the build's trimmed similarity
-ICP (``pipeline.register_cbct.icp``, Umeyama's closed form, worst 20 % of pairs ignored per
+ICP (``geometry.register_cbct.icp``, Umeyama's closed form, worst 20 % of pairs ignored per
 iteration) run on points of the z = 0 plane, so its rotation stays about z. It starts from the
 two ends: the back of VTL's hard palate onto the back of the maxilla's midline and VTL's incisal
 edge onto the maxilla's lowest midline point.
@@ -20,8 +20,8 @@ import numpy as np
 import trimesh
 from scipy.spatial import cKDTree
 
-from glasshead.pipeline.register_cbct import FINE_ITERATIONS, TRIM, icp
-from glasshead.pipeline.surface_distance import SurfaceDistance, sample_surface, summarise
+from glasshead.geometry.register_cbct import FINE_ITERATIONS, TRIM, icp
+from glasshead.geometry.surface_distance import SurfaceDistance, sample_surface, summarise
 
 #: Spacing (mm) of the points the outlines are resampled to.
 STEP_MM = 0.25
@@ -129,7 +129,7 @@ def register_palate(vtl_outline, maxilla_section, iterations=FINE_ITERATIONS):
     transform = Similarity2D(scale, rot3, shift3)
     moved = transform.apply(source)
     report = {
-        "method": "trimmed similarity ICP (pipeline.register_cbct.icp) in the z = 0 plane",
+        "method": "trimmed similarity ICP (geometry.register_cbct.icp) in the z = 0 plane",
         "trim_fraction": TRIM,
         "iterations": iterations,
         "source_points": len(source),

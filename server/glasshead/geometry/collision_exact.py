@@ -54,7 +54,7 @@ def closest_points_on_triangles(p: npt.ArrayLike, a: npt.ArrayLike, b: npt.Array
 
     p, a, b, c : (..., 3) float, mm or any one unit. Returns (..., 3) float64 in that unit.
     The one closest-point kernel of the project: the collision baseline, the liner and the
-    build's surface distances (``pipeline.surface_distance``) all call it. A degenerate triangle
+    build's surface distances (``geometry.surface_distance``) all call it. A degenerate triangle
     (its sine of the angle at a below 1e-6, see ``FLAT_SIN2``), where the Voronoi tests divide
     rounding noise, answers the closest point of its three edges instead.
     """

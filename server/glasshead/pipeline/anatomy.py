@@ -16,6 +16,7 @@ import trimesh
 
 from glasshead.constants import SKIN_NODES_FILE
 from glasshead.geometry.meshio import read_face_elems, read_face_nodes
+from glasshead.geometry.register_cbct import register_cbct
 from glasshead.pipeline import sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
 from glasshead.pipeline.head_shell import build_head_shell
@@ -26,7 +27,6 @@ from glasshead.pipeline.maxilla_lods import (
     mouth_residual,
 )
 from glasshead.pipeline.quantized_glb import quantized_glb
-from glasshead.pipeline.register_cbct import register_cbct
 from glasshead.pipeline.seam_fairing import close_head
 from glasshead.pipeline.tract import build_tract, read_tract_sources
 

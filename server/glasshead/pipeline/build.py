@@ -39,8 +39,8 @@ class BuildContext:
 #: The sources the anatomy meshes depend on; a change elsewhere does not rebuild them.
 ANATOMY_SOURCES = ["constants.py", "geometry/frame.py", "geometry/meshio.py", "pipeline/sources.py",
                    "pipeline/anatomy.py", "pipeline/face_skin.py", "pipeline/head_shell.py",
-                   "pipeline/register_cbct.py", "pipeline/maxilla_lods.py",
-                   "pipeline/surface_distance.py", "pipeline/tract.py", "pipeline/tract_checks.py",
+                   "geometry/register_cbct.py", "pipeline/maxilla_lods.py",
+                   "geometry/surface_distance.py", "pipeline/tract.py", "pipeline/tract_checks.py",
                    "pipeline/larynx.py", "pipeline/quantized_glb.py"]
 
 

@@ -34,8 +34,8 @@ from glasshead.geometry.skin_weights import (
     transfer_weights,
     triangle_edges,
 )
+from glasshead.geometry.surface_distance import SurfaceDistance
 from glasshead.pipeline.face_rig_sources import FaceSources
-from glasshead.pipeline.surface_distance import SurfaceDistance
 
 #: A face node lies on a bone (or a lip surface) when closer than this, mm.
 ON_SURFACE_MM = 1.5

@@ -29,7 +29,7 @@ import fast_simplification
 import numpy as np
 import trimesh
 
-from glasshead.pipeline.surface_distance import SampledSurface, hausdorff, summarise
+from glasshead.geometry.surface_distance import SampledSurface, hausdorff, summarise
 
 #: Target triangle counts, from near-full to the paper's 1,600.
 LOD_TARGETS = (12000, 8000, 5000, 3200, 1600)
@@ -105,7 +105,7 @@ def simplify_keeping_borders(vertices, faces, target, fence=FENCE_MM):
                             np.stack([b, wall_id[a], wall_id[b]], axis=1)])
     fenced_v = np.vstack([vertices, vertices[ends] + fence * mesh.vertex_normals[ends]])
     fenced_f = np.vstack([faces, walls])
-    from glasshead.pipeline.surface_distance import SurfaceDistance
+    from glasshead.geometry.surface_distance import SurfaceDistance
 
     surface = SurfaceDistance(vertices, faces)
     request = target + len(walls)

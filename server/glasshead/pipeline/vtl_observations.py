@@ -21,8 +21,8 @@ import numpy as np
 
 from glasshead.constants import FRAME_AXES, FRAME_UNITS
 from glasshead.fitting import vtl, vtl_registration
+from glasshead.geometry import register_cbct, surface_distance
 from glasshead.geometry.frame import fix_winding
-from glasshead.pipeline import register_cbct, surface_distance
 from glasshead.pipeline.outputs import current_output, load_built_meshes, write_json
 
 OUTPUT_NAME = "vtl-observations.json"

@@ -22,7 +22,7 @@ from scipy.spatial import cKDTree
 
 from glasshead.constants import BADIN_TO_PROJECT_AXES
 from glasshead.geometry.frame import badin_to_project, fix_winding
-from glasshead.pipeline.surface_distance import SurfaceDistance, sample_surface, summarise
+from glasshead.geometry.surface_distance import SurfaceDistance, sample_surface, summarise
 
 #: Fraction of worst pairs ignored in each ICP iteration.
 TRIM = 0.2
