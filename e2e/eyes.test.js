@@ -4,7 +4,7 @@
 
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
-import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle, waitForStill } from './harness.js';
 
 describe( 'the eyes', { timeout: 240_000 }, () => {
 
@@ -20,10 +20,9 @@ describe( 'the eyes', { timeout: 240_000 }, () => {
 	async function showView( name ) {
 
 		await page.getByRole( 'button', { name, exact: true } ).click();
-		await settle( page );
-		// The eyes settle after the camera: wait until the gaze stops changing.
-		await page.waitForFunction( () => window.glasshead.renderPending === false && window.glasshead.eyes.blinking === false, null, { timeout: 10_000, polling: 300 } );
-		await new Promise( ( resolve ) => setTimeout( resolve, 600 ) );
+		// The eyes settle after the camera: wait for a frame with nothing to draw, the gaze at its
+		// target and no blink under way.
+		await waitForStill( page );
 		return ( await readDebug( page ) ).eyes;
 
 	}
@@ -46,8 +45,7 @@ describe( 'the eyes', { timeout: 240_000 }, () => {
 		assert.ok( Math.abs( side.gaze[ 0 ] - front.gaze[ 0 ] ) > 10 );
 		await page.mouse.move( 490, 400 );
 		for ( let i = 0; i < 4; i ++ ) await page.mouse.wheel( 0, - 400 );
-		await settle( page );
-		await new Promise( ( resolve ) => setTimeout( resolve, 600 ) );
+		await waitForStill( page );
 		await saveScreenshot( page, 'eyes-front-close' );
 		assert.deepEqual( page.problems, [] );
 
@@ -55,15 +53,16 @@ describe( 'the eyes', { timeout: 240_000 }, () => {
 
 	test( 'the eyes blink now and then', async () => {
 
-		await page.waitForFunction( () => window.glasshead.eyes.blinking === true, null, { timeout: 15_000, polling: 10 } );
+		// Read at every animation frame: a blink starts in one and ends in a later one, however far
+		// apart they are. Blinks come 4 to 9 s apart.
+		await page.waitForFunction( () => window.glasshead.eyes.blinking === true, null, { timeout: 60_000, polling: 'raf' } );
 
 	} );
 
 	test( 'with the skin see-through the eyes look straight ahead', async () => {
 
 		await page.getByRole( 'slider', { name: 'Skin transparency' } ).fill( '50' );
-		await settle( page );
-		await new Promise( ( resolve ) => setTimeout( resolve, 800 ) );
+		await waitForStill( page );
 		assert.deepEqual( ( await readDebug( page ) ).eyes.gaze, [ 0, 0 ] );
 		await page.getByRole( 'slider', { name: 'Skin transparency' } ).fill( '0' );
 		await settle( page );

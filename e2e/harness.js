@@ -249,6 +249,25 @@ export async function settle( page ) {
 }
 
 /**
+ * Wait until a whole animation frame of the 3D view goes by with nothing drawn: the camera has
+ * stopped, every change has been drawn and every frame hook (the eyes' gaze and blinks, the cue
+ * layer) reports no change. A moving gaze or a blink keeps drawing, however slowly frames come.
+ */
+export async function waitForStill( page, timeoutMs = 60_000 ) {
+
+	await page.evaluate( () => ( window.__e2eStillFrames = null ) );
+	await page.waitForFunction( () => {
+
+		const g = window.glasshead;
+		const last = window.__e2eStillFrames;
+		window.__e2eStillFrames = g.frames;
+		return last === g.frames && g.cameraMoving === false && g.renderPending === false;
+
+	}, null, { timeout: timeoutMs, polling: 'raf' } );
+
+}
+
+/**
  * A new page at `url` (a view of the served app, e.g. `${ server.baseUrl }/#/workbench`) once it has loaded and
  * settled; `size` as openPage's.
  */
