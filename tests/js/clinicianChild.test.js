@@ -2,6 +2,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { childChoices, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinician/clinicianChildRows.js';
 import { downloadFile } from '../../web/src/ui/shared/download.js';
+import { createApi } from '../../web/src/api.js';
 
 test( 'the chooser groups the caseload’s children by class, classes by name, and leaves out empty classes', () => {
 
@@ -48,7 +49,7 @@ test( 'a download sends the token, saves under the server’s file name, and a r
 			: answer( 404, {}, JSON.stringify( { detail: 'no child with id 4' } ) );
 
 	};
-	const options = { fetchImpl, tokenSource: () => 'tok', save: ( content, name ) => saved.push( [ content, name ] ) };
+	const options = { api: createApi( { fetchImpl, tokenSource: () => 'tok' } ), save: ( content, name ) => saved.push( [ content, name ] ) };
 	assert.equal( await downloadFile( 'children/3/practice.csv', 'x.csv', options ), 'child-3-practice.csv' );
 	assert.equal( calls[ 0 ].url, '/api/v1/children/3/practice.csv' );
 	assert.equal( calls[ 0 ].init.headers.Authorization, 'Bearer tok' );

@@ -7,6 +7,7 @@ import test from 'node:test';
 import { agreementText, indexLabel, INDEX_LABELS, recordingTitle, speakerOf } from '../../web/src/ui/clinician/clinicianText.js';
 import { missingChoiceMessage, parseSelection, SelectionUrl, selectionHash } from '../../web/src/ui/clinician/clinicianUrl.js';
 import { importErrorMessage, importRecordingFile, MAX_IMPORT_BYTES } from '../../web/src/ui/clinician/clinicianImport.js';
+import { createApi } from '../../web/src/api.js';
 import { DEFAULT_SPEED, SPEEDS, speedLabel } from '../../web/src/ui/clinician/clinicianLayout.js';
 import { TABLE_INDICES } from '../../web/src/ui/clinician/clinicianRender.js';
 import { recordingLabel } from '../../web/src/ui/clinician/clinicianData.js';
@@ -103,7 +104,7 @@ test( 'a chosen file is sent as a multipart upload and the imported recordings c
 
 	const { fetchImpl, sent } = fakeFetch( 201, { total: 1, recordings: [ { id: 5, name: 'take' } ] } );
 	const file = new File( [ 'frame,t_s\n' ], 'take.csv', { type: 'text/csv' } );
-	const body = await importRecordingFile( file, { fetchImpl } );
+	const body = await importRecordingFile( file, { api: createApi( { fetchImpl } ) } );
 	assert.deepEqual( body.recordings.map( ( r ) => r.id ), [ 5 ] );
 	assert.equal( sent.length, 1 );
 	assert.equal( sent[ 0 ].url, '/api/v1/epg/recordings' );
@@ -116,11 +117,11 @@ test( 'a chosen file is sent as a multipart upload and the imported recordings c
 test( 'a refused file is explained in plain words, and empty or oversized files are not sent', async () => {
 
 	const { fetchImpl, sent } = fakeFetch( 422, { detail: 'frame 3, field rows: 7 rows, expected 8' } );
-	await assert.rejects( importRecordingFile( new File( [ 'x' ], 'bad.csv' ), { fetchImpl } ),
+	await assert.rejects( importRecordingFile( new File( [ 'x' ], 'bad.csv' ), { api: createApi( { fetchImpl } ) } ),
 		{ message: 'The file could not be imported, nothing was stored: frame 3, field rows: 7 rows, expected 8.' } );
-	await assert.rejects( importRecordingFile( new File( [], 'empty.json' ), { fetchImpl } ), { message: '"empty.json" is empty: nothing was imported.' } );
+	await assert.rejects( importRecordingFile( new File( [], 'empty.json' ), { api: createApi( { fetchImpl } ) } ), { message: '"empty.json" is empty: nothing was imported.' } );
 	const huge = { name: 'huge.json', size: MAX_IMPORT_BYTES + 1 };
-	await assert.rejects( importRecordingFile( huge, { fetchImpl } ), { message: 'The file is too large: recordings can be at most 32 MB.' } );
+	await assert.rejects( importRecordingFile( huge, { api: createApi( { fetchImpl } ) } ), { message: 'The file is too large: recordings can be at most 32 MB.' } );
 	assert.equal( sent.length, 1, 'only the first file reached the server' );
 	assert.equal( importErrorMessage( 500, 'database locked' ), 'The import failed (HTTP 500): database locked.' );
 

@@ -5,6 +5,7 @@ import {
 	itemsWithErrors, lessonBody, moveItem, newItem, parseAuthorHash, parseLessonFile, readNumber, removeItem, setField,
 } from '../../web/src/ui/author/LessonEditorModel.js';
 import { createLessonClient } from '../../web/src/ui/author/LessonEditorClient.js';
+import { createApi } from '../../web/src/api.js';
 import { attachmentName } from '../../web/src/ui/shared/download.js';
 
 const SERVER_LESSON = {
@@ -135,7 +136,7 @@ test( 'the client reads ETags, sends If-Match and the token, and a stale save is
 		{ status: 412, body: { detail: 'lesson 7 changed since it was read' }, headers: { etag: '"lesson-7-v2"' } },
 		{ body: SERVER_LESSON, headers: { etag: '"lesson-7-v3"' } },
 	] );
-	const client = createLessonClient( { fetchImpl, tokenSource: () => 'tok' } );
+	const client = createLessonClient( { api: createApi( { fetchImpl, tokenSource: () => 'tok' } ) } );
 	const { lesson, etag } = await client.get( 7 );
 	assert.equal( lesson.id, 7 );
 	assert.equal( etag, '"lesson-7-v1"' );

@@ -53,6 +53,38 @@ test( 'every verb sends its method, and a body as JSON', async () => {
 
 } );
 
+test( 'an exchange adds headers, sends FormData as it is, reads the answer as asked and gives its headers, also with a refusal', async () => {
+
+	const answered = ( status, headers, body ) => async () => ( {
+		ok: status >= 200 && status < 300, status, statusText: '',
+		headers: { get: ( name ) => headers[ name.toLowerCase() ] ?? null },
+		json: async () => body, text: async () => JSON.stringify( body ), blob: async () => new Blob( [ 'b' ] ),
+	} );
+	const { api, requests } = recording( answered( 200, { etag: '"v2"' }, { id: 3 } ) );
+	const json = await api.exchange( 'PUT', 'lessons/3', { body: { title: 't' }, headers: { 'If-Match': '"v1"' } } );
+	assert.deepEqual( json.body, { id: 3 } );
+	assert.equal( json.status, 200 );
+	assert.equal( json.headers.get( 'ETag' ), '"v2"' );
+	assert.equal( requests[ 0 ].init.headers[ 'If-Match' ], '"v1"' );
+	assert.equal( requests[ 0 ].init.headers.Accept, 'application/json' );
+	assert.equal( ( await api.exchange( 'GET', 'lessons/3/export', { read: 'text' } ) ).body, '{"id":3}' );
+	assert.equal( requests[ 1 ].init.headers.Accept, '*/*' );
+	assert.ok( ( await api.exchange( 'GET', 'children/3/export', { read: 'blob' } ) ).body instanceof Blob );
+	const form = new FormData();
+	form.append( 'file', new Blob( [ 'x' ] ), 'take.csv' );
+	await api.exchange( 'POST', 'epg/recordings', { body: form } );
+	assert.equal( requests[ 3 ].init.body, form );
+	assert.equal( requests[ 3 ].init.headers[ 'Content-Type' ], undefined, 'the browser writes the multipart type' );
+	await assert.rejects( api.exchange( 'GET', 'x', { read: 'formData' } ), TypeError );
+
+	const stale = createApi( { fetchImpl: answered( 412, { etag: '"v3"' }, { detail: 'lesson 3 changed' } ) } );
+	const error = await stale.put( 'lessons/3', {} ).catch( ( e ) => e );
+	assert.ok( error instanceof ApiError );
+	assert.equal( error.status, 412 );
+	assert.equal( error.headers.get( 'ETag' ), '"v3"' );
+
+} );
+
 test( 'a binary GET resolves to the bytes; an empty answer (204) to null', async () => {
 
 	const { api } = recording( respond( 200, null ) );

@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import { accountItem } from '../../web/src/ui/shared/NavBar.js';
 import { sourceShown } from '../../web/src/ui/head/HeadTargets.js';
 import { importErrorMessage, importRecordingFile, REFERENCE } from '../../web/src/ui/clinician/clinicianImport.js';
+import { createApi } from '../../web/src/api.js';
 
 const teacher = { kind: 'user', token: 't-1', expires_at: '2099-01-01T00:00:00Z', user: { id: 2, username: 'ann@school.example', display_name: 'Ann', role: 'teacher' } };
 const child = { kind: 'child', token: 'c-1', expires_at: '2099-01-01T00:00:00Z', child: { id: 5, display_name: 'Fox' } };
@@ -48,9 +49,9 @@ test( 'an import sends the bearer token and the child it was recorded from; a re
 
 	const { fetchImpl, sent } = fakeFetch( 201, { recordings: [ { id: 8 } ], total: 1 } );
 	const file = new File( [ 'frame,row\n' ], 'take.csv' );
-	await importRecordingFile( file, { childId: '12', fetchImpl, tokenSource: () => 'tok-7' } );
-	await importRecordingFile( file, { childId: REFERENCE, fetchImpl, tokenSource: () => 'tok-7' } );
-	await importRecordingFile( file, { fetchImpl, tokenSource: () => null } );
+	await importRecordingFile( file, { childId: '12', api: createApi( { fetchImpl, tokenSource: () => 'tok-7' } ) } );
+	await importRecordingFile( file, { childId: REFERENCE, api: createApi( { fetchImpl, tokenSource: () => 'tok-7' } ) } );
+	await importRecordingFile( file, { api: createApi( { fetchImpl, tokenSource: () => null } ) } );
 	assert.equal( sent[ 0 ].init.headers.Authorization, 'Bearer tok-7' );
 	assert.equal( sent[ 0 ].init.body.get( 'child_id' ), '12' );
 	assert.equal( sent[ 1 ].init.body.get( 'child_id' ), null );
@@ -61,7 +62,7 @@ test( 'an import sends the bearer token and the child it was recorded from; a re
 test( 'a refused import says why in plain words and keeps the status for the view (401: sign in again)', async () => {
 
 	const { fetchImpl } = fakeFetch( 401, { detail: 'a valid bearer token is needed' } );
-	await assert.rejects( importRecordingFile( new File( [ 'x' ], 'take.csv' ), { fetchImpl, tokenSource: () => 'old' } ),
+	await assert.rejects( importRecordingFile( new File( [ 'x' ], 'take.csv' ), { api: createApi( { fetchImpl, tokenSource: () => 'old' } ) } ),
 		{ name: 'ApiError', status: 401, message: 'Please sign in to import recordings.' } );
 	assert.equal( importErrorMessage( 403 ), 'Only clinicians and admins can import recordings.' );
 	assert.equal( importErrorMessage( 404 ), 'That child is not in your caseload: nothing was imported.' );

@@ -6,6 +6,7 @@
 //   const anatomy = await api.get( 'anatomy' );                  // GET /api/v1/anatomy
 //   await api.post( 'poses', { name, params } );                 // POST /api/v1/poses
 //   const bytes = await api.getBinary( info.url );               // an asset URL from an answer
+//   const { body, headers } = await api.exchange( 'PUT', 'lessons/3', { body, headers: { 'If-Match': etag } } );
 //
 // Paths resolve as links do against the API base `/api/v1/`: 'anatomy' is /api/v1/anatomy, while
 // a path from the site root ('/assets/build/maxilla.glb', as answers give them) or a full URL is
@@ -23,8 +24,9 @@ export class ApiError extends Error {
 	 * @param {string} message says what failed, naming the request
 	 * @param {{ method?: string, url?: string|null, status?: number|null, detail?: any, cause?: any }} fields
 	 *   `status` is null when no answer came; `detail` is the server's error detail as it sent it
+	 * @param {{ headers?: Headers|null }} [fields] the answer's headers (an ETag, a Retry-After), null without one
 	 */
-	constructor( message, { method = 'GET', url = null, status = null, detail = null, cause } = {} ) {
+	constructor( message, { method = 'GET', url = null, status = null, detail = null, headers = null, cause } = {} ) {
 
 		super( message, cause === undefined ? undefined : { cause } );
 		this.name = 'ApiError';
@@ -32,6 +34,7 @@ export class ApiError extends Error {
 		this.url = url;
 		this.status = status;
 		this.detail = detail;
+		this.headers = headers;
 
 	}
 
@@ -61,6 +64,9 @@ export function describeDetail( detail ) {
 
 }
 
+/** What exchange() can read an answer as (the Response method of each name). */
+const READS = new Set( [ 'json', 'arrayBuffer', 'blob', 'text' ] );
+
 /** The URL of `path` against `base`: relative paths go under it; '/…' and full URLs stay. */
 export function resolveUrl( path, base = API_BASE ) {
 
@@ -76,20 +82,31 @@ export function resolveUrl( path, base = API_BASE ) {
  *   stands in for the browser's fetch (tests); the default is the global fetch at the time of each
  *   request. `tokenSource()` gives the bearer token to send with each request, or null for none
  * @returns {{ base: string, url: Function, get: Function, post: Function, put: Function,
- *   patch: Function, delete: Function, getBinary: Function }} every method returns a Promise and
- *   takes a last `{ signal }` option; get/post/put/patch/delete resolve to the parsed JSON answer
- *   (null for an empty one), getBinary to an ArrayBuffer
+ *   patch: Function, delete: Function, getBinary: Function, exchange: Function }} every method
+ *   returns a Promise and takes a last `{ signal }` option; get/post/put/patch/delete resolve to
+ *   the parsed JSON answer (null for an empty one), getBinary to an ArrayBuffer, and exchange to
+ *   the whole answer (see below)
  */
 export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = null } = {} ) {
 
-	async function request( method, path, { body, binary = false, signal } = {} ) {
+	/**
+	 * One request, and the whole answer: { body, status, headers }.
+	 * @param {{ body?: any, headers?: Object<string, string>, read?: 'json'|'arrayBuffer'|'blob'|'text',
+	 *   signal?: AbortSignal }} options `body` is sent as JSON, or as it is when it is FormData (a
+	 *   multipart upload); `headers` are added to the request's (If-Match); `read` says what `body`
+	 *   of the answer is: parsed JSON (null for 204, the default), an ArrayBuffer, a Blob or text
+	 */
+	async function exchange( method, path, { body, headers: extra = null, read = 'json', signal } = {} ) {
 
+		if ( ! READS.has( read ) ) throw new TypeError( `an answer is read as ${ [ ...READS ].join( ', ' ) }, not ${ read }` );
 		const url = resolveUrl( path, base );
-		const headers = { Accept: binary ? '*/*' : 'application/json' };
+		const headers = { Accept: read === 'json' ? 'application/json' : '*/*' };
 		const token = tokenSource?.() ?? null;
 		if ( token ) headers.Authorization = `Bearer ${ token }`;
+		Object.assign( headers, extra );
 		const init = { method, headers, signal };
-		if ( body !== undefined ) {
+		if ( body instanceof FormData ) init.body = body; // the browser writes its Content-Type
+		else if ( body !== undefined ) {
 
 			headers[ 'Content-Type' ] = 'application/json';
 			init.body = JSON.stringify( body );
@@ -122,23 +139,31 @@ export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = nu
 			}
 
 			const said = describeDetail( detail ) || response.statusText || '';
-			throw new ApiError( `${ method } ${ url } failed with HTTP ${ status }${ said ? `: ${ said }` : '' }`, { method, url, status, detail } );
+			throw new ApiError( `${ method } ${ url } failed with HTTP ${ status }${ said ? `: ${ said }` : '' }`, { method, url, status, detail, headers: response.headers ?? null } );
 
 		}
 
-		if ( binary ) return response.arrayBuffer();
-		if ( status === 204 ) return null;
-		try {
+		const answer = { body: null, status, headers: response.headers ?? null };
+		if ( read !== 'json' ) answer.body = await response[ read ]();
+		else if ( status !== 204 ) {
 
-			return await response.json();
+			try {
 
-		} catch ( error ) {
+				answer.body = await response.json();
 
-			throw new ApiError( `${ method } ${ url } returned invalid JSON: ${ error.message }`, { method, url, status, cause: error } );
+			} catch ( error ) {
+
+				throw new ApiError( `${ method } ${ url } returned invalid JSON: ${ error.message }`, { method, url, status, headers: answer.headers, cause: error } );
+
+			}
 
 		}
+
+		return answer;
 
 	}
+
+	const request = async ( method, path, options ) => ( await exchange( method, path, options ) ).body;
 
 	return Object.freeze( {
 		base,
@@ -149,7 +174,8 @@ export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = nu
 		put: ( path, body, options ) => request( 'PUT', path, { ...options, body } ),
 		patch: ( path, body, options ) => request( 'PATCH', path, { ...options, body } ),
 		delete: ( path, options ) => request( 'DELETE', path, options ),
-		getBinary: ( path, options ) => request( 'GET', path, { ...options, binary: true } ),
+		getBinary: ( path, options ) => request( 'GET', path, { ...options, read: 'arrayBuffer' } ),
+		exchange,
 	} );
 
 }

@@ -1,68 +1,33 @@
-// The lesson requests of the author's editor, with what the page's API client (api.js) leaves
-// out: the ETag of every read and write, If-Match on every change, and an export as a file. A
-// stale save is an ApiError with status 412 and the lesson's current `etag`, so that the editor
-// can offer to overwrite it knowingly (a write with that ETag) without losing the draft.
+// The lesson requests of the author's editor, through the page's API client (api.js) with what
+// the editor needs besides: the ETag of every read and write, If-Match on every change, and an
+// export as a file. A stale save is an ApiError with status 412 and the lesson's current `etag`,
+// so that the editor can offer to overwrite it knowingly (a write with that ETag) without losing
+// the draft.
 //
 //   const lessons = createLessonClient();
 //   const { lesson, etag } = await lessons.get( 3 );
 //   const saved = await lessons.replace( 3, body, etag );   // { lesson, etag }; 412 when stale
 
-import { ApiError, API_BASE, describeDetail, resolveUrl } from '../../api.js';
-import { currentToken } from '../../session.js';
+import { api as pageApi, ApiError } from '../../api.js';
 import { attachmentName } from '../shared/download.js';
 
-/**
- * @param {{ base?: string, fetchImpl?: Function, tokenSource?: Function }} options as createApi's
- */
-export function createLessonClient( { base = API_BASE, fetchImpl = null, tokenSource = () => currentToken() } = {} ) {
+/** @param {{ api?: object }} options the HTTP client (api.js's createApi) the lessons go through */
+export function createLessonClient( { api = pageApi } = {} ) {
 
-	async function request( method, path, { body, ifMatch = null, raw = false } = {} ) {
+	/** The answer's { body, headers, etag }; a failure's ApiError carries the lesson's `etag` too. */
+	async function request( method, path, { body, ifMatch = null, read = 'json' } = {} ) {
 
-		const url = resolveUrl( path, base );
-		const headers = { Accept: raw ? '*/*' : 'application/json' };
-		const token = tokenSource?.() ?? null;
-		if ( token ) headers.Authorization = `Bearer ${ token }`;
-		if ( ifMatch ) headers[ 'If-Match' ] = ifMatch;
-		const init = { method, headers };
-		if ( body !== undefined ) {
-
-			headers[ 'Content-Type' ] = 'application/json';
-			init.body = JSON.stringify( body );
-
-		}
-
-		let response;
 		try {
 
-			response = await ( fetchImpl ?? globalThis.fetch )( url, init );
+			const answer = await api.exchange( method, path, { body, read, headers: ifMatch ? { 'If-Match': ifMatch } : null } );
+			return { ...answer, etag: answer.headers?.get( 'ETag' ) ?? null };
 
 		} catch ( error ) {
 
-			throw new ApiError( `Could not reach the server for ${ method } ${ url }: ${ error?.message ?? error }`, { method, url, cause: error } );
-
-		}
-
-		const etag = response.headers.get( 'ETag' );
-		if ( ! response.ok ) {
-
-			let detail = null;
-			try {
-
-				detail = ( await response.json() )?.detail ?? null;
-
-			} catch {
-				// Not JSON: the status says it.
-			}
-
-			const said = describeDetail( detail ) || response.statusText || '';
-			const error = new ApiError( `${ method } ${ url } failed with HTTP ${ response.status }${ said ? `: ${ said }` : '' }`, { method, url, status: response.status, detail } );
-			error.etag = etag;
+			if ( error instanceof ApiError && error.status !== null ) error.etag = error.headers?.get( 'ETag' ) ?? null;
 			throw error;
 
 		}
-
-		if ( raw ) return { response, etag };
-		return { body: response.status === 204 ? null : await response.json(), etag };
 
 	}
 
@@ -88,8 +53,8 @@ export function createLessonClient( { base = API_BASE, fetchImpl = null, tokenSo
 		/** GET /lessons/{id}/export: { text, filename } of the file to download. */
 		exportFile: async ( id ) => {
 
-			const { response } = await request( 'GET', `lessons/${ id }/export`, { raw: true } );
-			return { text: await response.text(), filename: attachmentName( response.headers.get( 'Content-Disposition' ), `lesson-${ id }.json` ) };
+			const { body, headers } = await request( 'GET', `lessons/${ id }/export`, { read: 'text' } );
+			return { text: body, filename: attachmentName( headers?.get( 'Content-Disposition' ), `lesson-${ id }.json` ) };
 
 		},
 	} );

@@ -8,8 +8,7 @@
 // box from GET /children) or a reference recording (no child). The upload carries the signed-in
 // session's token, as every request of the API client does.
 
-import { API_BASE, ApiError, describeDetail } from '../../api.js';
-import { currentToken } from '../../session.js';
+import { api as pageApi, ApiError, describeDetail } from '../../api.js';
 import { h } from '../shared/dom.js';
 
 /** The child chooser's value for a reference recording (no child). */
@@ -42,9 +41,9 @@ export function importErrorMessage( status, detail ) {
  * `childId` (a reference recording when it is REFERENCE or null). Resolves to the server's
  * { recordings, total }; rejects with an ApiError (status, detail) whose message can be shown as
  * it is, or an Error before sending.
- * @param {{ childId?: string|number|null, fetchImpl?: Function, base?: string, tokenSource?: Function }} options
+ * @param {{ childId?: string|number|null, api?: object }} options `api`: the HTTP client (api.js)
  */
-export async function importRecordingFile( file, { childId = null, fetchImpl = null, base = API_BASE, tokenSource = () => currentToken() } = {} ) {
+export async function importRecordingFile( file, { childId = null, api = pageApi } = {} ) {
 
 	if ( ! file ) throw new Error( 'Choose a file to import.' );
 	if ( file.size === 0 ) throw new Error( `"${ file.name }" is empty: nothing was imported.` );
@@ -52,35 +51,18 @@ export async function importRecordingFile( file, { childId = null, fetchImpl = n
 	const form = new FormData();
 	form.append( 'file', file, file.name );
 	if ( childId !== null && childId !== REFERENCE ) form.append( 'child_id', String( childId ) );
-	const headers = { Accept: 'application/json' };
-	const token = tokenSource?.() ?? null;
-	if ( token ) headers.Authorization = `Bearer ${ token }`;
-	const fetch = fetchImpl ?? globalThis.fetch;
-	const url = `${ base }/epg/recordings`;
-	let response;
+	let body;
 	try {
 
-		response = await fetch( url, { method: 'POST', body: form, headers } );
+		( { body } = await api.exchange( 'POST', 'epg/recordings', { body: form } ) );
 
 	} catch ( error ) {
 
-		throw new Error( `Could not reach the server to import "${ file.name }": ${ error?.message ?? error }`, { cause: error } );
-
-	}
-
-	let body = null;
-	try {
-
-		body = await response.json();
-
-	} catch {
-		// Not JSON: the status says what there is to say.
-	}
-
-	if ( ! response.ok ) {
-
-		const { status } = response;
-		throw new ApiError( importErrorMessage( status, body?.detail ), { method: 'POST', url, status, detail: body?.detail ?? null } );
+		if ( ! ( error instanceof ApiError ) ) throw error;
+		const { status } = error;
+		if ( status === null ) throw new Error( `Could not reach the server to import "${ file.name }": ${ error.cause?.message ?? error.cause }`, { cause: error } );
+		if ( status < 200 || status >= 300 ) throw new ApiError( importErrorMessage( status, error.detail ), { method: 'POST', url: error.url, status, detail: error.detail } );
+		body = null; // an answer that is not JSON
 
 	}
 

@@ -5,8 +5,7 @@
 //   await downloadFile( 'children/3/practice.csv', 'child-3-practice.csv' );
 //   saveAs( text, 'lesson-3.json', 'application/json' );
 
-import { ApiError, API_BASE, describeDetail, resolveUrl } from '../../api.js';
-import { currentToken } from '../../session.js';
+import { api as pageApi } from '../../api.js';
 
 /** The file name in a Content-Disposition header, or `fallback`. */
 export function attachmentName( header, fallback ) {
@@ -33,35 +32,14 @@ export function saveAs( content, filename, type = 'application/octet-stream', do
 }
 
 /**
- * GET `path` (resolved as api.js resolves it) with the signed-in token and save the answer;
- * resolves to the name it was saved under. A failure is an ApiError, as the API client's.
+ * GET `path` through the API client `api` (with its token) and save the answer; resolves to the
+ * name it was saved under. A failure is the client's ApiError.
  */
-export async function downloadFile( path, fallback, { fetchImpl = null, tokenSource = () => currentToken(), save = saveAs } = {} ) {
+export async function downloadFile( path, fallback, { api = pageApi, save = saveAs } = {} ) {
 
-	const url = resolveUrl( path, API_BASE );
-	const token = tokenSource?.() ?? null;
-	const headers = token ? { Authorization: `Bearer ${ token }` } : {};
-	let response;
-	try {
-
-		response = await ( fetchImpl ?? globalThis.fetch )( url, { headers } );
-
-	} catch ( error ) {
-
-		throw new ApiError( `Could not reach the server for GET ${ url }: ${ error?.message ?? error }`, { url, cause: error } );
-
-	}
-
-	if ( ! response.ok ) {
-
-		const detail = await response.json().then( ( body ) => body?.detail ?? null, () => null );
-		const said = describeDetail( detail ) || response.statusText || '';
-		throw new ApiError( `GET ${ url } failed with HTTP ${ response.status }${ said ? `: ${ said }` : '' }`, { url, status: response.status, detail } );
-
-	}
-
-	const filename = attachmentName( response.headers.get( 'Content-Disposition' ), fallback );
-	save( await response.blob(), filename );
+	const { body, headers } = await api.exchange( 'GET', path, { read: 'blob' } );
+	const filename = attachmentName( headers?.get( 'Content-Disposition' ), fallback );
+	save( body, filename );
 	return filename;
 
 }
