@@ -249,6 +249,23 @@ export async function settle( page ) {
 }
 
 /**
+ * Wait until the page has been through `count` animation frames: whatever a change of size or of
+ * the page sets off before the next paint (resize observers, the next draw) has run by then, on a
+ * fast machine or a slow one.
+ */
+export async function animationFrames( page, count = 2 ) {
+
+	await page.evaluate( ( n ) => new Promise( ( resolve ) => {
+
+		let left = n;
+		const tick = () => ( -- left <= 0 ? resolve() : requestAnimationFrame( tick ) );
+		requestAnimationFrame( tick );
+
+	} ), count );
+
+}
+
+/**
  * Wait until a whole animation frame of the 3D view goes by with nothing drawn: the camera has
  * stopped, every change has been drawn and every frame hook (the eyes' gaze and blinks, the cue
  * layer) reports no change. A moving gaze or a blink keeps drawing, however slowly frames come.

@@ -6,7 +6,7 @@
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
 import { openSignedIn } from './accounts.js';
-import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle, waitForLoaded } from './harness.js';
+import { animationFrames, openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle, waitForLoaded } from './harness.js';
 
 const VIEWS = [
 	{ path: '/', label: 'Head' },
@@ -90,7 +90,7 @@ describe( 'finding one\'s way', { timeout: 1_200_000 }, () => {
 			for ( const [ width, height ] of SIZES ) {
 
 				await page.setViewportSize( { width, height } );
-				await page.waitForTimeout( 300 ); // a resize is drawn in the next frames
+				await animationFrames( page ); // what a resize sets off (resize observers) has run
 				const layout = await readLayout( page );
 				const where = `${ view.path } at ${ width }x${ height }`;
 				assert.ok( layout.appTop >= layout.barBottom - 0.5, `${ where }: the views start at ${ layout.appTop } px, the bar ends at ${ layout.barBottom } px` );

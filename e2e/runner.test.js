@@ -10,7 +10,7 @@
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
 import { apiSession, authHeaders, signIn } from './accounts.js';
-import { openPage, readDebug, saveScreenshot, serverAndBrowser } from './harness.js';
+import { animationFrames, openPage, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 const SIZE = Object.freeze( { width: 1366, height: 768 } );
 
@@ -112,7 +112,8 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 
 		await page.keyboard.press( 'f' );
 		await page.waitForFunction( () => window.glasshead.runner.presenting === true, null, { timeout: 10_000 } );
-		await page.waitForTimeout( 500 ); // the new size is drawn in the next frames
+		await animationFrames( page ); // the new size has reached the 3D view, which draws it next
+		await settle( page );
 		for ( const selector of [ '.nav-bar', '.lr-panel', '.lr-toolbar', '.sp-bottom' ] ) assert.equal( await visible( selector ), false, `${ selector } is hidden` );
 		const viewport = page.viewportSize();
 		const stage = await page.locator( '.sp-stage' ).boundingBox();
