@@ -80,7 +80,7 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 		const name = `every group changed ${ Date.now() }`;
 		await page.getByRole( 'textbox', { name: 'Pose name' } ).fill( name );
 		await button( 'Save pose' ).click();
-		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 60_000 } );
 		assert.deepEqual( ( await readDebug( page ) ).workbench.poseStatus, { ok: true, message: `Saved the pose "${ name }".` } );
 		pose = ( await api( 'GET', `/poses?name=${ encodeURIComponent( name ) }` ) ).body.poses[ 0 ];
 		assert.deepEqual( Object.keys( pose.params ).sort(), sliders.map( ( s ) => s.name ).sort(), 'the workbench saves every parameter' );
@@ -131,7 +131,7 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 		assert.match( await page.getByRole( 'status' ).filter( { hasText: 'Imported' } ).textContent(), /Imported "emur-engassim.json": 32 recordings\./ );
 		const options = await page.getByRole( 'combobox', { name: 'Recording' } ).locator( 'option' ).allTextContents();
 		assert.ok( options.includes( 'bescan (s→k), speaker sp1 (52 frames, 200 Hz)' ), options.slice( 0, 3 ).join( ' | ' ) );
-		await page.waitForFunction( ( id ) => window.location.hash.includes( `recording=${ id }` ), recordingIds[ 0 ], { timeout: 5000 } );
+		await page.waitForFunction( ( id ) => window.location.hash.includes( `recording=${ id }` ), recordingIds[ 0 ], { timeout: 60_000 } );
 		assert.equal( await page.evaluate( () => window.location.hash ), `#/clinician?target=pose:${ pose.id }&recording=${ recordingIds[ 0 ] }` );
 
 	} );
@@ -184,7 +184,7 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 
 		await page.getByRole( 'slider', { name: 'Frame' } ).fill( '30' );
 		const id = recordingIds[ 0 ];
-		await page.waitForFunction( () => window.location.hash.includes( 'frame=30' ), null, { timeout: 5000 } );
+		await page.waitForFunction( () => window.location.hash.includes( 'frame=30' ), null, { timeout: 60_000 } );
 		await page.reload();
 		await page.waitForFunction( () => window.glasshead.clinician?.loaded === true, null, { timeout: 90_000, polling: 200 } );
 		const state = await clinician();

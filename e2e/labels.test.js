@@ -104,7 +104,7 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 
 		} );
 		await page.mouse.move( dot.x, dot.y );
-		await page.waitForFunction( () => window.glasshead.labels.hovered !== null, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.labels.hovered !== null, null, { timeout: 60_000 } );
 		const { hovered } = ( await readDebug( page ) ).labels;
 		assert.match( hovered, /^tongue (tip|blade|front|back|root)$/ );
 		assert.ok( await page.getByRole( 'status' ).filter( { hasText: hovered } ).isVisible() );

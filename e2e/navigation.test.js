@@ -156,7 +156,7 @@ describe( 'finding one\'s way', { timeout: 1_200_000 }, () => {
 		const save = page.getByRole( 'button', { name: 'Save pose' } );
 		await save.scrollIntoViewIfNeeded();
 		await save.click();
-		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 60_000 } );
 		const status = ( await readDebug( page ) ).workbench.poseStatus;
 		assert.deepEqual( status, { ok: false, message: 'Names can be at most 120 characters. Shorten the name and save again.' } );
 		const message = page.getByRole( 'alert' ).filter( { hasText: 'Names can be at most 120 characters' } );

@@ -78,12 +78,12 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 		const code = page.getByRole( 'textbox', { name: 'Class code' } );
 		await code.fill( 'abc' );
 		await page.getByRole( 'button', { name: 'Go' } ).tap();
-		await page.getByRole( 'alert' ).filter( { hasText: 'A class code has six letters and numbers.' } ).waitFor( { timeout: 10_000 } );
+		await page.getByRole( 'alert' ).filter( { hasText: 'A class code has six letters and numbers.' } ).waitFor( { timeout: 60_000 } );
 		// Six characters of the code alphabet, but no class has them.
 		const unknown = schoolClass.join_code === 'CDEFGH' ? 'CDEFGJ' : 'CDEFGH';
 		await code.fill( unknown );
 		await page.getByRole( 'button', { name: 'Go' } ).tap();
-		await page.getByRole( 'alert' ).filter( { hasText: 'There is no class with this code.' } ).waitFor( { timeout: 10_000 } );
+		await page.getByRole( 'alert' ).filter( { hasText: 'There is no class with this code.' } ).waitFor( { timeout: 60_000 } );
 		assert.equal( ( await practice() ).screen, 'code' );
 
 	} );

@@ -111,7 +111,7 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 	test( 'F shows the head alone with the target in big letters and the item dots; Esc comes back', async () => {
 
 		await page.keyboard.press( 'f' );
-		await page.waitForFunction( () => window.glasshead.runner.presenting === true, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.runner.presenting === true, null, { timeout: 60_000 } );
 		await animationFrames( page ); // the new size has reached the 3D view, which draws it next
 		await settle( page );
 		for ( const selector of [ '.nav-bar', '.lr-panel', '.lr-toolbar', '.sp-bottom' ] ) assert.equal( await visible( selector ), false, `${ selector } is hidden` );
@@ -126,7 +126,7 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		await page.keyboard.press( 'Escape' );
 		await page.waitForTimeout( 300 );
 		if ( ( await runner() ).presenting ) await page.keyboard.press( 'Escape' );
-		await page.waitForFunction( () => window.glasshead.runner.presenting === false, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.runner.presenting === false, null, { timeout: 60_000 } );
 		assert.ok( await visible( '.lr-panel' ) && await visible( '.nav-bar' ) );
 
 	} );

@@ -77,7 +77,7 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 			const me = await fetch( `${ server.baseUrl }/api/v1/auth/me`, { headers: { Authorization: `Bearer ${ session.token }` } } );
 			assert.equal( me.status, 200, 'the stored token is good on the server' );
 			const who = nav( page ).getByText( 'E2E Teacher (teacher)' );
-			await who.waitFor( { timeout: 10_000 } );
+			await who.waitFor( { timeout: 60_000 } );
 			assert.deepEqual( await axeViolations( page, { include: 'nav' } ), [], `the bar signed in at ${ size.join( 'x' ) }` );
 			const signOut = await nav( page ).getByRole( 'button', { name: 'Sign out' } ).boundingBox();
 			assert.ok( signOut.height >= TOUCH_PX && signOut.width >= TOUCH_PX, `Sign out is ${ signOut.width } x ${ signOut.height } px` );
@@ -142,9 +142,9 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 		await page.goto( `${ server.baseUrl }/#/signin` );
 		await page.waitForFunction( () => window.glasshead?.signIn?.ready === true, null, { timeout: 30_000 } );
 		const bar = nav( page );
-		await bar.getByText( 'E2E Teacher (teacher)' ).waitFor( { timeout: 10_000 } );
+		await bar.getByText( 'E2E Teacher (teacher)' ).waitFor( { timeout: 60_000 } );
 		await bar.getByRole( 'button', { name: 'Sign out' } ).click();
-		await bar.getByRole( 'link', { name: 'Sign in' } ).waitFor( { timeout: 10_000 } );
+		await bar.getByRole( 'link', { name: 'Sign in' } ).waitFor( { timeout: 60_000 } );
 		assert.equal( await storedSession( page ), null );
 		const me = await fetch( `${ server.baseUrl }/api/v1/auth/me`, { headers: { Authorization: `Bearer ${ session.token }` } } );
 		assert.equal( me.status, 401, 'the token is revoked' );
@@ -216,7 +216,7 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 		assert.match( await prompt.textContent(), /^Please sign in as a clinician to read EPG recordings\./ );
 		assert.equal( await storedSession( page ), null, 'the session is forgotten' );
 		assert.equal( await prompt.getByRole( 'link', { name: 'Sign in' } ).getAttribute( 'href' ), `#/signin?next=${ encodeURIComponent( '#/clinician?recording=3' ) }` );
-		await nav( page ).getByRole( 'link', { name: 'Sign in' } ).waitFor( { timeout: 10_000 } );
+		await nav( page ).getByRole( 'link', { name: 'Sign in' } ).waitFor( { timeout: 60_000 } );
 		assert.deepEqual( page.problems.filter( ( problem ) => ! problem.includes( '401' ) ), [] );
 		await page.context().close();
 

@@ -315,7 +315,7 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 		await button( 'Hold target' ).click();
 		await holding( 'K' );
 		// The palatogram follows the held pose with the next drawn frame.
-		await page.waitForFunction( () => [ 5, 6, 7 ].some( ( r ) => window.glasshead.epg?.rows?.[ r ] === '11111111' ), null, { timeout: 10_000 } ).catch( () => {} );
+		await page.waitForFunction( () => [ 5, 6, 7 ].some( ( r ) => window.glasshead.epg?.rows?.[ r ] === '11111111' ), null, { timeout: 60_000 } ).catch( () => {} );
 		const state = await readDebug( page );
 		assert.equal( state.speech.phone.symbol, 'K' );
 		assert.ok( [ 5, 6, 7 ].some( ( r ) => rowClosed( state.epg.rows, r ) ), `rows ${ state.epg.rows.join( ' ' ) }` );

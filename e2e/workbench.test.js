@@ -233,7 +233,7 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		const name = `e2e tongue ${ Date.now() }`;
 		await page.getByRole( 'textbox', { name: 'Pose name' } ).fill( name );
 		await button( 'Save pose' ).click();
-		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.workbench.poseStatus !== null, null, { timeout: 60_000 } );
 		let state = await readDebug( page );
 		assert.deepEqual( state.workbench.poseStatus, { ok: true, message: `Saved the pose "${ name }".` } );
 		const saved = await ( await fetch( `${ server.baseUrl }/api/v1/poses?name=${ encodeURIComponent( name ) }`, { headers: authHeaders( author ) } ) ).json();
@@ -241,7 +241,7 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 		assert.equal( saved.poses[ 0 ].params.tip_height, state.params.tip_height );
 
 		await button( 'Save pose' ).click();
-		await page.waitForFunction( () => window.glasshead.workbench.poseStatus?.ok === false, null, { timeout: 10_000 } );
+		await page.waitForFunction( () => window.glasshead.workbench.poseStatus?.ok === false, null, { timeout: 60_000 } );
 		state = await readDebug( page );
 		assert.equal( state.workbench.poseStatus.message, `A pose named "${ name }" already exists. Choose another name.` );
 		assert.match( await page.locator( '.wb-pose [role="alert"]' ).last().textContent(), /already exists/ );
