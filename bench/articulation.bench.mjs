@@ -1,57 +1,41 @@
-// Benchmark: one frame of the articulation pipeline (web/src/scene/Articulation.js) in Node, for
-// seeded random poses (every tongue parameter and the jaw uniform over its range): tongue surface,
-// collision correction against the built tables, normals, volume, jaw matrix, lip gap and the
-// scene's tongue geometry. Measured in this run, over the same poses:
-//   ours      Articulation.update(): preallocated arrays written in place, normals recomputed
-//             only when a vertex was corrected;
+// Benchmark: one frame of the articulation pipeline (web/src/scene/Articulation.js) in Node, on the
+// built head loaded as the app loads it (tests/js/support/builtHead.js: every scene mesh through
+// GLTFLoader and scene/gltfGeometry.js, the tongue rig, the collision tables), for seeded random
+// poses (every tongue parameter and the jaw uniform over its range): tongue surface, collision
+// correction, normals, jaw matrix, the lips' gap and the scene's tongue geometry. The face rig and
+// the velum are left out (the lower lip rides on the jaw): bench/frame.bench.mjs times the whole
+// frame with them. Measured in this run, over the same poses:
+//   ours      Articulation.update(): preallocated arrays written in place;
 //   rebuild   the same frame handed to three.js the usual way for a deformed mesh: a new
 //             BufferGeometry per frame and BufferGeometry.computeVertexNormals().
+// Checked: both give the same corrected vertices and the same normals.
 //
-//   node bench/articulation.bench.mjs [samples]
-import { existsSync, readFileSync } from 'node:fs';
-import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { BoxGeometry, BufferAttribute, BufferGeometry } from 'three';
+//   node bench/articulation.bench.mjs [samples]      (GLASSHEAD_BENCH_QUICK=1: 3 samples)
+import { BufferAttribute, BufferGeometry } from 'three';
 
-import { Head } from '../web/src/scene/Head.js';
-import { Articulation, parameterDefinitions } from '../web/src/scene/Articulation.js';
-import { TongueRig } from '../web/src/core/tongue.js';
 import { correctVertices } from '../web/src/core/collision.js';
-import { ParamState } from '../web/src/core/paramState.js';
-import { decodeCollisionTables } from '../web/src/core/tables.js';
+import { loadBuiltHead } from '../tests/js/support/builtHead.js';
+import { builtFile } from './support/assets.mjs';
+import { check, count } from './support/quick.mjs';
 import { median, random } from './support/stats.mjs';
 
-const REPO = resolve( dirname( fileURLToPath( import.meta.url ) ), '..' );
-const SAMPLES = Number( process.argv[ 2 ] ?? 40 );
+const SAMPLES = Number( process.argv[ 2 ] ?? count( 40, 3 ) );
 const FRAMES = 50; // frames per timed sample, each with new parameters
 const SEED = 1998;
+/** Largest difference allowed between ours and three.js's normals (float32 sums in another order). */
+const NORMAL_TOLERANCE = 1e-4;
 
-function built( name ) {
-
-	const path = join( REPO, 'assets', 'build', name );
-	if ( ! existsSync( path ) ) {
-
-		console.error( `${ path } is missing: run \`glasshead build\` first` );
-		process.exit( 1 );
-
-	}
-
-	return readFileSync( path );
-
-}
-
-const definition = JSON.parse( built( 'tongue-rig.json' ).toString( 'utf8' ) );
-const tables = decodeCollisionTables( built( 'collision-tables.bin' ) );
-const rig = new TongueRig( definition );
-const state = new ParamState( parameterDefinitions( definition ) );
-const head = new Head();
-head.addPart( { name: 'tongue_rest', role: 'tongue' }, new BoxGeometry( 40, 20, 30 ) );
-head.addPart( { name: 'mandible', role: 'mandible' }, new BoxGeometry( 60, 20, 60 ) );
-head.finishLoading();
-const articulation = new Articulation( rig, state, { tables } ).attach( head );
+builtFile( 'manifest.json' ); // exits with a message when there is no build
+const { articulation } = await loadBuiltHead();
+articulation.setFaceRig( null );
+articulation.velum = null;
+articulation.setTract( null );
+const { rig, state } = articulation;
+const tables = articulation.tables;
+if ( ! tables ) throw new Error( `the built head has no collision tables: ${ articulation.tablesError }` );
 
 const next = random( SEED );
-const poses = Array.from( { length: SAMPLES * FRAMES }, () => Float32Array.from( rig.parameters, ( p ) => p.min + ( p.max - p.min ) * next() ) );
+const poses = Array.from( { length: SAMPLES * FRAMES }, () => Float32Array.from( state.minimum, ( lo, k ) => ( k < rig.parameterCount ? lo + ( state.maximum[ k ] - lo ) * next() : state.values[ k ] ) ) );
 
 function ours( k ) {
 
@@ -73,6 +57,7 @@ function rebuild( k ) {
 	geometry.setIndex( new BufferAttribute( rig.index, 1 ) );
 	geometry.computeVertexNormals();
 	geometry.computeBoundingSphere();
+	return geometry;
 
 }
 
@@ -94,14 +79,24 @@ function time( run ) {
 
 const oursMs = time( ours );
 const rebuildMs = time( rebuild );
-let corrected = 0;
+// Both ways give the same tongue: the same corrected vertices, normals within float32 rounding.
+let corrected = 0, positionsDiffer = 0, normalGap = 0;
 for ( let k = 0; k < poses.length; k ++ ) {
 
 	ours( k );
 	corrected += articulation.stats[ 2 ] > 0 ? 1 : 0;
+	const geometry = rebuild( k );
+	const position = geometry.attributes.position.array, normal = geometry.attributes.normal.array;
+	for ( let i = 0; i < position.length; i ++ ) {
+
+		positionsDiffer += position[ i ] !== articulation.positions[ i ] ? 1 : 0;
+		normalGap = Math.max( normalGap, Math.abs( normal[ i ] - articulation.normals[ i ] ) );
+
+	}
 
 }
 
 console.log( `articulation frame, ${ rig.vertexCount } tongue vertices, ${ poses.length } random poses (seed ${ SEED }), ${ corrected } touching the palate` );
 console.log( `  ours     median ${ oursMs.toFixed( 3 ) } ms per frame` );
 console.log( `  rebuild  median ${ rebuildMs.toFixed( 3 ) } ms per frame   (ours faster by ${ ( rebuildMs / oursMs ).toFixed( 1 ) }x)` );
+check( 'ours and rebuild give the same tongue', positionsDiffer === 0 && normalGap <= NORMAL_TOLERANCE && corrected > 0, `${ positionsDiffer } coordinates differ, normals up to ${ normalGap.toExponential( 1 ) } apart, ${ corrected } poses touching` );
