@@ -4,10 +4,12 @@
 // evaluated by the rig and corrected against the palate before timing starts. Prints the median
 // time per frame of the kernel, over all frames and over the frames with contact, and of a naive
 // baseline measured in the same run (every probe against every triangle), and their ratio.
+// Checked: the kernel's frames are the baseline's, on every tongue and both grids.
 // Goal: kernel median under 0.05 ms per frame.
 //
 //   node bench/epg_contacts.bench.mjs              the built assets (assets/build), else the vectors'
 //   node bench/epg_contacts.bench.mjs --vectors    the vectors' own palate, tables and rig
+//   GLASSHEAD_BENCH_QUICK=1                         11 runs of each instead of 201
 import { existsSync, readFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -18,6 +20,7 @@ import { createContactModel, electrodeContacts, electrodeContactsBruteForce } fr
 import { epgIndices, INDEX_STRIDE } from '../web/src/core/epgIndices.js';
 import { decodeCollisionTables } from '../web/src/core/tables.js';
 import { TongueRig } from '../web/src/core/tongue.js';
+import { check, count } from './support/quick.mjs';
 import { median } from './support/stats.mjs';
 
 const HERE = dirname( fileURLToPath( import.meta.url ) );
@@ -25,9 +28,9 @@ const REPO = resolve( HERE, '..' );
 const ASSETS = process.env.GLASSHEAD_ASSETS_DIR ?? join( REPO, 'assets', 'build' );
 const VECTORS = JSON.parse( readFileSync( join( REPO, 'tests', 'vectors', 'epg-contacts.json' ), 'utf8' ) );
 const FIXTURES = VECTORS.fixtures;
-const RUNS = 201;
-const WARMUP = 30;
-const BASELINE_RUNS = 5;
+const RUNS = count( 201, 11 );
+const WARMUP = count( 30, 3 );
+const BASELINE_RUNS = count( 5, 1 );
 const GOAL_MS = 0.05;
 
 const read = ( path ) => readFileSync( path );
@@ -88,6 +91,17 @@ const naive = ( model ) => ( positions ) => {
 
 };
 
+// The kernel against the baseline, frame by frame, before any timing.
+const bruteFrame = new Uint8Array( 96 );
+let cellsDiffer = 0, contacts = 0;
+for ( const model of Object.values( models ) ) for ( const positions of tongues ) {
+
+	contacts += electrodeContacts( model, positions, frame );
+	electrodeContactsBruteForce( model, positions, bruteFrame );
+	for ( let c = 0; c < model.cells; c ++ ) cellsDiffer += frame[ c ] !== bruteFrame[ c ] ? 1 : 0;
+
+}
+
 const withContact = tongues.filter( ( positions ) => electrodeContacts( models.reading62, positions, frame ) > 0 );
 const readingMs = perFrameMedian( tongues, kernel( models.reading62 ) );
 const contactMs = perFrameMedian( withContact, kernel( models.reading62 ) );
@@ -103,3 +117,4 @@ console.log( `  kernel, dense 96, all frames:            median ${ fmt( denseMs 
 console.log( `  baseline (every probe x every triangle): median ${ fmt( naiveMs ) } per frame` );
 console.log( `  ratio baseline / kernel: ${ ( naiveMs / readingMs ).toFixed( 1 ) }x` );
 if ( sink === 42 ) console.log( '' ); // keeps the work observable
+check( 'the kernel\'s frames are the baseline\'s', cellsDiffer === 0 && contacts > 0, `${ cellsDiffer } cells differ, ${ contacts } contacts over both grids` );

@@ -19,14 +19,13 @@
 // Each stage is then timed on its own, rerun on the inputs of the frame just computed (the velum
 // told its opening changed), so that a stage over budget can be named, and the naive section
 // beside them as the section's own baseline.
+// Checked on the way: the frame's EPG contacts and constriction are those of the brute-force
+// references (every probe against every triangle; every floor point against every roof segment).
 // The issue's goals: the whole frame under 1 ms median, the diagram's section under 0.3 ms.
 //
-//   node bench/frame.bench.mjs [samples]
-import { existsSync, readFileSync } from 'node:fs';
-import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
-
+//   node bench/frame.bench.mjs [samples]      (GLASSHEAD_BENCH_QUICK=1: 3 samples x 10 frames)
 import { correctVertices, STAT_CORRECTED } from '../web/src/core/collision.js';
+import { electrodeContactsBruteForce } from '../web/src/core/epgContacts.js';
 import { jawPose } from '../web/src/core/jaw.js';
 import { vertexNormals } from '../web/src/core/meshVolume.js';
 import { nasalPortArea, velumSegment } from '../web/src/core/velum.js';
@@ -34,27 +33,20 @@ import { correctTract, setTractPose } from '../web/src/core/tractCollision.js';
 import { DiagramSection } from '../web/src/scene/DiagramSection.js';
 import { createEpgLive } from '../web/src/scene/EpgLive.js';
 import { loadBuiltHead } from '../tests/js/support/builtHead.js';
+import { builtFile, builtJson } from './support/assets.mjs';
 import { bruteConstriction, naiveSection } from './support/naiveDiagram.mjs';
+import { check, count } from './support/quick.mjs';
 import { median, random } from './support/stats.mjs';
 
-const REPO = resolve( dirname( fileURLToPath( import.meta.url ) ), '..' );
-const BUILD = join( REPO, 'assets', 'build' );
-const SAMPLES = Number( process.argv[ 2 ] ?? 40 );
-const FRAMES = 40; // frames per sample, each with new parameters
+const SAMPLES = Number( process.argv[ 2 ] ?? count( 40, 3 ) );
+const FRAMES = count( 40, 10 ); // frames per sample, each with new parameters
+const WARM_ROUNDS = count( 3, 1 );
 const SEED = 1998;
 const FRAME_GOAL_MS = 1;
 const SECTION_GOAL_MS = 0.3;
 
-for ( const name of [ 'manifest.json', 'tongue-rig.json', 'collision-tables.bin', 'face-rig.json', 'velum-rig.json', 'epg-layout.json', 'landmarks.json' ] ) {
-
-	if ( ! existsSync( join( BUILD, name ) ) ) {
-
-		console.error( `${ join( BUILD, name ) } is missing: run \`node scripts/setup.mjs\` first` );
-		process.exit( 1 );
-
-	}
-
-}
+// Each exits with a message when missing.
+for ( const name of [ 'manifest.json', 'tongue-rig.json', 'collision-tables.bin', 'face-rig.json', 'velum-rig.json', 'epg-layout.json', 'landmarks.json' ] ) builtFile( name );
 
 const { head, articulation, landmarks } = await loadBuiltHead();
 const velum = articulation.velum;
@@ -62,7 +54,7 @@ const faceRig = articulation.faceRig;
 const tract = articulation.tract;
 if ( ! tract ) throw new Error( 'the built head has no tract collider (no pharynx mesh?)' );
 if ( ! velum || ! faceRig ) throw new Error( `the built head has no ${ velum ? 'face' : 'velum' } rig: ${ articulation.velumError ?? articulation.faceRigError }` );
-const layout = JSON.parse( readFileSync( join( BUILD, 'epg-layout.json' ), 'utf8' ) );
+const layout = builtJson( 'epg-layout.json' );
 const epg = createEpgLive( { layout, tongueTriangles: articulation.triangles, vertexCount: articulation.vertexCount } );
 articulation.onCorrected( ( positions ) => epg.update( positions ) );
 const diagram = new DiagramSection( head, { landmarks } );
@@ -203,7 +195,7 @@ function timeStages( samples ) {
 
 }
 
-for ( let warm = 0; warm < 3; warm ++ ) {
+for ( let warm = 0; warm < WARM_ROUNDS; warm ++ ) {
 
 	timeVariants( Math.min( 4, SAMPLES ) );
 	timeStages( Math.min( 4, SAMPLES ) );
@@ -213,11 +205,18 @@ for ( let warm = 0; warm < 3; warm ++ ) {
 const whole = timeVariants( SAMPLES );
 const stage = timeStages( SAMPLES );
 
-let touching = 0;
+// Every pose once more, each frame's results against the brute-force references.
+let touching = 0, contactMismatch = 0, contacted = 0, widthGap = 0;
+const bruteFrame = new Uint8Array( epg.frame.length );
 for ( let k = 0; k < poses.length; k ++ ) {
 
 	variants.frame( k );
 	touching += articulation.stats[ STAT_CORRECTED ] > 0 ? 1 : 0;
+	electrodeContactsBruteForce( epg.model, articulation.positions, bruteFrame );
+	contacted += epg.contacted;
+	for ( let c = 0; c < bruteFrame.length; c ++ ) contactMismatch += bruteFrame[ c ] !== epg.frame[ c ] ? 1 : 0;
+	diagram.findConstriction();
+	widthGap = Math.max( widthGap, Math.abs( diagram.result[ 0 ] - bruteConstriction( diagram ) ) );
 
 }
 
@@ -244,3 +243,5 @@ console.log( `whole frame: ${ whole.frame.toFixed( 3 ) } ms median (goal < ${ FR
 const section = stage[ 'diagram section' ];
 const naive = stage[ '  baseline: naive section' ];
 console.log( `diagram section: ${ section.toFixed( 3 ) } ms (goal < ${ SECTION_GOAL_MS } ms): ${ verdict( section, SECTION_GOAL_MS ) }   (naive ${ naive.toFixed( 3 ) } ms, ratio ${ ( naive / section ).toFixed( 1 ) }x; with the constriction ${ ( section + stage.constriction ).toFixed( 3 ) } ms)` );
+check( 'the frame\'s EPG contacts are the brute-force ones', contactMismatch === 0 && contacted > 0, `${ contactMismatch } cells differ over ${ poses.length } frames, ${ contacted } contacts` );
+check( 'the frame\'s constriction is the brute-force width', widthGap <= 1e-9, `largest difference ${ widthGap.toExponential( 1 ) } mm` );

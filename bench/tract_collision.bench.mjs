@@ -11,7 +11,7 @@
 // Exactness of ours is judged against bvh for every vertex of every pose: no vertex may stay more
 // than 0.1 mm beyond the first crossing, and no vertex that was outside may move.
 //
-//   node bench/tract_collision.bench.mjs [poses]
+//   node bench/tract_collision.bench.mjs [poses]      (GLASSHEAD_BENCH_QUICK=1: 30 poses, 1 round)
 import { BufferAttribute, BufferGeometry, DoubleSide, Ray, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
 
@@ -20,11 +20,12 @@ import { COLLISION_TOL } from '../web/src/core/constants.js';
 import { poseVelum, velumSegment } from '../web/src/core/velum.js';
 import { correctTract, setTractPose } from '../web/src/core/tractCollision.js';
 import { loadBuiltHead } from '../tests/js/support/builtHead.js';
+import { check, count } from './support/quick.mjs';
 import { median, random } from './support/stats.mjs';
 
-const POSES = Number( process.argv[ 2 ] ?? 300 );
+const POSES = Number( process.argv[ 2 ] ?? count( 300, 30 ) );
 const SEED = 1998;
-const ROUNDS = 5;
+const ROUNDS = count( 5, 1 );
 
 const { head, articulation } = await loadBuiltHead();
 const collider = articulation.tract;
@@ -154,4 +155,5 @@ console.log( `  per frame: ${ ( tested / POSES ).toFixed( 0 ) } vertices tested,
 console.log( `  exactness: deepest left ${ deepest.toExponential( 2 ) } mm beyond the first crossing (budget ${ budget } mm), ${ missedInside } inside vertices left, ${ innocent } outside vertices moved` );
 const exact = deepest <= budget && missedInside === 0 && innocent === 0;
 console.log( `tract collision: ${ exact ? 'exact' : 'NOT EXACT' }, ${ ms( median( perPose.ours ) ) } median` );
-process.exit( exact ? 0 : 1 );
+check( 'ours is exact against three-mesh-bvh', exact, `deepest ${ deepest.toExponential( 2 ) } mm, ${ missedInside } left inside, ${ innocent } moved wrongly` );
+check( 'the poses reach the velum or the wall', corrected > 0, 'no vertex was corrected: nothing was checked' );
