@@ -7,11 +7,13 @@ phone's dominance per parameter group once per frame and accumulates each parame
 weighted sum (the same result, checked). Prints the medians and the ratio.
 
     .venv/bin/python bench/coarticulation.py [--runs N]
+    GLASSHEAD_BENCH_QUICK=1: 5 runs.
 """
 
 import argparse
 import json
 import math
+import os
 import statistics
 import time
 from pathlib import Path
@@ -31,6 +33,7 @@ REPO = Path(__file__).resolve().parents[1]
 SENTENCE = ("P L IY Z  K AO L  S T EH L AH0  AE S K  HH ER0  T UW  B R IH NG  DH IY Z  "
             "TH IH NG Z  W IH DH")
 RATE_HZ = 100.0
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 
 
 def naive_tracks(phones, targets, constants, rate_hz=RATE_HZ):
@@ -79,7 +82,7 @@ def median_ms(function, runs):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=50)
+    parser.add_argument("--runs", type=int, default=5 if QUICK else 50)
     args = parser.parse_args(argv)
     targets = json.loads((REPO / "assets" / "build" / "phoneme-targets.json").read_text())
     phones = timed(SENTENCE)
@@ -92,7 +95,7 @@ def main(argv=None):
         raise SystemExit(f"the naive tracks differ from coarticulate's by {worst}")
     ours_ms = median_ms(lambda: coarticulate(phones, targets), args.runs)
     naive_ms = median_ms(lambda: naive_tracks(phones, targets, constants),
-                         max(3, args.runs // 10))
+                         max(1 if QUICK else 3, args.runs // 10))
     print(f"sentence: {len(phones)} phones, {phones[-1]['end_s']:.2f} s, {ours['n_frames']} "
           f"frames at {RATE_HZ:.0f} Hz, {len(ours['tracks'])} parameters + "
           f"{len(ours['cues'])} cues (largest difference {worst:.1e})")

@@ -11,11 +11,14 @@
 // (Accept-Encoding: identity), as every response was sent before.
 // The issue's goals: under 1.5 MB for `/`, loaded in under 2.5 s throttled, nothing downloaded again.
 //
-//   node bench/first_load.bench.mjs [runs]
+// Checked: every visit loads the head view (a view that fails to load throws, naming the error).
+//
+//   node bench/first_load.bench.mjs [runs]      (GLASSHEAD_BENCH_QUICK=1: one run of each)
 import { launchBrowser, startServer } from '../e2e/harness.js';
+import { count } from './support/quick.mjs';
 import { median } from './support/stats.mjs';
 
-const RUNS = Number( process.argv[ 2 ] ?? 3 );
+const RUNS = Number( process.argv[ 2 ] ?? count( 3, 1 ) );
 const THROTTLE = { offline: false, latency: 40, downloadThroughput: 10e6 / 8, uploadThroughput: 10e6 / 8 };
 const GOAL_BYTES = 1.5e6;
 const GOAL_MS = 2500;

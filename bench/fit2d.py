@@ -9,12 +9,15 @@ Two comparisons, each against a baseline measured in the same run:
    and RMS error per fit, and the ratio of each median to BOBYQA's.
 
     .venv/bin/python bench/fit2d.py [--shapes all|vowels|a,i,u] [--runs N] [--table] [--json]
+        [--methods bobyqa,praxis,sbplx]
 
 ``--table`` also prints every shape's fit (BOBYQA) as a markdown table row.
+GLASSHEAD_BENCH_QUICK=1: the shape /a/ alone, BOBYQA alone, 20 runs of the objective.
 """
 
 import argparse
 import json
+import os
 import statistics
 import time
 from pathlib import Path
@@ -36,6 +39,7 @@ from glasshead.fitting.optimizer import METHODS
 REPO = Path(__file__).resolve().parents[1]
 SEED = 1998
 BASELINE_METHOD = "bobyqa"
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 
 
 def naive_crossings(rays, polyline):
@@ -91,7 +95,7 @@ def bench_objective(rig, shape, runs):
         "crossings_ms": median_ms(lambda: plain.rays.crossings(polyline), runs),
         "crossings_all_ms": median_ms(lambda: plain.rays.crossings_all(polyline), runs),
         "crossings_naive_ms": median_ms(lambda: naive_crossings(plain.rays, polyline),
-                                        max(5, runs // 20)),
+                                        max(1 if QUICK else 5, runs // 20)),
         "objective_ms": median_ms(lambda: plain(next_x()), runs),
         "objective_volume_ms": median_ms(lambda: weighted(next_x()), runs),
         "rays": len(plain.rays.points),
@@ -123,17 +127,19 @@ def summarise(reports: list[FitReport]):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--shapes", default="vowels")
-    parser.add_argument("--runs", type=int, default=400)
+    parser.add_argument("--shapes", default="a" if QUICK else "vowels")
+    parser.add_argument("--runs", type=int, default=20 if QUICK else 400)
     parser.add_argument("--table", action="store_true")
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--methods", default=BASELINE_METHOD if QUICK else ",".join(METHODS))
     args = parser.parse_args(argv)
     rig, observations = load_inputs(REPO / "assets" / "build")
     by_name = {s["name"]: s for s in observations["shapes"]}
 
     objective = bench_objective(rig, by_name["a"], args.runs)
     names = pick(observations, args.shapes)
-    reports = {m: fit_all(rig, observations, method=m, names=names) for m in METHODS}
+    order = [BASELINE_METHOD] + [m for m in args.methods.split(",") if m != BASELINE_METHOD]
+    reports = {m: fit_all(rig, observations, method=m, names=names) for m in order}
     methods = {m: summarise(r) for m, r in reports.items()}
     base = methods[BASELINE_METHOD]
     if args.json:

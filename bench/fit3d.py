@@ -17,10 +17,12 @@ Three comparisons, each against a baseline measured in the same run:
 with the RMS of three regions of the sheet (``regions``); ``--methods bobyqa`` fits with
 BOBYQA alone (no comparison), for the table of every shape.
 Wall seconds depend on the shared machine's load; CPU seconds (the process's) much less.
+GLASSHEAD_BENCH_QUICK=1: the shape /a/ alone, BOBYQA alone, 10 runs of the objective.
 """
 
 import argparse
 import json
+import os
 import statistics
 import time
 from pathlib import Path
@@ -46,6 +48,7 @@ from glasshead.fitting.ray_walk import exhaustive_first_hits
 REPO = Path(__file__).resolve().parents[1]
 SEED = 1998
 BASELINE_METHOD = "bobyqa"
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 #: Poses of the objective benchmark: each variable moved by up to this fraction of its range
 #: from the last pose, as a fit's successive evaluations move.
 STEP_FRACTION = 0.01
@@ -101,7 +104,7 @@ def bench_objective(rig, shape, runs):
         "residuals_ms": median_ms(
             lambda: error.residuals(rig.vertices(objective.values(next_x()))), runs),
         "objective_ms": median_ms(lambda: objective(next_x()), runs),
-        "exhaustive_ms": median_ms(exhaustive_error, max(3, runs // 50)),
+        "exhaustive_ms": median_ms(exhaustive_error, max(1 if QUICK else 3, runs // 50)),
         "rays": len(error.directions),
         "triangles": len(rig.triangles),
     }
@@ -160,11 +163,11 @@ def summarise(reports: list[FitReport3D]):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--shapes", default="a,e,i,o,u")
-    parser.add_argument("--runs", type=int, default=200)
+    parser.add_argument("--shapes", default="a" if QUICK else "a,e,i,o,u")
+    parser.add_argument("--runs", type=int, default=10 if QUICK else 200)
     parser.add_argument("--table", action="store_true")
     parser.add_argument("--json", action="store_true")
-    parser.add_argument("--methods", default=",".join(METHODS))
+    parser.add_argument("--methods", default=BASELINE_METHOD if QUICK else ",".join(METHODS))
     args = parser.parse_args(argv)
     rig, observations = load_inputs(REPO / "assets" / "build")
     by_name = {s["name"]: s for s in observations["shapes"]}

@@ -17,7 +17,11 @@ Prints requests/s, p50 and p99 per route and phase, the loaded p50 and p99 over 
 ones, and how many compute requests were answered 503 (back-pressure). The client runs on the
 same machine as the server and shares its CPUs.
 
+Checked: every request to /health and to the read route is answered (none fails or is refused),
+and every compute request is answered, 503 (back-pressure) allowed.
+
     .venv/bin/python bench/load.py [seconds] [connections]
+    GLASSHEAD_BENCH_QUICK=1: 0.5 s per phase, 4 connections, one warm-up round.
 """
 
 import asyncio
@@ -39,6 +43,7 @@ READ = ("GET", f"{API}/epg/layout", None)
 HEALTH = ("GET", f"{API}/health", None)
 COMPUTE = ("POST", f"{API}/tongue/surface", {"params": {"tip_height": 5.0, "jaw_opening": 8.0}})
 GOAL_P99_MS = 100.0
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 BIG_BODY = 50_000_000
 
 
@@ -99,7 +104,8 @@ def summary(times: list, statuses: list, elapsed: float) -> dict:
     ordered = sorted(ok) or [float("nan")]
     return {"rps": len(ok) / elapsed, "p50": statistics.median(ordered),
             "p99": ordered[min(len(ordered) - 1, int(0.99 * len(ordered)))],
-            "n": len(ok), "busy": statuses.count(503)}
+            "n": len(ok), "busy": statuses.count(503),
+            "failed": sum(s >= 300 and s != 503 for s in statuses)}
 
 
 async def send_big_bodies(port: int, until: float, refused: list) -> None:
@@ -167,8 +173,8 @@ def line(label: str, result: dict, base: dict | None = None) -> str:
 
 
 async def main() -> None:
-    seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 5.0
-    connections = int(sys.argv[2]) if len(sys.argv) > 2 else 20
+    seconds = float(sys.argv[1]) if len(sys.argv) > 1 else (0.5 if QUICK else 5.0)
+    connections = int(sys.argv[2]) if len(sys.argv) > 2 else (4 if QUICK else 20)
     if not (REPO / "assets" / "build" / "manifest.json").is_file():
         sys.exit("assets/build is missing: run `glasshead build` first")
     workdir = Path(tempfile.mkdtemp(prefix="glasshead-bench-load-"))
@@ -179,7 +185,7 @@ async def main() -> None:
         async with httpx.AsyncClient(base_url=f"http://127.0.0.1:{port}", limits=limits,
                                      timeout=60) as client:
             await wait_ready(client, server)
-            for _ in range(2 * (os.cpu_count() or 1)):  # every worker started and loaded
+            for _ in range(1 if QUICK else 2 * (os.cpu_count() or 1)):  # every worker loaded
                 await asyncio.gather(*(client.post(COMPUTE[1], json=COMPUTE[2])
                                        for _ in range(os.cpu_count() or 1)))
             print(f"load: uvicorn on 127.0.0.1:{port}, {seconds:g} s per phase, "
@@ -217,6 +223,16 @@ async def main() -> None:
             verdict = "within" if worst < GOAL_P99_MS else "OVER"
             print(f"worst p99 of /health and the read route under load: {worst:.1f} ms "
                   f"({verdict} the {GOAL_P99_MS:.0f} ms goal)")
+            reads = [base["health"], base["read"], loaded["health"], loaded["read"],
+                     bodies[0]["health"]]
+            reads_ok = all(r["n"] > 0 and r["failed"] == 0 and r["busy"] == 0 for r in reads)
+            computes = [base["compute"], loaded["compute"]]
+            computes_ok = all(r["n"] > 0 and r["failed"] == 0 for r in computes)
+            print("check: /health and the read route answered every request: "
+                  f"{'ok' if reads_ok else 'FAILED'}")
+            print("check: every compute request was answered (200 or 503): "
+                  f"{'ok' if computes_ok else 'FAILED'}")
+            return 0 if reads_ok and computes_ok else 1
     finally:
         server.terminate()
         try:
@@ -226,4 +242,4 @@ async def main() -> None:
 
 
 if __name__ == "__main__":
-    asyncio.run(main())
+    sys.exit(asyncio.run(main()))

@@ -10,9 +10,11 @@ size of the back-facing set B, the share of rays that fell back to the unbounded
 naive walk's wrong answers.
 
     .venv/bin/python bench/ray_walk.py [steps]
+    GLASSHEAD_BENCH_QUICK=1: 11 steps (brute force on 2 of them).
 """
 
 import json
+import os
 import statistics
 import sys
 import time
@@ -28,6 +30,7 @@ from glasshead.fitting.ray_walk import RayWalker, exhaustive_first_hits
 REPO = Path(__file__).resolve().parents[1]
 RAYS = 1000
 GOAL_MS = 2.0
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 
 
 def timed(fn):
@@ -43,7 +46,7 @@ def embree_first(vertices, triangles, origin, directions):
 
 
 def main():
-    steps = int(sys.argv[1]) if len(sys.argv) > 1 else 60
+    steps = int(sys.argv[1]) if len(sys.argv) > 1 else (11 if QUICK else 60)
     path = REPO / "assets" / "build" / "tongue-rig.json"
     if not path.is_file():
         sys.exit(f"{path} is missing: run `glasshead build` first")

@@ -5,10 +5,12 @@ over seeded random parameter sets, and prints the median per surface. ``--json``
 line instead (bench/tongue.bench.mjs reads it).
 
     .venv/bin/python bench/tongue_py.py [--runs N] [--json]
+    GLASSHEAD_BENCH_QUICK=1: 20 runs.
 """
 
 import argparse
 import json
+import os
 import statistics
 import time
 from pathlib import Path
@@ -20,6 +22,7 @@ from glasshead.geometry.tongue_surface import TongueRig
 
 REPO = Path(__file__).resolve().parents[1]
 SEED = 1998
+QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 
 
 def load_definition():
@@ -34,7 +37,7 @@ def load_definition():
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=300)
+    parser.add_argument("--runs", type=int, default=20 if QUICK else 300)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     definition, source = load_definition()
