@@ -19,7 +19,7 @@
 // Goals: ours under 0.1 ms median per frame in Node, at least 30 times faster than (c), exact.
 //
 //   node bench/collision.bench.mjs [poses]     (GLASSHEAD_ASSETS_DIR overrides assets/build)
-//   GLASSHEAD_BENCH_QUICK=1: 60 poses, one timed round, (a) on 2 and (b) on 10 of them.
+//   GLASSHEAD_BENCH_QUICK=1: 40 poses, one timed round, (a) on 1 and (b) on 5 of them.
 import { DoubleSide, Ray, Triangle, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
 
@@ -30,11 +30,11 @@ import { builtCollisionTables, builtJson, builtMesh } from './support/assets.mjs
 import { check, count } from './support/quick.mjs';
 import { median, random } from './support/stats.mjs';
 
-const POSES = Number( process.argv[ 2 ] ?? count( 1000, 60 ) );
+const POSES = Number( process.argv[ 2 ] ?? count( 1000, 40 ) );
 const SEED = 1998;
 const ROUNDS = count( 7, 1 ); // timed passes over all poses for the fast kernels (after one warm-up pass)
-const SLOW_POSES = count( 10, 2 ); // (a) is about a second per frame
-const BVH_POSES = count( POSES, 10 ); // (b) is about 60 ms per frame
+const SLOW_POSES = count( 10, 1 ); // (a) is about a second per frame
+const BVH_POSES = count( POSES, 5 ); // (b) is about 60 ms per frame
 const GOAL_MS = 0.1;
 const GOAL_RATIO = 30;
 
