@@ -7,6 +7,7 @@
 // browser; scaleLinear is the one mapping every line and the cursor use.
 
 import { EPG_PLOT_DEFAULT_PANELS, EPG_PLOT_PANELS } from '../../core/constants.js';
+import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 
 // The panels (each index's label and fixed range, and the default choice) are the server's plot
 // spec, EPG_PLOT_PANELS and EPG_PLOT_DEFAULT_PANELS of constants.py.
@@ -105,39 +106,19 @@ export function drawIndexPlot( ctx, { width, height, t_s, tracks, panels = EPG_P
 }
 
 /** A plot on its own <canvas>; `set( { t_s, tracks, current } )` redraws it. */
-export class IndexPlot {
+export class IndexPlot extends HiDpiCanvas {
 
 	constructor( { width = 640, height = 300, document = globalThis.document, panels = EPG_PLOT_DEFAULT_PANELS } = {} ) {
 
-		this.width = width;
-		this.height = height;
+		super( { width, height, document, className: 'index-plot', ariaLabel: 'EPG indices over time' } );
 		this.panels = panels;
-		this.element = document.createElement( 'canvas' );
-		this.element.className = 'index-plot';
-		this.element.setAttribute( 'role', 'img' );
-		this.element.setAttribute( 'aria-label', 'EPG indices over time' );
-		this.ratio = Math.min( 2, globalThis.devicePixelRatio || 1 );
-		this.resize( width, height );
-
-	}
-
-	resize( width, height = this.height ) {
-
-		this.width = width;
-		this.height = height;
-		this.element.style.width = `${ width }px`;
-		this.element.style.height = `${ height }px`;
-		this.element.width = Math.round( width * this.ratio );
-		this.element.height = Math.round( height * this.ratio );
 
 	}
 
 	set( { t_s, tracks, current = null } ) {
 
-		const ctx = this.element.getContext( '2d' );
+		const ctx = this.clear();
 		if ( ! ctx ) return null;
-		ctx.setTransform( this.ratio, 0, 0, this.ratio, 0, 0 );
-		ctx.clearRect( 0, 0, this.width, this.height );
 		return drawIndexPlot( ctx, { width: this.width, height: this.height, t_s, tracks, panels: this.panels, current } );
 
 	}

@@ -6,6 +6,7 @@
 // the pure geometry the canvas's clicks use.
 
 import { drawPalatogram, PALATOGRAM_COLORS, READING_GRID } from '../shared/Palatogram.js';
+import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 
 /** Width of one palatogram of the strip against its height. */
 const ASPECT = 0.85;
@@ -74,20 +75,13 @@ export function drawPalatogramStrip( ctx, frames, total, { width, height, curren
  * A strip on its own <canvas>; `set( frames, total, current, t_s )` redraws it and `onSelect( i )`
  * is called with the frame a click lands on.
  */
-export class PalatogramStrip {
+export class PalatogramStrip extends HiDpiCanvas {
 
 	constructor( { width = 640, height = 96, document = globalThis.document, onSelect = () => {} } = {} ) {
 
-		this.width = width;
-		this.height = height;
-		this.element = document.createElement( 'canvas' );
-		this.element.className = 'palatogram-strip';
-		this.element.setAttribute( 'role', 'img' );
-		this.element.setAttribute( 'aria-label', 'Palatograms over time (click a frame, or focus and step with the arrow keys)' );
+		super( { width, height, document, className: 'palatogram-strip', ariaLabel: 'Palatograms over time (click a frame, or focus and step with the arrow keys)' } );
 		// Reachable with Tab: the view's keys step the frames while the strip has the focus.
 		this.element.tabIndex = 0;
-		this.ratio = Math.min( 2, globalThis.devicePixelRatio || 1 );
-		this.resize( width, height );
 		this.state = { frames: null, total: 0, current: 0, t_s: null, codes: null };
 		this.element.addEventListener( 'click', ( event ) => {
 
@@ -99,24 +93,11 @@ export class PalatogramStrip {
 
 	}
 
-	resize( width, height = this.height ) {
-
-		this.width = width;
-		this.height = height;
-		this.element.style.width = `${ width }px`;
-		this.element.style.height = `${ height }px`;
-		this.element.width = Math.round( width * this.ratio );
-		this.element.height = Math.round( height * this.ratio );
-
-	}
-
 	set( frames, total, current, t_s = null, codes = null ) {
 
 		this.state = { frames, total, current, t_s, codes };
-		const ctx = this.element.getContext( '2d' );
+		const ctx = this.clear();
 		if ( ! ctx ) return null;
-		ctx.setTransform( this.ratio, 0, 0, this.ratio, 0, 0 );
-		ctx.clearRect( 0, 0, this.width, this.height );
 		return drawPalatogramStrip( ctx, frames, total, { width: this.width, height: this.height, current, t_s, codes } );
 
 	}

@@ -9,6 +9,7 @@ import {
 	EPG_COLUMNS, EPG_COMPARE_BOTH_OFF, EPG_COMPARE_BOTH_ON, EPG_COMPARE_NO_ELECTRODE, EPG_COMPARE_ONLY_RECORDING,
 	EPG_COMPARE_ONLY_REFERENCE, EPG_MISSING_CELLS, EPG_ROWS,
 } from '../../core/constants.js';
+import { HiDpiCanvas } from './hidpiCanvas.js';
 
 /** Colours of the drawing (the app's ink and accent). */
 export const PALATOGRAM_COLORS = Object.freeze( {
@@ -142,24 +143,13 @@ export function drawPalatogram( ctx, frame, { x = 0, y = 0, width, height, grid 
  * A palatogram on its own <canvas> (CSS size `width` x `height`, drawn at the device's pixel
  * ratio). `set( frame )` redraws it; `element` is the canvas.
  */
-export class Palatogram {
+export class Palatogram extends HiDpiCanvas {
 
 	constructor( { width = 180, height = 200, label = null, document = globalThis.document, grid = READING_GRID, ariaLabel = 'Palatogram' } = {} ) {
 
-		this.width = width;
-		this.height = height;
+		super( { width, height, ariaLabel, className: 'palatogram', document } );
 		this.label = label;
 		this.grid = grid;
-		this.element = document.createElement( 'canvas' );
-		this.element.className = 'palatogram';
-		this.element.setAttribute( 'role', 'img' );
-		this.element.setAttribute( 'aria-label', ariaLabel );
-		this.element.style.width = `${ width }px`;
-		this.element.style.height = `${ height }px`;
-		const ratio = Math.min( 2, globalThis.devicePixelRatio || 1 );
-		this.element.width = Math.round( width * ratio );
-		this.element.height = Math.round( height * ratio );
-		this.ratio = ratio;
 		this.frame = null;
 		this.codes = null;
 		this.draws = 0;
@@ -173,10 +163,8 @@ export class Palatogram {
 		this.frame = frame;
 		this.codes = codes;
 		this.label = label;
-		const ctx = this.element.getContext( '2d' );
+		const ctx = this.clear();
 		if ( ! ctx ) return;
-		ctx.setTransform( this.ratio, 0, 0, this.ratio, 0, 0 );
-		ctx.clearRect( 0, 0, this.width, this.height );
 		drawPalatogram( ctx, frame, { width: this.width, height: this.height, label, codes, grid: this.grid, offset } );
 		this.draws ++;
 

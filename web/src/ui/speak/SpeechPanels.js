@@ -4,6 +4,7 @@
 
 import { DiagramSection } from '../../scene/DiagramSection.js';
 import { h } from '../shared/dom.js';
+import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 import { drawDiagram } from '../shared/DiagramPanel.js';
 import { DominancePlot } from './DominancePlot.js';
 import { WorkbenchCues } from '../shared/WorkbenchCues.js';
@@ -14,17 +15,9 @@ const DOMINANCE_SIZE = Object.freeze( [ 300, 170 ] );
 const DIAGRAM_PARTS = Object.freeze( [ 'pharynx', 'larynx', 'palate', 'mandible', 'velum', 'upperLip', 'lowerLip', 'tongue' ] );
 
 /** A canvas of `width` x `height` CSS pixels, sharp on high-density screens. */
-function canvas( [ width, height ], label ) {
+function canvas( [ width, height ], ariaLabel ) {
 
-	const element = h( 'canvas', { className: 'sp-canvas', role: 'img', 'aria-label': label } );
-	const ratio = Math.min( window.devicePixelRatio || 1, 2 );
-	element.width = Math.round( width * ratio );
-	element.height = Math.round( height * ratio );
-	element.style.width = `${ width }px`;
-	element.style.height = `${ height }px`;
-	const ctx = element.getContext( '2d' );
-	ctx.setTransform( ratio, 0, 0, ratio, 0, 0 );
-	return { element, ctx, width, height };
+	return new HiDpiCanvas( { width, height, ariaLabel, className: 'sp-canvas' } );
 
 }
 

@@ -12,6 +12,7 @@ import { LinerWireframe } from '../../scene/LinerWireframe.js';
 import { VoxelDots } from '../../scene/VoxelDots.js';
 import { fitDistance, VIEW_NAMES, viewPose } from '../../scene/viewPresets.js';
 import { h } from '../shared/dom.js';
+import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 import { ParameterPanel } from './ParameterPanel.js';
 import { PoseBox } from './PoseBox.js';
 import { drawSagittalPanel, MidlineOutline, PANEL_COLORS, sagittalCurve } from '../shared/SagittalPanel.js';
@@ -194,19 +195,7 @@ export class WorkbenchView {
 		this.poseBox = new PoseBox( state, { api: this.api } );
 		this.unregister.push( () => this.poseBox.dispose() );
 
-		const canvas = ( [ width, height ], label ) => {
-
-			const element = h( 'canvas', { className: 'wb-canvas', role: 'img', 'aria-label': label } );
-			const ratio = Math.min( window.devicePixelRatio || 1, 2 );
-			element.width = Math.round( width * ratio );
-			element.height = Math.round( height * ratio );
-			element.style.width = `${ width }px`;
-			element.style.height = `${ height }px`;
-			const ctx = element.getContext( '2d' );
-			ctx.setTransform( ratio, 0, 0, ratio, 0, 0 );
-			return { element, ctx, width, height };
-
-		};
+		const canvas = ( [ width, height ], ariaLabel ) => new HiDpiCanvas( { width, height, ariaLabel, className: 'wb-canvas' } );
 
 		this.sagittalCanvas = canvas( PANEL_SIZE.sagittal, 'Mid-sagittal section: the tongue curve with its lettered control points' );
 		this.sectionsCanvas = canvas( PANEL_SIZE.sections, 'The front, middle and back coronal sections and the blending functions' );
