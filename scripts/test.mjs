@@ -1,11 +1,15 @@
 // Every test: static checks (ruff, mypy, eslint), Python (pytest, including the shared vectors),
-// JavaScript unit tests (including the shared vectors), and end-to-end tests in Debian's Chromium.
-// Prints one closing tally.
+// JavaScript unit tests (including the shared vectors), end-to-end tests in Debian's Chromium, and
+// a quick pass of every benchmark (bench/run.mjs --quick: a few iterations each, every
+// correctness check made, so that a benchmark that breaks or stops checking fails here; the full
+// runs are `npm run bench`). Prints one closing tally.
 //
 // The suites run in two lanes side by side, lint then Python in one, JavaScript then the browser
 // in the other: pytest keeps about one core busy and Chromium the other, so the whole run takes
-// about as long as its longer lane instead of the sum. Each suite's output is printed whole when
-// it ends, never interleaved. GLASSHEAD_TEST_LANES=1 runs them one after another.
+// about as long as its longer lane instead of the sum. The benchmarks' quick pass (about a minute)
+// follows whichever lane ends first, in the time the other lane still takes. Each suite's output
+// is printed whole when it ends, never interleaved. GLASSHEAD_TEST_LANES=1 runs them one after
+// another.
 import { spawn } from 'node:child_process';
 import { existsSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
@@ -22,6 +26,7 @@ const suites = [
 	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-p', 'no:cacheprovider' ] },
 	{ name: 'javascript', command: process.execPath, args: [ '--test', '--test-reporter=spec', ...testFiles( 'tests/js' ) ] },
 	{ name: 'end-to-end', command: process.execPath, args: [ '--test', '--test-concurrency=1', '--test-reporter=spec', ...testFiles( 'e2e' ) ] },
+	{ name: 'bench', command: process.execPath, args: [ join( REPO, 'bench', 'run.mjs' ), '--quick' ] },
 ];
 
 const tally = { passed: 0, failed: 0, skipped: 0, todo: 0 };
@@ -59,10 +64,12 @@ async function runLane( lane ) {
 }
 
 const byName = Object.fromEntries( suites.map( ( suite ) => [ suite.name, suite ] ) );
-const lanes = process.env.GLASSHEAD_TEST_LANES === '1'
-	? [ suites ]
-	: [ [ byName.lint, byName.python ], [ byName.javascript, byName[ 'end-to-end' ] ] ];
-await Promise.all( lanes.map( runLane ) );
+if ( process.env.GLASSHEAD_TEST_LANES === '1' ) {
+	await runLane( suites );
+} else {
+	const lanes = [ [ byName.lint, byName.python ], [ byName.javascript, byName[ 'end-to-end' ] ] ].map( runLane );
+	await Promise.all( [ ...lanes, Promise.race( lanes ).then( () => runSuite( byName.bench ) ) ] );
+}
 console.log( `\nAll tests took ${( ( Date.now() - started ) / 1000 ).toFixed( 0 )} s.` );
 
 console.log( failedSuites.length ? `\nFailed suites: ${failedSuites.join( ', ' )}` : '\nAll suites passed.' );
@@ -71,8 +78,10 @@ process.exit( failedSuites.length ? 1 : 0 );
 
 function countResults( name, output ) {
 	const number = ( pattern ) => Number( output.match( pattern )?.[ 1 ] ?? 0 );
-	if ( name === 'lint' ) {
-		return { passed: number( /lint: (\d+) passed/ ), failed: number( /lint: \d+ passed, (\d+) failed/ ), skipped: 0 };
+	if ( name === 'lint' || name === 'bench' ) {
+		// The runner's own closing line: the last `<name>: N passed, M failed`.
+		const last = [ ...output.matchAll( new RegExp( `^${ name }: (\\d+) passed, (\\d+) failed$`, 'gm' ) ) ].pop();
+		return { passed: Number( last?.[ 1 ] ?? 0 ), failed: Number( last?.[ 2 ] ?? 0 ), skipped: 0 };
 	}
 	if ( name === 'python' ) {
 		const summary = output.trim().split( '\n' ).filter( ( line ) => / in [\d.]+s/.test( line ) ).pop() ?? '';
