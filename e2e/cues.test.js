@@ -6,7 +6,7 @@
 
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
-import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle, waitForStill } from './harness.js';
 
 describe( 'the cues', { timeout: 240_000 }, () => {
 
@@ -43,6 +43,7 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 	test( 'the cues are off by default, and a still workbench without them draws nothing', async () => {
 
+		await waitForStill( page );
 		const state = await readDebug( page );
 		const { nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } = state.cues;
 		assert.deepEqual( state.cues, { visible: false, voicing: true, nasal: true, oral: true, turbulence: false, nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } );
@@ -133,7 +134,7 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 		await button( 'Cues' ).click();
 		assert.equal( ( await readDebug( page ) ).cues.visible, false );
-		await settle( page );
+		await waitForStill( page );
 		const before = await readDebug( page );
 		await page.waitForTimeout( 1000 );
 		assert.equal( ( await readDebug( page ) ).frames, before.frames, 'no frames once the cues are off' );

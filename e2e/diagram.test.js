@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { describe, test } from 'node:test';
 import { decodePng } from './png.js';
-import { openLoaded, readDebug, saveScreenshot, SCREENSHOT_DIR, serverAndBrowser, settle } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, SCREENSHOT_DIR, serverAndBrowser, settle, waitForStill } from './harness.js';
 
 describe( 'the diagram', { timeout: 240_000 }, () => {
 
@@ -64,6 +64,7 @@ describe( 'the diagram', { timeout: 240_000 }, () => {
 
 	test( 'a still workbench draws nothing more, and no console errors appeared', async () => {
 
+		await waitForStill( page );
 		const before = await readDebug( page );
 		await page.waitForTimeout( 1500 );
 		const later = await readDebug( page );

@@ -5,7 +5,7 @@
 
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
-import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
+import { openLoaded, readDebug, saveScreenshot, serverAndBrowser, settle, waitForStill } from './harness.js';
 
 describe( 'the label layer', { timeout: 240_000 }, () => {
 
@@ -70,6 +70,7 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 	test( 'a still head with its labels shown draws no new frames', async () => {
 
 		await setLabels( true );
+		await waitForStill( page );
 		const before = ( await readDebug( page ) ).frames;
 		await new Promise( ( resolve ) => setTimeout( resolve, 2000 ) );
 		const state = await readDebug( page );
