@@ -1,7 +1,10 @@
 // Entry point: the debug object, the view registry and the router.
 //
+// Each view has its folder under ui/ (head, workbench, speak, clinician, lessons, practice, author,
+// admin, signin) with the modules only it uses; what two or more views use is in ui/shared. Every
+// view extends ui/shared/View.js (mounting, clean-ups, the 3D stage) and loads through api.js.
 // To add a view, register its path with a function that mounts it and returns { unmount() }:
-//   router.register( '/workbench', async ( container ) => ( await import( './ui/workbench/WorkbenchView.js' ) ).mount( container ) );
+//   router.register( '/workbench', async ( container ) => ( await import( './ui/workbench/WorkbenchView.js' ) ).mountWorkbenchView( container ) );
 // and link to it as `#/workbench`.
 
 import './styles.css';

@@ -3,34 +3,31 @@
 // deletion (DELETE /children/{id}/data) after a confirmation on the page that says what goes.
 // Only an admin may do either; anyone else sees who may and a link to sign in as them.
 
-import { api as pageApi } from '../../api.js';
-import { registerDebug } from '../../debug.js';
 import { currentSession, onSessionChange } from '../../session.js';
 import { confirmWords, deletedWords, exportName } from './adminRows.js';
 import { h } from '../shared/dom.js';
 import { downloadFile } from '../shared/download.js';
 import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
 import { hasRole } from '../shared/signIn.js';
+import { View } from '../shared/View.js';
 import './admin.css';
 
-export class AdminView {
+export class AdminView extends View {
 
 	/** @param {{ api?: object, win?: Window, download?: Function }} options */
-	constructor( { api = pageApi, win = globalThis.window, download = downloadFile } = {} ) {
+	constructor( { api, win, download = downloadFile } = {} ) {
 
-		this.api = api;
-		this.window = win;
+		super( { api, win } );
 		this.download = download;
-		this.unregister = [];
 		this.state = { screen: null, classes: [], children: [], exported: [], deleted: [], message: '', confirming: null };
 
 	}
 
 	mount( container ) {
 
-		this.root = h( 'div', { className: 'admin-view' } );
-		container.append( this.root );
-		this.unregister.push( onSessionChange( () => this.show() ), registerDebug( 'admin', () => ( { ...this.state } ) ) );
+		this.attach( container, h( 'div', { className: 'admin-view' } ) );
+		this.onUnmount( onSessionChange( () => this.show() ) );
+		this.debugFields( { admin: () => ( { ...this.state } ) } );
 		this.show();
 		return this;
 
@@ -164,13 +161,6 @@ export class AdminView {
 		const prompt = signedOutPrompt( error, { win: this.window } );
 		if ( prompt ) this.message.replaceChildren( prompt );
 		else this.say( error.message );
-
-	}
-
-	unmount() {
-
-		for ( const unregister of this.unregister ) unregister();
-		this.root.remove();
 
 	}
 

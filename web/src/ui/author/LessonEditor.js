@@ -7,7 +7,6 @@
 // another author's) can be saved as a copy. Lessons import from and export to the JSON format of
 // docs/lessons.md.
 
-import { registerDebug } from '../../debug.js';
 import { currentSession, onSessionChange } from '../../session.js';
 import { h } from '../shared/dom.js';
 import { saveAs } from '../shared/download.js';
@@ -23,19 +22,19 @@ import {
 import { LessonPreview } from './LessonEditorPreview.js';
 import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
 import { hasRole } from '../shared/signIn.js';
+import { View } from '../shared/View.js';
 import './lessonEditor.css';
 
 /** Who writes lessons. */
 export const AUTHOR_ROLES = Object.freeze( [ 'author', 'admin' ] );
 
-export class LessonEditor {
+export class LessonEditor extends View {
 
-	/** @param {{ client?: object, win?: Window }} options */
-	constructor( { client = createLessonClient(), win = globalThis.window } = {} ) {
+	/** @param {{ api?: object, client?: object, win?: Window }} options the lessons' client, made on `api` unless given */
+	constructor( { api, client = null, win } = {} ) {
 
-		this.client = client;
-		this.window = win;
-		this.unregister = [];
+		super( { api, win } );
+		this.client = client ?? createLessonClient( { api: this.api } );
 		this.opened = 0;
 		this.errors = new Map();
 
@@ -43,23 +42,15 @@ export class LessonEditor {
 
 	mount( container ) {
 
-		this.root = h( 'div', { className: 'lesson-editor' } );
-		container.append( this.root );
-		const onHash = () => this.route();
-		const onLeave = ( event ) => {
+		this.attach( container, h( 'div', { className: 'lesson-editor' } ) );
+		this.listen( this.window, 'hashchange', () => this.route() );
+		this.listen( this.window, 'beforeunload', ( event ) => {
 
 			if ( this.dirty ) event.preventDefault();
 
-		};
-
-		this.window.addEventListener( 'hashchange', onHash );
-		this.window.addEventListener( 'beforeunload', onLeave );
-		this.unregister.push(
-			() => this.window.removeEventListener( 'hashchange', onHash ),
-			() => this.window.removeEventListener( 'beforeunload', onLeave ),
-			onSessionChange( () => this.route( true ) ),
-			registerDebug( 'author', () => this.report() ),
-		);
+		} );
+		this.onUnmount( onSessionChange( () => this.route( true ) ) );
+		this.debugFields( { author: () => this.report() } );
 		this.route();
 		return this;
 
@@ -410,8 +401,7 @@ export class LessonEditor {
 	unmount() {
 
 		this.clear( 'gone' );
-		for ( const unregister of this.unregister ) unregister();
-		this.root.remove();
+		super.unmount();
 
 	}
 

@@ -13,8 +13,6 @@
 // view is a sign-in prompt (SignInPrompt.js); a token the server stops taking (401) turns the
 // view into that prompt too.
 
-import { api as pageApi } from '../../api.js';
-import { registerDebug } from '../../debug.js';
 import { ClinicianData } from './clinicianData.js';
 import { clinicianEpgReport, clinicianReport } from './clinicianReport.js';
 import { playbackMethods } from './clinicianPlayback.js';
@@ -26,23 +24,23 @@ import { renderClinician } from './clinicianRender.js';
 import { PlaybackClock } from './playbackClock.js';
 import { TargetPalate3D } from './TargetPalate3D.js';
 import { mountForRoles, signedOutPrompt } from '../shared/SignInPrompt.js';
+import { View } from '../shared/View.js';
 import '../shared/epg.css';
 import '../shared/signin.css';
 
 /** Who may use the view: the roles that read EPG recordings. */
 export const CLINICIAN_ROLES = Object.freeze( [ 'clinician', 'admin' ] );
 
-export class ClinicianView {
+export class ClinicianView extends View {
 
 	/**
 	 * @param {{ api?: object, data?: ClinicianData, win?: Window }} options the HTTP client (or a
 	 *   data source made on one) and the window whose keys, location and frames the view uses
 	 */
-	constructor( { api = pageApi, data = new ClinicianData( { api } ), win = globalThis.window } = {} ) {
+	constructor( { api, data = null, win } = {} ) {
 
-		this.api = api;
-		this.data = data;
-		this.window = win;
+		super( { api, win } );
+		this.data = data ?? new ClinicianData( { api: this.api } );
 		this.clock = new PlaybackClock( {
 			onFrame: ( frame ) => this.setFrame( frame ),
 			onStop: () => this.showPlaying( false ),
@@ -50,7 +48,6 @@ export class ClinicianView {
 			cancel: ( handle ) => this.window.cancelAnimationFrame( handle ),
 		} );
 		this.state = { loaded: false, error: null, frame: 0, playing: false, speed: DEFAULT_SPEED, target: null, recording: null, comparison: null, target3d: null };
-		this.unregister = [];
 		this.loadVersion = 0;
 
 	}
@@ -71,19 +68,16 @@ export class ClinicianView {
 		// A child of the caseload: their practice and recordings; Compare opens a recording here.
 		this.childHistory = new ChildHistory( { api: this.api, onOpen: ( id ) => this.imported( { recordings: [ { id } ] } ) } );
 		this.main.append( this.childHistory.element );
-		this.unregister.push( registerDebug( 'clinicianChild', () => this.childHistory.report() ) );
-		container.append( this.root );
+		this.debugFields( { clinicianChild: () => this.childHistory.report() } );
+		this.attach( container, this.root );
 
-		this.onKey = keyHandler( actions );
-		this.window.addEventListener( 'keydown', this.onKey );
+		this.listen( this.window, 'keydown', keyHandler( actions ) );
 		this.url = new SelectionUrl( this.window, {
 			selection: () => ( { target: this.state.target?.name, recording: this.state.recording?.id, frame: this.state.frame } ),
 			writable: () => ! this.state.playing && this.root.isConnected,
 			apply: ( hash ) => this.state.loaded && this.applySelection( hash ),
 		} );
-		this.resizeObserver = new ResizeObserver( () => this.fit() );
-		this.resizeObserver.observe( this.main );
-		this.resizeObserver.observe( this.plotCard );
+		this.observeResize( [ this.main, this.plotCard ], () => this.fit() );
 		this.registerDebugFields();
 		this.render();
 		this.load();
@@ -93,11 +87,10 @@ export class ClinicianView {
 
 	registerDebugFields() {
 
-		const fields = {
+		this.debugFields( {
 			clinician: () => this.report(),
 			epg: () => this.epgReport(),
-		};
-		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
+		} );
 
 	}
 
@@ -353,12 +346,14 @@ export class ClinicianView {
 
 		this.pause();
 		this.loadVersion ++;
-		this.window.removeEventListener( 'keydown', this.onKey );
 		this.url.stop();
-		this.resizeObserver?.disconnect();
+		super.unmount();
+
+	}
+
+	dispose() {
+
 		this.palate3d?.dispose();
-		for ( const unregister of this.unregister ) unregister();
-		this.root.remove();
 
 	}
 

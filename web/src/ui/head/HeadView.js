@@ -1,31 +1,29 @@
 // The head view (route `#/`): the 3D head with its control panel.
 
-import { api as pageApi, getAnatomy } from '../../api.js';
-import { registerDebug } from '../../debug.js';
+import { getAnatomy } from '../../api.js';
 import { Vector3 } from 'three';
 import { VIEW_NAMES, viewPose } from '../../scene/viewPresets.js';
 import { Controls } from './Controls.js';
 import { h } from '../shared/dom.js';
-import { createHeadStage } from '../shared/headStage.js';
 import { createFirstRunHint } from './FirstRunHint.js';
 import './headTools.css';
 import { LabelLayer } from '../shared/LabelLayer.js';
 import { EyeMotion } from '../../scene/Eyes.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from '../shared/loaders.js';
+import { View } from '../shared/View.js';
 
 export const DEFAULT_STATE = Object.freeze( { transparency: 0, cutaway: false, labels: false, view: 'three-quarter' } );
 
 /** Duration of a camera move between views. */
 const FLIGHT_MS = 650;
 
-export class HeadView {
+export class HeadView extends View {
 
 	/** @param {{ api?: object }} options the HTTP client everything is loaded through */
-	constructor( { api = pageApi } = {} ) {
+	constructor( options ) {
 
-		this.api = api;
+		super( options );
 		this.state = { ...DEFAULT_STATE, loaded: false, error: null, meshes: [] };
-		this.unregister = [];
 
 	}
 
@@ -33,8 +31,7 @@ export class HeadView {
 	mount( container ) {
 
 		this.stage = h( 'div', { className: 'stage' } );
-		this.root = h( 'div', { className: 'head-view' }, this.stage );
-		container.append( this.root );
+		this.attach( container, h( 'div', { className: 'head-view' }, this.stage ) );
 
 		this.controls = new Controls( {
 			onTransparency: ( percent ) => this.setTransparency( percent ),
@@ -47,9 +44,7 @@ export class HeadView {
 
 		this.registerDebugFields();
 
-		const stage = createHeadStage( this.stage, ( message ) => this.fail( message ) );
-		if ( ! stage ) return this;
-		( { viewer: this.viewer, head: this.head } = stage );
+		if ( ! this.mountStage( this.stage ) ) return this;
 		const hint = createFirstRunHint();
 		if ( hint ) this.stage.append( hint );
 		this.load();
@@ -59,7 +54,7 @@ export class HeadView {
 
 	registerDebugFields() {
 
-		const fields = {
+		this.debugFields( {
 			loaded: () => this.state.loaded,
 			error: () => this.state.error,
 			meshes: () => this.state.meshes,
@@ -67,17 +62,13 @@ export class HeadView {
 			cutaway: () => this.state.cutaway,
 			view: () => this.state.view,
 			webgl2: () => ( this.viewer ? this.viewer.webgl2 : false ),
-			frameTimeMs: () => ( this.viewer ? this.viewer.frameTimeMs : null ),
-			frames: () => ( this.viewer ? this.viewer.frameCount : 0 ),
-			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
-			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
+			...this.stageDebugFields(),
 			mouthRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRect( this.head.mouthBox() ) : null ),
 			headRect: () => ( this.viewer && this.state.loaded ? this.viewer.screenRectOfPoints( this.head.skinPoints() ) : null ),
 			eyes: () => this.eyes?.state() ?? null,
 			airProbe: () => ( this.viewer && this.state.loaded && this.head.air ? this.head.air.probe( this.viewer ) : null ),
 			cranialProbe: () => ( this.viewer && this.state.loaded && this.head.cranial ? this.head.cranial.probe( this.viewer ) : null ),
-		};
-		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
+		} );
 
 	}
 
@@ -184,7 +175,7 @@ export class HeadView {
 		if ( ! this.viewer ) return;
 		this.targets = new HeadTargets( { articulation: this.articulation, api: this.api, onChange: () => this.viewer?.requestRender() } );
 		this.controls.element.append( this.targets.element );
-		this.unregister.push( () => this.targets.dispose() );
+		this.onUnmount( () => this.targets.dispose() );
 		this.targets.load(); // the lists fill in while the view is already in use
 
 	}
@@ -216,16 +207,11 @@ export class HeadView {
 
 	}
 
-	unmount() {
+	dispose() {
 
-		for ( const unregister of this.unregister ) unregister();
 		this.articulation?.dispose();
 		this.labels?.dispose();
 		this.eyes?.dispose();
-		this.viewer?.dispose();
-		this.head?.dispose();
-		this.viewer = null;
-		this.root.remove();
 
 	}
 

@@ -7,8 +7,6 @@
 // right arrows move between items, S slows to SLOW_SPEED and back, F goes full screen (and into
 // presentation mode), Esc leaves full screen, then presentation mode, then the lesson.
 
-import { api as pageApi } from '../../api.js';
-import { registerDebug } from '../../debug.js';
 import { currentSession, onSessionChange } from '../../session.js';
 import { h } from '../shared/dom.js';
 import { LessonRunnerPanel } from './LessonRunnerPanel.js';
@@ -18,42 +16,31 @@ import {
 import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
 import { ItemPresenter } from './LessonRunnerViews.js';
 import { SpeechView } from '../speak/SpeechView.js';
+import { View } from '../shared/View.js';
 import './lessonRunner.css';
 
-export class LessonRunner {
+export class LessonRunner extends View {
 
 	/** @param {{ api?: object, win?: Window }} options */
-	constructor( { api = pageApi, win = globalThis.window } = {} ) {
+	constructor( options ) {
 
-		this.api = api;
-		this.window = win;
+		super( options );
 		this.lesson = null;
 		this.index = 0;
 		this.slow = false;
 		this.presenting = false;
-		this.unregister = [];
 		this.shows = 0;
 
 	}
 
 	mount( container ) {
 
-		this.root = h( 'div', { className: 'lesson-runner' } );
-		container.append( this.root );
-		const onHash = () => this.route();
-		const onKey = ( event ) => this.key( event );
-		const onFullscreen = () => this.fullscreenChanged();
-		const doc = this.window.document;
-		this.window.addEventListener( 'hashchange', onHash );
-		this.window.addEventListener( 'keydown', onKey );
-		doc.addEventListener( 'fullscreenchange', onFullscreen );
-		this.unregister.push(
-			() => this.window.removeEventListener( 'hashchange', onHash ),
-			() => this.window.removeEventListener( 'keydown', onKey ),
-			() => doc.removeEventListener( 'fullscreenchange', onFullscreen ),
-			onSessionChange( () => this.route( true ) ),
-			registerDebug( 'runner', () => this.report() ),
-		);
+		this.attach( container, h( 'div', { className: 'lesson-runner' } ) );
+		this.listen( this.window, 'hashchange', () => this.route() );
+		this.listen( this.window, 'keydown', ( event ) => this.key( event ) );
+		this.listen( this.window.document, 'fullscreenchange', () => this.fullscreenChanged() );
+		this.onUnmount( onSessionChange( () => this.route( true ) ) );
+		this.debugFields( { runner: () => this.report() } );
 		this.route();
 		return this;
 
@@ -301,8 +288,7 @@ export class LessonRunner {
 
 		if ( this.window.document.fullscreenElement ) this.window.document.exitFullscreen?.();
 		this.closeLesson();
-		for ( const unregister of this.unregister ) unregister();
-		this.root.remove();
+		super.unmount();
 
 	}
 

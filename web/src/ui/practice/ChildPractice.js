@@ -7,8 +7,6 @@
 // and the try is recorded (POST /practice, with the replays counted) before the next target.
 // Every button is 64 px and more, with a picture and an accessible name.
 
-import { api as pageApi } from '../../api.js';
-import { registerDebug } from '../../debug.js';
 import { clearSession, currentSession, saveSession } from '../../session.js';
 import { h } from '../shared/dom.js';
 import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from './ChildPracticeFlow.js';
@@ -16,6 +14,7 @@ import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
 import { targetLabel } from '../lessons/LessonRunnerItems.js';
 import { ItemPresenter } from '../lessons/LessonRunnerViews.js';
 import { SpeechView } from '../speak/SpeechView.js';
+import { View } from '../shared/View.js';
 import './childPractice.css';
 
 /** A big button: a picture, and words under it when given (the name is always there for a screen reader). */
@@ -25,27 +24,24 @@ function bigButton( icon, label, onClick, { words = null, className = 'cp-button
 
 }
 
-export class ChildPractice {
+export class ChildPractice extends View {
 
 	/** @param {{ api?: object, win?: Window }} options */
-	constructor( { api = pageApi, win = globalThis.window } = {} ) {
+	constructor( options ) {
 
-		this.api = api;
-		this.window = win;
+		super( options );
 		this.screen = null;
 		this.roster = null;
 		this.joinCode = null;
 		this.round = null;
 		this.error = null;
-		this.unregister = [];
 
 	}
 
 	mount( container ) {
 
-		this.root = h( 'div', { className: 'child-practice' } );
-		container.append( this.root );
-		this.unregister.push( registerDebug( 'practice', () => this.report() ) );
+		this.attach( container, h( 'div', { className: 'child-practice' } ) );
+		this.debugFields( { practice: () => this.report() } );
 		this.start();
 		return this;
 
@@ -342,8 +338,7 @@ export class ChildPractice {
 	unmount() {
 
 		this.closeHead();
-		for ( const unregister of this.unregister ) unregister();
-		this.root.remove();
+		super.unmount();
 
 	}
 

@@ -6,70 +6,93 @@
 //
 // window.glasshead.signIn: { ready, busy, message, next } for the end-to-end tests.
 
-import { registerDebug } from '../../debug.js';
 import { currentSession, onSessionChange } from '../../session.js';
 import { h } from '../shared/dom.js';
 import { nextFromHash, signIn, signOut, whoLabel } from '../shared/signIn.js';
+import { View } from '../shared/View.js';
 import '../shared/signin.css';
 
-export function mountSignInView( container, { win = globalThis.window } = {} ) {
+export class SignInView extends View {
 
-	// Where to go once signed in: read from the address each time, which may change under the view.
-	const next = () => nextFromHash( win.location.hash );
-	const debug = { ready: false, busy: false, message: null, next: next() };
+	/** @param {{ win?: Window }} options */
+	constructor( options ) {
 
-	const username = h( 'input', { id: 'signin-username', name: 'username', type: 'text', autocomplete: 'username', autocapitalize: 'none', spellcheck: 'false', required: '' } );
-	const password = h( 'input', { id: 'signin-password', name: 'password', type: 'password', autocomplete: 'current-password', required: '' } );
-	const submit = h( 'button', { type: 'submit', className: 'signin-submit' }, 'Sign in' );
-	const message = h( 'p', { className: 'error signin-message', role: 'alert', hidden: '' } );
-	const form = h( 'form', { className: 'signin-form', 'aria-labelledby': 'signin-title', novalidate: '' },
-		h( 'label', { className: 'field-label', for: 'signin-username' }, 'Username' ),
-		username,
-		h( 'label', { className: 'field-label', for: 'signin-password' }, 'Password' ),
-		password,
-		submit,
-		message,
-	);
-
-	const signedIn = h( 'div', { className: 'signin-signed-in' } );
-	const card = h( 'section', { className: 'signin-card', 'aria-labelledby': 'signin-title' },
-		h( 'h1', { id: 'signin-title', className: 'signin-title' }, 'Sign in' ),
-		h( 'p', { className: 'signin-intro' }, 'Authors, teachers and clinicians sign in to save poses, read recordings and run lessons. The head works without signing in.' ),
-		form,
-		signedIn,
-	);
-	const root = h( 'div', { className: 'signin-view' }, card );
-	container.append( root );
-
-	function show( text ) {
-
-		debug.message = text;
-		message.textContent = text ?? '';
-		message.hidden = ! text;
+		super( options );
+		this.debug = { ready: false, busy: false, message: null, next: this.next() };
 
 	}
 
-	function render() {
+	/** Where to go once signed in: read from the address each time, which may change under the view. */
+	next() {
 
+		return nextFromHash( this.window.location.hash );
+
+	}
+
+	mount( container ) {
+
+		this.username = h( 'input', { id: 'signin-username', name: 'username', type: 'text', autocomplete: 'username', autocapitalize: 'none', spellcheck: 'false', required: '' } );
+		this.password = h( 'input', { id: 'signin-password', name: 'password', type: 'password', autocomplete: 'current-password', required: '' } );
+		this.submit = h( 'button', { type: 'submit', className: 'signin-submit' }, 'Sign in' );
+		this.message = h( 'p', { className: 'error signin-message', role: 'alert', hidden: '' } );
+		this.form = h( 'form', { className: 'signin-form', 'aria-labelledby': 'signin-title', novalidate: '' },
+			h( 'label', { className: 'field-label', for: 'signin-username' }, 'Username' ),
+			this.username,
+			h( 'label', { className: 'field-label', for: 'signin-password' }, 'Password' ),
+			this.password,
+			this.submit,
+			this.message,
+		);
+
+		this.signedIn = h( 'div', { className: 'signin-signed-in' } );
+		const card = h( 'section', { className: 'signin-card', 'aria-labelledby': 'signin-title' },
+			h( 'h1', { id: 'signin-title', className: 'signin-title' }, 'Sign in' ),
+			h( 'p', { className: 'signin-intro' }, 'Authors, teachers and clinicians sign in to save poses, read recordings and run lessons. The head works without signing in.' ),
+			this.form,
+			this.signedIn,
+		);
+		this.attach( container, h( 'div', { className: 'signin-view' }, card ) );
+		this.form.addEventListener( 'submit', ( event ) => this.submitted( event ) );
+		this.onUnmount( onSessionChange( () => this.render() ) );
+		this.debugFields( { signIn: () => ( { ...this.debug } ) } );
+		this.render();
+		if ( ! this.form.hidden ) this.username.focus();
+		this.debug.ready = true;
+		return this;
+
+	}
+
+	show( text ) {
+
+		this.debug.message = text;
+		this.message.textContent = text ?? '';
+		this.message.hidden = ! text;
+
+	}
+
+	render() {
+
+		const win = this.window;
 		const session = currentSession( { win } );
-		form.hidden = Boolean( session );
-		signedIn.replaceChildren();
+		this.form.hidden = Boolean( session );
+		this.signedIn.replaceChildren();
 		if ( ! session ) return;
 		const signOutButton = h( 'button', { type: 'button', onClick: () => signOut( { win } ) }, 'Sign out' );
-		signedIn.append(
+		this.signedIn.append(
 			h( 'p', { role: 'status' }, `You are signed in as ${ whoLabel( session ) }.` ),
-			h( 'div', { className: 'signin-actions' }, h( 'a', { className: 'signin-continue', href: next() }, 'Continue' ), signOutButton ),
+			h( 'div', { className: 'signin-actions' }, h( 'a', { className: 'signin-continue', href: this.next() }, 'Continue' ), signOutButton ),
 		);
 
 	}
 
-	form.addEventListener( 'submit', async ( event ) => {
+	async submitted( event ) {
 
 		event.preventDefault();
+		const { debug, username, password, submit } = this;
 		if ( debug.busy ) return;
 		if ( username.value.trim() === '' || password.value === '' ) {
 
-			show( 'Enter your username and your password.' );
+			this.show( 'Enter your username and your password.' );
 			( username.value.trim() === '' ? username : password ).focus();
 			return;
 
@@ -77,17 +100,17 @@ export function mountSignInView( container, { win = globalThis.window } = {} ) {
 
 		debug.busy = true;
 		submit.disabled = true;
-		show( null );
+		this.show( null );
 		try {
 
-			await signIn( username.value, password.value, { win } );
+			await signIn( username.value, password.value, { win: this.window } );
 			password.value = '';
-			debug.next = next();
-			win.location.hash = debug.next;
+			debug.next = this.next();
+			this.window.location.hash = debug.next;
 
 		} catch ( error ) {
 
-			show( error.message );
+			this.show( error.message );
 			password.select();
 			password.focus();
 
@@ -98,22 +121,13 @@ export function mountSignInView( container, { win = globalThis.window } = {} ) {
 
 		}
 
-	} );
+	}
 
-	const unsubscribe = onSessionChange( render );
-	const unregister = registerDebug( 'signIn', () => ( { ...debug } ) );
-	render();
-	if ( ! form.hidden ) username.focus();
-	debug.ready = true;
+}
 
-	return {
-		unmount() {
+/** Route entry for the view registry. */
+export function mountSignInView( container, { win } = {} ) {
 
-			unsubscribe();
-			unregister();
-			root.remove();
-
-		},
-	};
+	return new SignInView( { win } ).mount( container );
 
 }

@@ -5,17 +5,16 @@
 // scrub, step frame by frame, slow down to 0.1x with the sound in step, or hold the target of one
 // phoneme (static mode, GET /phonemes/{symbol}).
 
-import { api as pageApi, getAnatomy } from '../../api.js';
-import { registerDebug } from '../../debug.js';
+import { getAnatomy } from '../../api.js';
 import { packTracks, sampleTracks } from '../../core/trackSampling.js';
 import { viewPose } from '../../scene/viewPresets.js';
 import { h } from '../shared/dom.js';
-import { createHeadStage } from '../shared/headStage.js';
 import { loadAnatomy, loadArticulation, loadLandmarks, loadPhonemeTarget } from '../shared/loaders.js';
 import { PhonemeStrip } from './PhonemeStrip.js';
 import { SpeechPanels } from './SpeechPanels.js';
 import { SpeechForm, Transport } from './SpeechControls.js';
 import { phoneIndexAt, SpeechClock } from './speechClock.js';
+import { View } from '../shared/View.js';
 import './speech.css';
 
 /** What the 3D view frames in profile: the mouth, the velum and the pharynx (mm). */
@@ -23,22 +22,21 @@ const FOCUS = Object.freeze( { center: [ - 4, - 8, 0 ], radius: 68 } );
 /** The voicing cue (0..1) above which the voice is shown sounding. */
 const VOICED = 0.5;
 
-export class SpeechView {
+export class SpeechView extends View {
 
 	/**
 	 * @param {{ api?: object, audio?: HTMLAudioElement, sayOnLoad?: boolean }} options
 	 *   `sayOnLoad`: say the example in the box once the head has loaded (the lesson runner and
 	 *   the child's practice say their own targets instead); `ready` resolves then, true when loaded
 	 */
-	constructor( { api = pageApi, audio = null, sayOnLoad = true } = {} ) {
+	constructor( { api, audio = null, sayOnLoad = true } = {} ) {
 
-		this.api = api;
+		super( { api } );
 		this.sayOnLoad = sayOnLoad;
 		this.ready = new Promise( ( resolve ) => ( this.resolveReady = resolve ) );
 		/** Skin transparency when the skin is see-through, percent (a lesson item sets its own). */
 		this.state = { loaded: false, error: null, skin: false, transparency: 70, cutaway: true, hold: null };
 		this.utterance = null;
-		this.unregister = [];
 		this.audio = audio ?? Object.assign( document.createElement( 'audio' ), { preload: 'auto' } );
 		this.clock = new SpeechClock( { audio: this.audio } );
 		this.phone = - 1;
@@ -65,15 +63,12 @@ export class SpeechView {
 		this.side = h( 'aside', { className: 'sp-side', 'aria-label': 'Views' }, h( 'div', { className: 'sp-buttons', role: 'group', 'aria-label': 'Show' }, ...this.viewButtons.values() ) );
 		this.left = h( 'div', { className: 'sp-left' }, h( 'h1', { className: 'title' }, 'Say it' ), this.form.element );
 		this.bottom = h( 'div', { className: 'sp-bottom' }, this.transport.element, this.strip.element );
-		this.root = h( 'div', { className: 'speech' }, this.left, this.stage, this.side, this.bottom );
-		container.append( this.root );
+		this.attach( container, h( 'div', { className: 'speech' }, this.left, this.stage, this.side, this.bottom ) );
 		this.registerDebugFields();
 		this.form.showStatus( 'Loading the head…' );
 		this.form.setBusy( true );
 
-		const stage = createHeadStage( this.stage, ( message ) => this.fail( message ) );
-		if ( ! stage ) return this;
-		( { viewer: this.viewer, head: this.head } = stage );
+		if ( ! this.mountStage( this.stage ) ) return this;
 		this.load();
 		return this;
 
@@ -81,16 +76,12 @@ export class SpeechView {
 
 	registerDebugFields() {
 
-		const fields = {
+		this.debugFields( {
 			loaded: () => this.state.loaded,
 			error: () => this.state.error,
-			frames: () => ( this.viewer ? this.viewer.frameCount : 0 ),
-			frameTimeMs: () => ( this.viewer ? this.viewer.frameTimeMs : null ),
-			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
-			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
+			...this.stageDebugFields(),
 			speech: () => this.report(),
-		};
-		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
+		} );
 
 	}
 
@@ -137,14 +128,14 @@ export class SpeechView {
 		}
 
 		if ( ! this.viewer ) return this.articulation.dispose();
-		this.unregister.push( () => this.articulation.dispose() );
+		this.onUnmount( () => this.articulation.dispose() );
 		this.epg = await ( await import( '../shared/HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } );
 		if ( ! this.viewer ) return;
 		this.panels = new SpeechPanels( { head: this.head, viewer: this.viewer, articulation: this.articulation, landmarks: this.landmarks } );
-		this.unregister.push( () => this.panels.dispose() );
+		this.onUnmount( () => this.panels.dispose() );
 		this.dominance = this.panels.dominance;
 		this.side.append( ...this.panels.sections );
-		this.unregister.push( this.viewer.onFrame( () => this.tick() ) );
+		this.onUnmount( this.viewer.onFrame( () => this.tick() ) );
 		this.apply();
 		this.viewer.flyTo( viewPose( 'profile', FOCUS.center, FOCUS.radius, this.viewer.camera.fov, this.viewer.aspect ), 0 );
 		this.state.loaded = true;
@@ -386,11 +377,7 @@ export class SpeechView {
 		this.resolveReady( false );
 		this.clock.pause();
 		this.audio.removeAttribute( 'src' );
-		for ( const unregister of this.unregister ) unregister();
-		this.viewer?.dispose();
-		this.head?.dispose();
-		this.viewer = null;
-		this.root.remove();
+		super.unmount();
 
 	}
 

@@ -5,8 +5,7 @@
 // and saving them as a named pose.
 
 import { Box3, BufferAttribute, BufferGeometry, Points, PointsMaterial } from 'three';
-import { api as pageApi, getAnatomy } from '../../api.js';
-import { registerDebug } from '../../debug.js';
+import { getAnatomy } from '../../api.js';
 import { FLAG_CORRECTED } from '../../core/constants.js';
 import { LinerWireframe } from '../../scene/LinerWireframe.js';
 import { VoxelDots } from '../../scene/VoxelDots.js';
@@ -20,8 +19,8 @@ import { blendingFunctions, coronalSection, drawSectionsPanel, sectionControls, 
 import './workbench.css';
 import './observation.css';
 import '../shared/signin.css';
-import { createHeadStage } from '../shared/headStage.js';
 import { loadAnatomy, loadArticulation, loadLandmarks } from '../shared/loaders.js';
+import { View } from '../shared/View.js';
 import { DiagramSection } from '../../scene/DiagramSection.js';
 import { drawDiagram } from '../shared/DiagramPanel.js';
 import { WorkbenchCues } from '../shared/WorkbenchCues.js';
@@ -43,14 +42,13 @@ const CONTACT_COLOR = '#3d0710';
 
 export const WORKBENCH_DEFAULTS = Object.freeze( { skin: false, jaw: true, palate: true, tongue: true, cutaway: true, liner: false, voxels: false, contacts: true, view: 'three-quarter' } );
 
-export class WorkbenchView {
+export class WorkbenchView extends View {
 
 	/** @param {{ api?: object }} options the HTTP client everything is loaded and saved through */
-	constructor( { api = pageApi } = {} ) {
+	constructor( options ) {
 
-		this.api = api;
+		super( options );
 		this.state = { ...WORKBENCH_DEFAULTS, loaded: false, error: null };
-		this.unregister = [];
 
 	}
 
@@ -61,13 +59,10 @@ export class WorkbenchView {
 		this.error = h( 'p', { className: 'error', role: 'alert', hidden: '' } );
 		this.side = h( 'aside', { className: 'wb-side', 'aria-label': 'Workbench panels' }, this.status, this.error );
 		this.left = h( 'div', { className: 'wb-left' }, h( 'h1', { className: 'wb-title' }, 'Workbench' ) );
-		this.root = h( 'div', { className: 'workbench' }, this.left, this.stage, this.side );
-		container.append( this.root );
+		this.attach( container, h( 'div', { className: 'workbench' }, this.left, this.stage, this.side ) );
 		this.registerDebugFields();
 
-		const stage = createHeadStage( this.stage, ( message ) => this.fail( message ) );
-		if ( ! stage ) return this;
-		( { viewer: this.viewer, head: this.head } = stage );
+		if ( ! this.mountStage( this.stage ) ) return this;
 		this.load();
 		return this;
 
@@ -75,7 +70,7 @@ export class WorkbenchView {
 
 	registerDebugFields() {
 
-		const fields = {
+		this.debugFields( {
 			loaded: () => this.state.loaded,
 			error: () => this.state.error,
 			view: () => this.state.view,
@@ -86,12 +81,9 @@ export class WorkbenchView {
 				tablesError: this.articulation?.tablesError ?? null, panelDraws: this.panelDraws ?? 0,
 				diagramDraws: this.diagramDraws ?? 0, landmarksError: this.landmarksError ?? null,
 			} ),
-			frames: () => ( this.viewer ? this.viewer.frameCount : 0 ),
-			cameraMoving: () => ( this.viewer ? this.viewer.animating : false ),
-			renderPending: () => ( this.viewer ? this.viewer.renderPending : false ),
+			...this.stageDebugFields(),
 			tongueRect: () => ( this.state.loaded ? this.viewer.screenRect( new Box3().setFromBufferAttribute( this.articulation.geometry.attributes.position ) ) : null ),
-		};
-		for ( const [ name, getter ] of Object.entries( fields ) ) this.unregister.push( registerDebug( name, getter ) );
+		} );
 
 	}
 
@@ -124,7 +116,7 @@ export class WorkbenchView {
 
 		if ( ! this.viewer ) return this.articulation.dispose(); // unmounted while loading
 		const articulation = this.articulation;
-		this.unregister.push( () => articulation.dispose() );
+		this.onUnmount( () => articulation.dispose() );
 		this.buildScene();
 		this.buildPanels();
 		this.apply();
@@ -158,7 +150,7 @@ export class WorkbenchView {
 		this.contacts.frustumCulled = false;
 		this.contacts.renderOrder = 8;
 		this.viewer.scene.add( this.contacts );
-		this.unregister.push( this.articulation.onCorrected( ( positions, articulation ) => this.showContacts( positions, articulation.flags ) ) );
+		this.onUnmount( this.articulation.onCorrected( ( positions, articulation ) => this.showContacts( positions, articulation.flags ) ) );
 		this.showContacts( this.articulation.positions, this.articulation.flags );
 
 	}
@@ -190,10 +182,10 @@ export class WorkbenchView {
 		const { state, rig } = articulation;
 		this.parameters = new ParameterPanel( state );
 		// Changes are drawn in the next frame (whose hook recomputes); until then a render is pending.
-		this.unregister.push( state.onChange( () => this.viewer.requestRender() ) );
+		this.onUnmount( state.onChange( () => this.viewer.requestRender() ) );
 		this.left.append( this.parameters.element );
 		this.poseBox = new PoseBox( state, { api: this.api } );
-		this.unregister.push( () => this.poseBox.dispose() );
+		this.onUnmount( () => this.poseBox.dispose() );
 
 		const canvas = ( [ width, height ], ariaLabel ) => new HiDpiCanvas( { width, height, ariaLabel, className: 'wb-canvas' } );
 
@@ -202,7 +194,7 @@ export class WorkbenchView {
 		this.diagramCanvas = canvas( PANEL_SIZE.diagram, 'Diagram: the vocal tract cut at the mid-sagittal plane, with the narrowest constriction marked' );
 		this.diagramCanvas.element.classList.add( 'wb-diagram' );
 		this.diagram = new DiagramSection( this.head, { landmarks: this.landmarks } );
-		this.unregister.push( this.diagram.registerDebugField() );
+		this.onUnmount( this.diagram.registerDebugField() );
 		this.diagramParts = Object.fromEntries( [ 'pharynx', 'larynx', 'palate', 'mandible', 'velum', 'upperLip', 'lowerLip', 'tongue' ].map( ( key ) => [ key, this.diagram.parts( key ) ] ) );
 
 		this.toggles = new Map( [ [ 'skin', 'Skin' ], [ 'jaw', 'Jaw & lips' ], [ 'palate', 'Palate' ], [ 'tongue', 'Tongue' ], [ 'cutaway', 'Cutaway' ], [ 'contacts', 'Contacts' ], [ 'liner', 'Liner' ], [ 'voxels', 'Voxels' ] ].map( ( [ key, label ] ) => [ key, h( 'button', {
@@ -244,13 +236,13 @@ export class WorkbenchView {
 			controls: new Float64Array( 2 * rig.controlCount ),
 		} ) );
 		this.panelDraws = 0;
-		this.unregister.push( articulation.onCorrected( () => this.drawPanels() ) );
+		this.onUnmount( articulation.onCorrected( () => this.drawPanels() ) );
 		this.drawPanels();
 		// After the panels' hook, so that the cues read this frame's constriction.
 		this.cues = new WorkbenchCues( { viewer: this.viewer, articulation, diagram: this.diagram, landmarks: this.landmarks } );
-		this.unregister.push( () => this.cues.dispose() );
+		this.onUnmount( () => this.cues.dispose() );
 		this.side.querySelector( '[aria-label="View"]' ).after( this.cues.element );
-		this.unregister.push( mountObservationPanels( this ) ); // its hook after the panels': it draws over them
+		this.onUnmount( mountObservationPanels( this ) ); // its hook after the panels': it draws over them
 
 	}
 
@@ -346,18 +338,13 @@ export class WorkbenchView {
 
 	}
 
-	unmount() {
+	dispose() {
 
-		for ( const unregister of this.unregister ) unregister();
 		this.parameters?.dispose();
 		this.liner?.dispose();
 		this.voxels?.dispose();
 		this.contacts?.geometry.dispose();
 		this.contacts?.material.dispose();
-		this.viewer?.dispose();
-		this.head?.dispose();
-		this.viewer = null;
-		this.root.remove();
 
 	}
 
