@@ -1,12 +1,10 @@
 """Real EPG frames of the emuR engassim recordings grouped into consonant classes
-(fitting.epg_observations): the patterns the articulation targets are checked against."""
+(epg.classes): the patterns the articulation targets are checked against."""
 
 import numpy as np
 import pytest
 
-from glasshead.epg.formats import parse_emur_json
-from glasshead.epg.sequence import make_sequence
-from glasshead.fitting.epg_observations import (
+from glasshead.epg.classes import (
     ELECTRODES,
     EpgObservationError,
     agreement,
@@ -17,6 +15,8 @@ from glasshead.fitting.epg_observations import (
     majority_pattern,
     side_contact,
 )
+from glasshead.epg.formats import parse_emur_json
+from glasshead.epg.sequence import make_sequence
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from sqlalchemy.orm import Session
 
-from glasshead.fitting import fit3d, jobs, uploads
+from glasshead import uploads
+from glasshead.fitting import fit3d, jobs
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.store.db import engine_for, upgrade_to_head
 from glasshead.store.fit_jobs import FitJob

@@ -1,5 +1,5 @@
 """The fit report (pipeline.fit_report): the 2D fit of every JD3 shape on the real build, its
-overlay plots (fitting.overlay_svg) and its page. No mocks: the report is the one
+overlay plots (pipeline.overlay_svg) and its page. No mocks: the report is the one
 `glasshead build` wrote, checked against the objective recomputed from the built rig."""
 
 import json
@@ -14,9 +14,9 @@ import pytest
 from glasshead.constants import FIT_REPORT_FILE, FIT_REPORT_PAGE, VTL_OBSERVATIONS_FILE
 from glasshead.fitting import fit2d
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
-from glasshead.fitting.overlay_svg import svg_overlay
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.fit_report import build_step, shape_label
+from glasshead.pipeline.overlay_svg import svg_overlay
 
 SVG = "{http://www.w3.org/2000/svg}"
 #: mm. The report keeps outline points and errors to 1e-4 mm, the SVG error vectors to 1e-4 mm.

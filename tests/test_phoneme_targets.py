@@ -17,8 +17,8 @@ from glasshead.constants import (
     TONGUE_RIG_FILE,
     VELUM_PARAMETER,
 )
+from glasshead.epg import classes as obs
 from glasshead.epg import synthetic
-from glasshead.fitting import epg_observations as obs
 from glasshead.phonemes import INVENTORY
 from glasshead.pipeline.outputs import current_output
 from glasshead.pipeline.phoneme_targets import (

@@ -69,7 +69,8 @@ class ProgressBar:
 
 
 def fit(args):
-    from glasshead.fitting import jobs, uploads
+    from glasshead import uploads
+    from glasshead.fitting import jobs
 
     settings = get_settings()
     path = Path(args.file)

@@ -22,8 +22,8 @@ import re
 from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from glasshead import uploads
 from glasshead.api.routes import recordings, utterances
-from glasshead.fitting import uploads
 
 MIB = 1024 * 1024
 #: Room for the multipart framing (boundaries, part headers, small fields) around a file.
@@ -34,7 +34,7 @@ DEFAULT_LIMIT = 1 * MIB
 #: (method, path, most bytes in the body); a ``{parameter}`` matches one path segment.
 BODY_LIMITS: tuple[tuple[str, str, int], ...] = (
     # Uploads: the route's own file limit plus the framing (routes/recordings.py, fits.py,
-    # utterances.py; fitting/uploads.py).
+    # utterances.py; uploads.py).
     ("POST", "/api/v1/epg/recordings", recordings.MAX_UPLOAD_BYTES + MULTIPART_SLACK),
     ("POST", "/api/v1/fits", max(uploads.MAX_BYTES.values()) + MULTIPART_SLACK),
     ("POST", "/api/v1/utterances/textgrid", utterances.MAX_TEXTGRID_BYTES + MULTIPART_SLACK),

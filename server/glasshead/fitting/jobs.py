@@ -48,10 +48,10 @@ from glasshead.constants import (
     VELUM_RIG_FILE,
 )
 from glasshead.epg import synthetic
+from glasshead.epg.classes import ELECTRODES, agreement
 from glasshead.epg.contacts import Probes, probes_from_layout
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.fitting import fit2d, fit_contact
-from glasshead.fitting.epg_observations import ELECTRODES, agreement
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.fitting.objective_epg import EpgObjective
 from glasshead.fitting.optimizer import METHODS, minimize

@@ -9,7 +9,7 @@ Writes, under the assets directory:
   after the fit (``params``); the rays' ``origin`` (x, y, 0); the compared part of the observed
   outline (``outline``, root to tip, one point per ray) and the signed error on each ray
   (``errors``, mm, +: the rig lies outside); and the plot's path;
-- ``fit-plots/<name>.svg`` (``FIT_PLOTS_DIR``): the overlay (``fitting.overlay_svg``);
+- ``fit-plots/<name>.svg`` (``FIT_PLOTS_DIR``): the overlay (``pipeline.overlay_svg``);
 - ``fit-report.html`` (``FIT_REPORT_PAGE``): a page with the table and every plot
   (``pipeline.fit_report_html``).
 
@@ -43,11 +43,11 @@ from glasshead.constants import (
     TONGUE_RIG_FILE,
     VTL_OBSERVATIONS_FILE,
 )
-from glasshead.fitting import fit2d, objective2d, optimizer, overlay_svg
+from glasshead.fitting import fit2d, objective2d, optimizer
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.geometry import tongue_surface
 from glasshead.geometry.tongue_surface import TongueRig
-from glasshead.pipeline import fit_report_html
+from glasshead.pipeline import fit_report_html, overlay_svg
 from glasshead.pipeline.outputs import current_output, write_json
 
 #: Bump when the output changes in a way that must rebuild it.

@@ -21,7 +21,7 @@ How a measured target is made (``measured_target``):
 4. Contact (``contact_target``): the shapes of the consonants of the three real EPG classes
    (/t d n/, /s z/, /k g ŋ/, every context) and /i/ are fitted again with the outline and an
    EPG error together (``fitting.fit_contact``): toward the class's real majority pattern
-   (``fitting.epg_observations``), weighted per electrode by how clear its majority is (for
+   (``epg.classes``), weighted per electrode by how clear its majority is (for
    /k g ŋ/ the majority of the real frames that close a back row, ``RULE_FRAMES_OF_GOAL``), or
    for /i/ toward the pattern its realism rule describes (``RULE_GOALS``).
 
@@ -55,13 +55,13 @@ from glasshead.constants import (
     VELUM_PARAMETER,
     VELUM_RIG_FILE,
 )
+from glasshead.epg import classes as epg_classes
 from glasshead.epg import contacts as epg_contacts
 from glasshead.epg import synthetic
 from glasshead.epg.contacts import probes_from_layout
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.fitting import (
-    epg_observations,
     fit2d,
     fit_contact,
     objective2d,
@@ -87,7 +87,7 @@ VOLUME_REFITS = 3
 #: The vowel context a consonant's own target comes from.
 MAIN_CONTEXT = "a"
 #: The modules whose code shapes the output; their text is part of the cache key.
-CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_observations, synthetic,
+CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_classes, synthetic,
         objective_epg, fit_contact, tongue_surface, epg_contacts)
 #: Built files read, and the data file.
 INPUT_FILES = (TONGUE_RIG_FILE, OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
@@ -176,7 +176,7 @@ def coronal_from_vtl(rig: TongueRig, settings: dict) -> dict:
 class Context:
     """What every target needs: the rig, its section, the palate's tables and probes, the lip and
     velum tables, the observations by name and, given the data directory, the real EPG classes
-    (``fitting.epg_observations.class_frames`` of ``ENGASSIM``)."""
+    (``epg.classes.class_frames`` of ``ENGASSIM``)."""
 
     def __init__(self, assets_dir: Path, data_dir: Path | None = None):
         self.rig = TongueRig(json.loads((assets_dir / TONGUE_RIG_FILE).read_text()))
@@ -195,7 +195,7 @@ class Context:
         if data_dir is not None:
             from glasshead.epg.formats import parse_emur_json
 
-            self.classes = epg_observations.class_frames(
+            self.classes = epg_classes.class_frames(
                 parse_emur_json((Path(data_dir) / ENGASSIM).read_bytes()))
 
     def volume_change(self, tongue: dict) -> float:
@@ -274,7 +274,7 @@ HELD_OF_GOAL = {"velar_stop": ("tip_advancement", "tip_height", "tip_thickness")
 #: real /k g/ frames 8 close a back row (R8, in every one of the 8); the other 24 close behind
 #: the palate's last row, where no electrode sees the closure, so the majority of all 32 (R8
 #: ``11110111``) has no complete row, and targets fitted to it had none either.
-RULE_FRAMES_OF_GOAL = {"velar_stop": epg_observations.back_closure}
+RULE_FRAMES_OF_GOAL = {"velar_stop": epg_classes.back_closure}
 #: The EPG weight of a goal's contact fit where it is not ``fit_contact.EPG_WEIGHT``: the back
 #: row closes only when the dorsum reaches it across its whole width, against the volume bound
 #: and JD3's outline; at 30 the velar fits stopped with R8's middle electrodes about 0.5 mm out
@@ -318,7 +318,7 @@ def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
     if shape_name != "i":
         raise KeyError(shape_name)
     wanted = np.zeros((8, 8), dtype=np.uint8)
-    weights = epg_observations.ELECTRODES.astype(np.float64)
+    weights = epg_classes.ELECTRODES.astype(np.float64)
     wanted[1:, [0, 7]] = 1
     weights[:, [1, 6]] = 0.0
     return wanted, weights
@@ -336,21 +336,21 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
     electrode touched in every frame (or none) counts fully and one touched in half of them not
     at all."""
     stem = shape_name.split("(")[0]
-    for name, symbols in epg_observations.PHONEMES_OF.items():
+    for name, symbols in epg_classes.PHONEMES_OF.items():
         if name in ctx.classes and any(phoneme_inventory.lookup(s).shape == stem
                                        for s in symbols):
             frames = ctx.classes[name].frames
             if name in RULE_FRAMES_OF_GOAL:
                 frames = frames[[RULE_FRAMES_OF_GOAL[name](f) for f in frames]]
             share = frames.mean(axis=0)
-            weights = np.abs(2.0 * share - 1.0) * epg_observations.ELECTRODES
-            wanted = epg_observations.majority_pattern(frames)
+            weights = np.abs(2.0 * share - 1.0) * epg_classes.ELECTRODES
+            wanted = epg_classes.majority_pattern(frames)
             context = _context(shape_name)
             fronted = list(FRONTED_ROWS_OF_GOAL.get(name, {}).get(context, ()))
             if fronted:
                 wanted, weights = wanted.copy(), weights.copy()
-                wanted[fronted] = epg_observations.ELECTRODES[fronted]
-                weights[fronted] = epg_observations.ELECTRODES[fronted]
+                wanted[fronted] = epg_classes.ELECTRODES[fronted]
+                weights[fronted] = epg_classes.ELECTRODES[fronted]
             return {"name": name, "wanted": wanted, "fronted_rows": fronted,
                     "weights": weights, "frames": int(len(frames)),
                     "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT),
@@ -364,9 +364,9 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
 
 def _agreement(grid, goal) -> float:
     """Share of the electrodes with weight that agree with the goal's wanted pattern (for a class:
-    of all 62, as ``epg_observations.agreement``)."""
+    of all 62, as ``epg_classes.agreement``)."""
     if "frames" in goal:
-        return epg_observations.agreement(grid, goal["wanted"])
+        return epg_classes.agreement(grid, goal["wanted"])
     counted = goal["weights"] > 0
     return float(((np.asarray(grid) == goal["wanted"]) & counted).sum() / counted.sum())
 
@@ -636,7 +636,7 @@ def build_targets(ctx: Context) -> tuple[list[dict], dict]:
 def _sides_only(grid) -> bool:
     grid = np.asarray(grid).astype(bool)
     middle = grid[:, 2:6].sum()
-    return epg_observations.side_contact(grid) and middle <= 2
+    return epg_classes.side_contact(grid) and middle <= 2
 
 
 def _little_contact(grid) -> bool:
@@ -645,10 +645,10 @@ def _little_contact(grid) -> bool:
 
 RULES = (
     (("T", "D", "N"), "complete closure across a front row with contact along both sides",
-     lambda g: epg_observations.front_closure(g) and epg_observations.side_contact(g)),
+     lambda g: epg_classes.front_closure(g) and epg_classes.side_contact(g)),
     (("S", "Z"), "contact along the sides with a central groove open in the front rows",
-     epg_observations.central_groove),
-    (("K", "G"), "complete closure across a back row", epg_observations.back_closure),
+     epg_classes.central_groove),
+    (("K", "G"), "complete closure across a back row", epg_classes.back_closure),
     (("IY",), "contact at the sides only (outer columns in most rows, at most 2 of the middle "
               "four columns' electrodes)", _sides_only),
     (("AA",), "little or no contact (at most 6 electrodes)", _little_contact),
@@ -676,18 +676,18 @@ def realism(grids: dict, classes: dict, before: dict | None = None) -> dict:
     for name, frames in classes.items():
         majority = frames.majority
         test = next(t for symbols, _, t in RULES
-                    if set(symbols) & set(epg_observations.PHONEMES_OF[name]))
+                    if set(symbols) & set(epg_classes.PHONEMES_OF[name]))
         shares[name] = {
             "frames": int(len(frames.frames)),
             "majority": rows_to_strings(majority),
             "real_frames_passing_rule": round(float(np.mean([test(f) for f in frames.frames])),
                                               4),
             "majority_passes_rule": bool(test(majority)),
-            "agreement": {s: round(epg_observations.agreement(grids[s], majority), 4)
-                          for s in epg_observations.PHONEMES_OF[name]},
+            "agreement": {s: round(epg_classes.agreement(grids[s], majority), 4)
+                          for s in epg_classes.PHONEMES_OF[name]},
             "agreement_before_contact_fit": {
-                s: round(epg_observations.agreement(before[s], majority), 4)
-                for s in epg_observations.PHONEMES_OF[name] if s in before}}
+                s: round(epg_classes.agreement(before[s], majority), 4)
+                for s in epg_classes.PHONEMES_OF[name] if s in before}}
     return {"rules": checks, "passed": sum(c["pass"] for c in checks), "of": len(checks),
             "passed_before_contact_fit": sum(c.get("pass_before_contact_fit", c["pass"])
                                              for c in checks),

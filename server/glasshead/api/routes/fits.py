@@ -35,12 +35,12 @@ from pydantic import BaseModel, ConfigDict, Field
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from glasshead import uploads
 from glasshead.api import idempotency
 from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.examples import EMUR_EXAMPLE
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import check_owner
-from glasshead.fitting import uploads
 from glasshead.fitting.job_runner import FitRunner
 from glasshead.fitting.jobs import DEFAULT_METHOD
 from glasshead.store.db import get_engine

@@ -9,7 +9,7 @@ Three kinds, each read into one float64 array in the project frame (mm):
   (ASCII or binary, read by trimesh), at least ``MIN_SURFACE_VERTICES`` vertices -> (k, 3);
 - ``epg``: EPG frames in one of the recording formats (``glasshead.epg.formats``: emuR JSON, CSV,
   SSFF). The goal is the majority pattern of every frame of the file
-  (``epg_observations.majority_pattern``), each electrode weighted by how clear its majority is
+  (``epg.classes.majority_pattern``), each electrode weighted by how clear its majority is
   (|2 p - 1|, p the share of frames that touch it, as the phoneme targets weigh a class), or one
   frame chosen by its index (every electrode weighted 1) -> (2, 8, 8): wanted, weights.
 
@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from glasshead.epg import formats
+from glasshead.epg.classes import ELECTRODES, majority_pattern
 from glasshead.epg.sequence import EpgFormatError
-from glasshead.fitting.epg_observations import ELECTRODES, majority_pattern
 from glasshead.fitting.fit3d import MIN_RAYS
 
 KINDS = ("contour", "surface", "epg")
