@@ -155,7 +155,7 @@ def test_vtl_i_has_a_higher_fronter_dorsum_than_a(rig, section, shapes):
         tops[name] = outline[np.argmax(outline[:, 1])]
         assert report.shape == name and report.method == "bobyqa"
         assert 0 < report.evaluations <= 3000
-        assert 0 < report.seconds < 30
+        assert report.seconds > 0  # how long: bench/fit2d.py
         assert math.isfinite(report.rms_mm) and 0 <= report.rms_mm <= report.max_error_mm
         assert abs(report.volume_change_pct) <= 5.0
         assert report.rays > 50
