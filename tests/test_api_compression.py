@@ -156,30 +156,30 @@ def test_accept_encoding_allows_gzip_only_with_a_quality_above_zero(header, allo
 
 def test_a_large_answer_is_gzipped_off_the_event_loop(monkeypatch):
     """A stream of large answers (tongue surfaces) once held /health up: gzip ran on the event
-    loop. A body from THREAD_SIZE on is compressed in a thread while the loop goes on."""
-    import time
+    loop. A body from THREAD_SIZE on is compressed in a thread while the loop goes on: here gzip
+    waits until the loop has run a step of another task, which it never could if gzip held the
+    loop (the wait would give up after a minute)."""
+    import threading
 
     from glasshead.api import compression
 
     body = b'{"v": [' + b"1.25," * (compression.THREAD_SIZE // 5 + 10) + b"0]}"
-    slow_compress = gzip.compress
-
+    plain_compress = gzip.compress
+    compressing, loop_ran = threading.Event(), threading.Event()
+    wait_s = 60.0
     during = {}
 
-    def slow(data, **options):
-        during["ticks before"] = len(ticks)
-        time.sleep(0.3)  # as if the body were far larger
-        during["ticks after"] = len(ticks)
-        return slow_compress(data, **options)
+    def waiting(data, **options):
+        compressing.set()
+        during["loop ran while gzip worked"] = loop_ran.wait(timeout=wait_s)
+        return plain_compress(data, **options)
 
-    monkeypatch.setattr(compression.gzip, "compress", slow)
+    monkeypatch.setattr(compression.gzip, "compress", waiting)
 
     async def large(scope, receive, send):
         await send({"type": "http.response.start", "status": 200,
                     "headers": [(b"content-type", b"application/json")]})
         await send({"type": "http.response.body", "body": body})
-
-    ticks = []
 
     async def both():
         sent = []
@@ -190,17 +190,20 @@ def test_a_large_answer_is_gzipped_off_the_event_loop(monkeypatch):
         async def send(message):
             sent.append(message)
 
-        async def ticker():
-            for _ in range(40):
-                ticks.append(time.monotonic())
-                await asyncio.sleep(0.02)
+        async def other_task():
+            # A step of the loop once gzip has begun (or, if it never does, after a minute).
+            for _ in range(int(wait_s / 0.01)):
+                if compressing.is_set():
+                    break
+                await asyncio.sleep(0.01)
+            if compressing.is_set():
+                loop_ran.set()
 
         scope = {"type": "http", "method": "GET", "path": "/",
                  "headers": [(b"accept-encoding", b"gzip")]}
-        await asyncio.gather(CompressionMiddleware(large)(scope, receive, send), ticker())
+        await asyncio.gather(CompressionMiddleware(large)(scope, receive, send), other_task())
         return sent
 
     sent = asyncio.run(both())
     assert gzip.decompress(sent[1]["body"]) == body
-    # Ticks counted while gzip ran: none if it had run on the event loop.
-    assert during["ticks after"] > during["ticks before"], during
+    assert during == {"loop ran while gzip worked": True}
