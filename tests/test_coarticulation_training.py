@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from glasshead.fitting import vtl
+from glasshead.pipeline import vtl_speaker as vtl
 from glasshead.speech import dominance, training
 from glasshead.speech.vtl_reference import (
     STATE_S,

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from glasshead.constants import FIT_REPORT_FILE, FIT_REPORT_PAGE, VTL_OBSERVATIONS_FILE
-from glasshead.fitting import fit2d
+from glasshead.fitting import fit2d, vtl_mapping
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.fit_report import build_step, shape_label
@@ -83,7 +83,7 @@ def test_the_reported_rms_is_the_objective_recomputed_at_the_fitted_values(repor
     for entry in report["shapes"]:
         shape = shapes[entry["name"]]
         base = values_of(rig, entry["start_params"])
-        assert entry["start_params"]["jaw_opening"] == fit2d.jaw_opening_from_vtl(shape, rig)
+        assert entry["start_params"]["jaw_opening"] == vtl_mapping.jaw_opening_from_vtl(shape, rig)
         objective = Objective2D(rig, shape["tongue_outline"], free, base=base, section=section)
         fitted = values_of(rig, entry["params"])
         assert objective.rms(fitted[objective.index]) == pytest.approx(entry["rms_mm"],

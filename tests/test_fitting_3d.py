@@ -6,8 +6,7 @@ import json
 import numpy as np
 import pytest
 
-from glasshead.constants import TONGUE_RIG_FILE
-from glasshead.fitting.fit2d import OBSERVATIONS_FILE, jaw_opening_from_vtl
+from glasshead.constants import TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE
 from glasshead.fitting.fit3d import (
     MIN_RAYS,
     VTL_POINTS,
@@ -23,6 +22,7 @@ from glasshead.fitting.fit3d import (
     visible_mask,
 )
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection
+from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 from glasshead.geometry.tongue_surface import TongueRig
 
 SEED = 1998
@@ -42,7 +42,7 @@ def rig(built_assets):
 
 @pytest.fixture(scope="module")
 def shapes(built_assets):
-    document = json.loads((built_assets / OBSERVATIONS_FILE).read_text())
+    document = json.loads((built_assets / VTL_OBSERVATIONS_FILE).read_text())
     return {shape["name"]: shape for shape in document["shapes"]}
 
 

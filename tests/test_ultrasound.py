@@ -1,10 +1,12 @@
 """Real ultrasound contours of speaker it01 (/t/ against /k/) carried into the project frame
-through the speaker's palate trace (fitting.ultrasound), on the reference data."""
+through the speaker's palate trace (pipeline.ultrasound), on the reference data."""
 
 import numpy as np
 import pytest
 
-from glasshead.fitting.ultrasound import (
+from glasshead.geometry.midsagittal import midline_section
+from glasshead.pipeline.outputs import load_built_meshes
+from glasshead.pipeline.ultrasound import (
     PALATE_FILE,
     TONGUE_FILE,
     UltrasoundDataError,
@@ -13,8 +15,6 @@ from glasshead.fitting.ultrasound import (
     read_palate,
     register_trace,
 )
-from glasshead.fitting.vtl_registration import midline_section
-from glasshead.pipeline.outputs import load_built_meshes
 
 
 @pytest.fixture(scope="module")

@@ -5,8 +5,8 @@ import json
 import numpy as np
 import pytest
 
-from glasshead.fitting import vtl
-from glasshead.fitting.vtl_registration import palate_clearance, point_to_polylines
+from glasshead.geometry.midsagittal import palate_clearance, point_to_polylines
+from glasshead.pipeline import vtl_speaker as vtl
 from glasshead.pipeline.vtl_observations import build_vtl_observations
 
 PLACES = ("labial", "dental", "alveolar", "postalveolar", "palatal", "velar", "uvular")

@@ -12,8 +12,9 @@ Which parameters move:
   that moves the midline (groove depth, and its paramedian pair) cannot be told apart from a
   height in a mid-sagittal outline; the 3D surface fit sets them;
 - the jaw: ``jaw="vtl"`` (default) sets ``jaw_opening`` from the shape's jaw angle JA, counted
-  from each model's rest: JD3's standard JA is -2 degrees (VTL's parameter table), the rig's rest
-  is 0, and JA is negative when open, so opening = VTL_JA_REST - JA, clipped to the rig's range
+  from each model's rest (``vtl_mapping.jaw_opening``): JD3's standard JA is -2 degrees (VTL's
+  parameter table), the rig's rest is 0, and JA is negative when open, so opening =
+  VTL_JA_REST - JA, clipped to the rig's range
   (JD3's JA spans -6.2 .. -1.3 over the shapes: 0 .. 4.2 degrees). The two jaws pivot at
   different places, so this is a mapping of intent, not of geometry. ``jaw="free"`` fits it
   within its range instead (from that same value).
@@ -30,15 +31,14 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.constants import TONGUE_RIG_FILE
+from glasshead.constants import TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection, Objective2D
 from glasshead.fitting.optimizer import minimize_restarted
+from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 from glasshead.geometry.tongue_rig import SECTIONS
 from glasshead.geometry.tongue_surface import TongueRig
 
 SAGITTAL_GROUP = "tongue sagittal"
-#: JD3's jaw angle at rest (VTL's "standard" JA), degrees.
-VTL_JA_REST = -2.0
 #: Objective weights (see objective2d): 5 % volume change costs as much as 0.5 mm RMS; moving
 #: one parameter over its whole range costs 0.02 mm^2, enough to break ties only.
 VOLUME_WEIGHT = 0.01
@@ -75,7 +75,6 @@ RESTART_GAIN = 0.01
 #: the outlines resolve.
 FTOL_ABS = 1e-6
 XTOL_ABS = 1e-3
-OBSERVATIONS_FILE = "vtl-observations.json"
 
 
 @dataclass
@@ -118,13 +117,6 @@ def own_pulls(rig: TongueRig, free) -> dict[str, float]:
     pulls = {name: WIDTH_WEIGHT for name in width_parameters(rig)}
     pulls[TURN_PARAMETER] = TURN_WEIGHT
     return {name: pulls[name] for name in free if name in pulls}
-
-
-def jaw_opening_from_vtl(shape, rig: TongueRig) -> float:
-    """The rig's jaw_opening (deg) for a VTL shape record's jaw angle JA (see module docstring)."""
-    angle = float(shape["settings"]["jaw"]["JA"])
-    p = rig.parameters[rig.jaw["parameter"]]
-    return float(np.clip(VTL_JA_REST - angle, p["min"], p["max"]))
 
 
 def fit_outline(rig: TongueRig, outline, *, method="bobyqa", free=None, base=None,
@@ -197,7 +189,7 @@ def load_inputs(assets_dir):
     """(rig, observations document) from a built assets directory."""
     assets_dir = Path(assets_dir)
     rig = TongueRig(json.loads((assets_dir / TONGUE_RIG_FILE).read_text()))
-    observations = json.loads((assets_dir / OBSERVATIONS_FILE).read_text())
+    observations = json.loads((assets_dir / VTL_OBSERVATIONS_FILE).read_text())
     return rig, observations
 
 

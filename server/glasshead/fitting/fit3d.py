@@ -68,13 +68,13 @@ from glasshead.fitting.fit2d import (
     VOLUME_BOUND_WEIGHT,
     VOLUME_WEIGHT,
     FitReport,
-    jaw_opening_from_vtl,
     sagittal_parameters,
     select_shapes,
 )
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection
 from glasshead.fitting.objective3d import RayError3D
 from glasshead.fitting.optimizer import minimize_restarted
+from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 from glasshead.geometry.tongue_surface import TongueRig
 
 CORONAL_PREFIX = "tongue coronal"

@@ -42,11 +42,11 @@ wall: nothing inside the band, and outside it every percent costs as much as a l
 a fit keeps the volume within the band unless the outline cannot be matched any other way.
 """
 
-import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from glasshead.geometry.midsagittal import resample
 from glasshead.geometry.tongue_surface import TongueRig
 
 #: Rays behind the origin more than this far below its horizontal are left out (see above).
@@ -78,17 +78,6 @@ def tip_index(outline) -> int:
     while k + 1 < len(points) and points[k + 1, 0] >= points[k, 0]:
         k += 1
     return k
-
-
-def resample(points, spacing_mm=SPACING_MM):
-    """Points every ``spacing_mm`` of arclength along an open polyline, both ends included."""
-    step = np.linalg.norm(np.diff(points, axis=0), axis=1)
-    arc = np.concatenate([[0.0], np.cumsum(step)])
-    count = max(2, int(math.ceil(arc[-1] / spacing_mm)) + 1)
-    at = np.linspace(0.0, arc[-1], count)
-    keep = np.concatenate([[True], step > 1e-9])  # duplicate points would stall np.interp
-    return np.stack([np.interp(at, arc[keep], points[keep, 0]),
-                     np.interp(at, arc[keep], points[keep, 1])], axis=1)
 
 
 def compared_outline(outline, origin, *, root_cut_deg=ROOT_CUT_DEG, spacing_mm=SPACING_MM):

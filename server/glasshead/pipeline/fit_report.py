@@ -43,9 +43,9 @@ from glasshead.constants import (
     TONGUE_RIG_FILE,
     VTL_OBSERVATIONS_FILE,
 )
-from glasshead.fitting import fit2d, objective2d, optimizer
+from glasshead.fitting import fit2d, objective2d, optimizer, vtl_mapping
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
-from glasshead.geometry import tongue_surface
+from glasshead.geometry import midsagittal, tongue_surface
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline import fit_report_html, overlay_svg
 from glasshead.pipeline.outputs import current_output, write_json
@@ -57,7 +57,8 @@ SOURCE = "vtl-jd3"
 #: Built files read.
 INPUT_FILES = (TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE)
 #: The modules whose code shapes the output; their text is part of the cache key.
-CODE = (fit2d, objective2d, optimizer, tongue_surface, overlay_svg, fit_report_html)
+CODE = (fit2d, objective2d, optimizer, tongue_surface, overlay_svg, fit_report_html, vtl_mapping,
+        midsagittal)
 #: Digits kept of the outline points and per-ray errors (mm): 0.1 micrometre.
 DIGITS = 4
 #: Worker processes for the fits (each fit is single-threaded numpy).
@@ -93,7 +94,7 @@ def plot_href(name: str) -> str:
 def start_values(rig: TongueRig, shape: dict) -> np.ndarray:
     """The fit's start (P,): ``fit2d.fit_shape``'s, neutral with the jaw from VTL's JA."""
     base = rig.neutral.copy()
-    base[rig.jaw_parameter] = fit2d.jaw_opening_from_vtl(shape, rig)
+    base[rig.jaw_parameter] = vtl_mapping.jaw_opening_from_vtl(shape, rig)
     return base
 
 

@@ -11,9 +11,9 @@ How a measured target is made (``measured_target``):
 
 1. Coronal: the rig's edge heights from VTL's side elevations, which the mid-sagittal outline
    cannot show: front edges from TS3 (tip), middle from TS2, back from TS1, each clipped to the
-   targets' range (``TARGET_CORONAL_RANGES``, ``coronal_from_vtl``).
-2. Jaw from VTL's JA (``fit2d.jaw_opening_from_vtl``), lips from LP, LD and JX
-   (``lips_from_vtl``), the velum by nasality.
+   targets' range (``TARGET_CORONAL_RANGES``, ``vtl_mapping.coronal_from_vtl``).
+2. Jaw from VTL's JA, lips from LP, LD and JX, the velum by nasality
+   (``fitting.vtl_mapping``).
 3. The sagittal parameters (but ``HELD_IN_TARGETS``) fitted to the shape's outline
    (``fit2d.fit_outline``) with the coronal values and the jaw held; when the tongue's volume
    ends more than ``VOLUME_GOAL_PCT`` from rest the fit is repeated from its result with the
@@ -54,6 +54,7 @@ from glasshead.constants import (
     TONGUE_RIG_FILE,
     VELUM_PARAMETER,
     VELUM_RIG_FILE,
+    VTL_OBSERVATIONS_FILE,
 )
 from glasshead.epg import classes as epg_classes
 from glasshead.epg import contacts as epg_contacts
@@ -67,16 +68,16 @@ from glasshead.fitting import (
     objective2d,
     objective_epg,
     optimizer,
+    vtl_mapping,
 )
 from glasshead.fitting.objective2d import MidSagittalSection
-from glasshead.geometry import tongue_surface
+from glasshead.geometry import midsagittal, tongue_surface
 from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.outputs import current_output, write_json
 
 #: Bump when the output changes in a way that must rebuild it.
 BUILDER = 3
-OBSERVATIONS_FILE = fit2d.OBSERVATIONS_FILE
 #: The real EPG recording the realism checks read (under the reference data directory).
 ENGASSIM = "epg/emur-engassim.json"
 #: Percent: the most a target's tongue volume may differ from rest.
@@ -88,87 +89,10 @@ VOLUME_REFITS = 3
 MAIN_CONTEXT = "a"
 #: The modules whose code shapes the output; their text is part of the cache key.
 CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_classes, synthetic,
-        objective_epg, fit_contact, tongue_surface, epg_contacts)
+        objective_epg, fit_contact, tongue_surface, epg_contacts, vtl_mapping, midsagittal)
 #: Built files read, and the data file.
-INPUT_FILES = (TONGUE_RIG_FILE, OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
+INPUT_FILES = (TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
                FACE_RIG_FILE, VELUM_RIG_FILE)
-
-# --- Jaw, lips and velum from VTL's settings ------------------------------------------------------
-
-#: mm. JD3's lip protrusion LP in its unrounded shapes (/a/ 0.72, /i/ 0.77, /t/(a) 0.72): the
-#: lips at rest, counted as no protrusion.
-VTL_LP_REST_MM = 0.7
-#: mm of lip_rounding per mm of LP beyond rest (VTL has no separate rounding: its rounded vowels
-#: are protruded and narrowed together).
-ROUNDING_PER_LP_MM = 1.0
-#: mm. JD3 moves its jaw back (JX) by 5 mm in its labiodental shapes to bring the lower lip under
-#: the upper incisors; the rig tucks the lower lip instead. JX within this of 0 (the vowels go
-#: to -2) counts as no tuck; from there to -5 the tuck grows to its maximum.
-VTL_JX_TUCK_START_MM = 2.0
-VTL_JX_TUCK_FULL_MM = 5.0
-#: The face rig's lip gap (mm) with the lips open at jaw openings (deg), as measured on the
-#: built rig (docs/face-rig.md, "Measured"): lip_opening = LD / gap at the target's jaw.
-RIG_LIP_GAP = ((0.0, 1.0), (5.0, 7.8), (10.0, 13.9), (15.0, 19.6), (20.0, 24.7), (25.0, 29.4))
-
-MAPPING_TEXT = {
-    "jaw": "jaw_opening = -2 - JA (deg), JD3's standard JA being -2 deg and negative opening, "
-           "clipped to the rig's range (fit2d.jaw_opening_from_vtl)",
-    "lip_opening": "0 when LD <= 0 (VTL's lips closed or pressed); otherwise LD divided by the "
-                   "rig's open-lip gap at the target's jaw opening, clipped to 0..1",
-    "lip_protrusion": f"LP - {VTL_LP_REST_MM} mm, clipped to the rig's range",
-    "lip_rounding": f"{ROUNDING_PER_LP_MM} x (LP - {VTL_LP_REST_MM} mm), clipped: protruded "
-                    "lips are rounded, retracted ones spread",
-    "upper_lip_raise": "0 (VTL has no such parameter)",
-    "lower_lip_tuck": f"from VTL's jaw retraction JX: 0 down to -{VTL_JX_TUCK_START_MM} mm, "
-                      f"growing linearly to the rig's maximum at -{VTL_JX_TUCK_FULL_MM} mm",
-    "velum_opening": "1 (lowered) for the nasals /m n ŋ/, 0 (raised) for every other phoneme",
-    "coronal": "edge heights (left and right alike) from VTL's side elevations: front from TS3, "
-               "middle from TS2, back from TS1, mm, clipped; other coronal parameters neutral",
-}
-
-#: Coronal section -> VTL side elevation parameter.
-SIDE_ELEVATION = (("front", "TS3"), ("middle", "TS2"), ("back", "TS1"))
-
-
-def _interp_gap(jaw_deg: float) -> float:
-    xs, ys = zip(*RIG_LIP_GAP, strict=True)
-    return float(np.interp(jaw_deg, xs, ys))
-
-
-def _clip(spec: dict, value: float) -> float:
-    return float(np.clip(value, spec["min"], spec["max"]))
-
-
-def lips_from_vtl(settings: dict, jaw_opening: float, lip_table: dict) -> dict:
-    """The face rig's lip parameters for a VTL shape's settings (see ``MAPPING_TEXT``)."""
-    lp, ld = settings["lips"]["LP"], settings["lips"]["LD"]
-    jx = settings["jaw"]["JX"]
-    opening = 0.0 if ld <= 0 else ld / _interp_gap(jaw_opening)
-    tuck_share = (-jx - VTL_JX_TUCK_START_MM) / (VTL_JX_TUCK_FULL_MM - VTL_JX_TUCK_START_MM)
-    tuck_spec = lip_table["lower_lip_tuck"]
-    return {
-        "lip_opening": _clip(lip_table["lip_opening"], opening),
-        "lip_rounding": _clip(lip_table["lip_rounding"],
-                              ROUNDING_PER_LP_MM * (lp - VTL_LP_REST_MM)),
-        "lip_protrusion": _clip(lip_table["lip_protrusion"], lp - VTL_LP_REST_MM),
-        "upper_lip_raise": _clip(lip_table["upper_lip_raise"], 0.0),
-        "lower_lip_tuck": _clip(tuck_spec, tuck_spec["min"] + float(np.clip(tuck_share, 0, 1))
-                                * (tuck_spec["max"] - tuck_spec["min"])),
-    }
-
-
-def coronal_from_vtl(rig: TongueRig, settings: dict) -> dict:
-    """Edge heights from VTL's side elevations (see ``MAPPING_TEXT``)."""
-    values = {}
-    for section, name in SIDE_ELEVATION:
-        for side in ("left", "right"):
-            parameter = f"{section}_{side}_edge_height"
-            if parameter in rig.parameters:
-                # The targets' range lies within the rig's (tested).
-                values[parameter] = float(np.clip(float(settings["tongue"][name]),
-                                                  *TARGET_CORONAL_RANGES["edge_height"]))
-    return values
-
 
 # --- Fits -----------------------------------------------------------------------------------------
 
@@ -189,7 +113,7 @@ class Context:
         self.lip_table = {p["name"]: p for p in face["parameters"]}
         velum = json.loads((assets_dir / VELUM_RIG_FILE).read_text())
         self.velum_table = {p["name"]: p for p in velum["parameters"]}
-        observations = json.loads((assets_dir / OBSERVATIONS_FILE).read_text())
+        observations = json.loads((assets_dir / VTL_OBSERVATIONS_FILE).read_text())
         self.shapes = {s["name"]: s for s in observations["shapes"]}
         self.classes: dict = {}
         if data_dir is not None:
@@ -215,8 +139,9 @@ def outline_fit(ctx: Context, shape_name: str) -> tuple[fit2d.FitReport, dict]:
     """The 2D fit of one JD3 shape (steps 1-3 of the module docstring) and its report."""
     rig, shape = ctx.rig, ctx.shapes[shape_name]
     base = rig.neutral.copy()
-    base[rig.jaw_parameter] = fit2d.jaw_opening_from_vtl(shape, rig)
-    for name, value in coronal_from_vtl(rig, shape["settings"]).items():
+    base[rig.jaw_parameter] = vtl_mapping.jaw_opening_from_vtl(shape, rig)
+    for name, value in vtl_mapping.coronal_from_vtl(
+            rig, shape["settings"], TARGET_CORONAL_RANGES["edge_height"]).items():
         base[rig.parameter_names.index(name)] = value
     weight = fit2d.VOLUME_WEIGHT
     free = [n for n in fit2d.sagittal_parameters(rig) if n not in HELD_IN_TARGETS]
@@ -440,14 +365,14 @@ def measured_target(ctx: Context, shape_name: str, nasal: bool, made: dict | Non
     made = made or tongue_fit(ctx, shape_name)
     tongue = made["tongue"]
     jaw = tongue[ctx.rig.jaw["parameter"]]
-    params = {**tongue, **lips_from_vtl(ctx.shapes[shape_name]["settings"], jaw, ctx.lip_table),
+    params = {**tongue, **vtl_mapping.lips_from_vtl(ctx.shapes[shape_name]["settings"], jaw,
+                                                 ctx.lip_table),
               VELUM_PARAMETER: velum_value(ctx, nasal)}
     return {"params": params, "fit": made["fit"]}
 
 
 def velum_value(ctx: Context, nasal: bool) -> float:
-    spec = ctx.velum_table[VELUM_PARAMETER]
-    return float(spec["max"] if nasal else spec["min"])
+    return vtl_mapping.velum_of(nasal, ctx.velum_table[VELUM_PARAMETER])
 
 
 # --- Reasoning-based targets ----------------------------------------------------------------------
@@ -460,7 +385,7 @@ def _shift(ctx: Context, params: dict, changes: dict) -> dict:
     out = dict(params)
     for name, change in changes.items():
         value = float(change[1:]) if isinstance(change, str) else out[name] + change
-        out[name] = round(_clip(tables[name], value), 4)
+        out[name] = round(vtl_mapping.clip(tables[name], value), 4)
     return out
 
 
@@ -723,7 +648,7 @@ def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):
         "parameters": {"tongue": list(ctx.rig.parameter_names),
                        "lips": list(FACE_RIG_LIP_PARAMETERS), "velum": [VELUM_PARAMETER]},
         "main_context": MAIN_CONTEXT,
-        "mapping": MAPPING_TEXT,
+        "mapping": vtl_mapping.MAPPING_TEXT,
         "volume_goal_pct": VOLUME_GOAL_PCT,
         "count": len(targets),
         "targets": targets,

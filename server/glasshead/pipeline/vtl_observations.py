@@ -1,8 +1,8 @@
 """Build step: VocalTractLab's JD3 shapes as observations in the project frame.
 
 ``build_vtl_observations(assets_dir, out_path)`` reads every stored vocal tract shape of the
-speaker the ``vocaltractlab-cython`` bindings ship (``fitting.vtl``), registers VTL's hard palate
-and upper incisor onto the built maxilla (``fitting.vtl_registration``), moves every outline and
+speaker the ``vocaltractlab-cython`` bindings ship (``vtl_speaker``), registers VTL's hard palate
+and upper incisor onto the built maxilla (``vtl_registration``), moves every outline and
 surface into the project frame and writes one JSON (default ``assets/build/vtl-observations.json``)
 with the registration's residuals and the SHA-256 of its inputs. It skips the work when the
 output already records the same inputs. Not yet part of ``glasshead build``.
@@ -19,20 +19,20 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.constants import FRAME_AXES, FRAME_UNITS
-from glasshead.fitting import vtl, vtl_registration
-from glasshead.geometry import register_cbct, surface_distance
+from glasshead.constants import FRAME_AXES, FRAME_UNITS, VTL_OBSERVATIONS_FILE
+from glasshead.geometry import midsagittal, register_cbct, surface_distance
 from glasshead.geometry.frame import fix_winding
+from glasshead.pipeline import vtl_registration
+from glasshead.pipeline import vtl_speaker as vtl
 from glasshead.pipeline.outputs import current_output, load_built_meshes, write_json
 
-OUTPUT_NAME = "vtl-observations.json"
 FORMAT_VERSION = 1
 #: Bump when the output changes in a way that must rebuild it.
 BUILDER = 1
 #: Decimals kept for coordinates (mm): 1 micrometre, far below VTL's own precision.
 DECIMALS = 3
 #: Modules whose code shapes the output; their text is part of the cache key.
-CODE = (vtl, vtl_registration, register_cbct, surface_distance)
+CODE = (vtl, vtl_registration, midsagittal, register_cbct, surface_distance)
 CREDIT = ("Vocal tract shapes of the JD3 speaker of VocalTractLab (Peter Birkholz, "
           "www.vocaltractlab.de), read through the vocaltractlab-cython bindings (Paul Krug); "
           "both GPL-3.0.")
@@ -87,7 +87,7 @@ def _shape_record(record, transform):
 def observe_all(maxilla_vertices, maxilla_faces):
     """Every shape in the project frame: (document body without source/timing, transform)."""
     palate = vtl.palate_geometry()
-    section = vtl_registration.midline_section(maxilla_vertices, maxilla_faces)
+    section = midsagittal.midline_section(maxilla_vertices, maxilla_faces)
     transform, report = vtl_registration.register_palate(palate["registration_outline"],
                                                          section)
     report["palate_surface_to_maxilla"] = vtl_registration.surface_residual(
@@ -115,7 +115,7 @@ def observe_all(maxilla_vertices, maxilla_faces):
 def build_vtl_observations(assets_dir, out_path=None, force=False):
     """Write the observations; returns (document, skipped)."""
     assets_dir = Path(assets_dir)
-    out_path = Path(out_path) if out_path else assets_dir / OUTPUT_NAME
+    out_path = Path(out_path) if out_path else assets_dir / VTL_OBSERVATIONS_FILE
     vertices, faces, maxilla_sha = load_built_meshes(assets_dir, ["maxilla"])["maxilla"]
     digest = input_key(maxilla_sha)
     existing = None if force else current_output(out_path, digest, BUILDER, FORMAT_VERSION)

@@ -5,14 +5,15 @@ from a segment file (``phoneme_file_to_gesture_file``: its rules place the vowel
 tip, tongue body, velic and glottal gestures) and runs its target-approximation model over the
 score into a motor file (``gesture_file_to_motor_file``): one vector of its 19 tract parameters
 every 110 samples at 44,100 Hz (2.49 ms). ``reference_tracks`` carries those states into the
-rigs' parameters the way the phoneme targets carry VTL's stored shapes
-(``pipeline.phoneme_targets``, docs/targets.md):
+rigs' parameters by the mapping the phoneme targets carry VTL's stored shapes with
+(``fitting.vtl_mapping``, docs/targets.md):
 
-- jaw: ``fit2d.jaw_opening_from_vtl`` (-2 - JA); lips: ``phoneme_targets.lips_from_vtl`` (LP, LD,
-  JX); both per frame, exactly as for a shape;
+- jaw: ``vtl_mapping.jaw_opening`` (-2 - JA); lips: ``vtl_mapping.lips_from_vtl`` (LP, LD, JX);
+  both per frame, exactly as for a shape;
 - velum: VO from -0.1 cm^2 (closed, VTL's rest) to 0.5 cm^2 (the opening VTL's rules give a
-  nasal's velic gesture) onto 0..1. The targets do not read VO (every JD3 shape holds it
-  closed) and set 1 for nasals, which is what this gives at a nasal's velic target;
+  nasal's velic gesture) onto 0..1 (``vtl_mapping.velum_from_vo``). The targets do not read VO
+  (every JD3 shape holds it closed) and set 1 for nasals, which is what this gives at a nasal's
+  velic target;
 - tongue: a full 2D fit per frame (0.5-1 s each, 100 per second of speech) is too slow to train
   on, so each tongue parameter is a linear function of VTL's tongue, jaw and hyoid parameters,
   learned by ridge regression from the shapes the targets are fitted to, with the targets' own
@@ -40,10 +41,10 @@ from glasshead.constants import (
     TONGUE_RIG_FILE,
     VELUM_PARAMETER,
     VELUM_RIG_FILE,
+    VTL_OBSERVATIONS_FILE,
 )
-from glasshead.fitting import vtl
-from glasshead.pipeline import phoneme_targets
-from glasshead.pipeline.vtl_observations import OUTPUT_NAME as VTL_OBSERVATIONS_FILE
+from glasshead.fitting import vtl_mapping
+from glasshead.pipeline import vtl_speaker as vtl
 from glasshead.speech.dominance import SILENCE
 
 #: ARPAbet -> the SAMPA symbol VTL's segment rules take (JD3 shapes nearest, as ``phonemes.py``).
@@ -56,9 +57,6 @@ VTL_SYMBOLS = {
 }
 #: Seconds per motor state: VTL writes one every 110 samples at 44,100 Hz.
 STATE_S = 110.0 / 44100.0
-#: cm^2: VTL's velum opening VO when closed (its rest) and at a nasal's velic gesture.
-VO_CLOSED = -0.1
-VO_NASAL = 0.5
 #: The VTL parameters the tongue map reads: tongue, jaw and hyoid (cm and deg, as VTL stores).
 TONGUE_INPUTS = ("TCX", "TCY", "TTX", "TTY", "TBX", "TBY", "TRX", "TRY", "TS1", "TS2", "TS3",
                  "JA", "JX", "HX", "HY")
@@ -220,18 +218,16 @@ class ReferenceMapping:
         column = lambda name: states[:, index[name]]  # noqa: E731
         out = dict(zip(self.tongue.names, self.tongue(
             np.stack([column(k) for k in TONGUE_INPUTS], axis=1)).T, strict=True))
-        jaw = np.clip(phoneme_targets_jaw(column("JA")), self.jaw_spec["min"],
-                      self.jaw_spec["max"])
+        jaw = vtl_mapping.jaw_opening(column("JA"), self.jaw_spec)
         out["jaw_opening"] = jaw
-        lips = [phoneme_targets.lips_from_vtl(
+        lips = [vtl_mapping.lips_from_vtl(
             {"lips": {"LP": lp * vtl.CM_TO_MM, "LD": ld * vtl.CM_TO_MM},
              "jaw": {"JX": jx * vtl.CM_TO_MM}}, float(j), self.lip_table)
             for lp, ld, jx, j in zip(column("LP"), column("LD"), column("JX"), jaw, strict=True)]
         for name in self.targets["parameters"]["lips"]:
             out[name] = np.array([entry[name] for entry in lips])
-        velum = self.velum_table[VELUM_PARAMETER]
-        share = np.clip((column("VO") - VO_CLOSED) / (VO_NASAL - VO_CLOSED), 0.0, 1.0)
-        out[VELUM_PARAMETER] = velum["min"] + share * (velum["max"] - velum["min"])
+        out[VELUM_PARAMETER] = vtl_mapping.velum_from_vo(column("VO"),
+                                                         self.velum_table[VELUM_PARAMETER])
         return out
 
     def reference_tracks(self, phones: list[dict], times: np.ndarray) -> dict[str, np.ndarray]:
@@ -242,10 +238,3 @@ class ReferenceMapping:
         state_times = np.arange(len(states)) * STATE_S
         return {name: np.interp(times, state_times, mapped[name]) for name in self.names}
 
-
-def phoneme_targets_jaw(ja: np.ndarray) -> np.ndarray:
-    """The rig's jaw opening (deg, unclipped) for VTL jaw angles JA, as
-    ``fit2d.jaw_opening_from_vtl`` maps a shape's."""
-    from glasshead.fitting.fit2d import VTL_JA_REST
-
-    return VTL_JA_REST - np.asarray(ja, dtype=np.float64)

@@ -11,7 +11,7 @@ shadow: a contour is what the fan lines found, with gaps where they found nothin
 The same speaker's palate trace (``rticulate-it01-palate.tsv``, the raw Articulate Assistant
 export, ``*`` for no value) is on the same fan lines, so the probe frame is registered onto the
 project frame by fitting the trace to the mid-sagittal section of our maxilla's palatal vault:
-a rigid map in the z = 0 plane (``fitting.vtl_registration.Similarity2D`` with scale 1)
+a rigid map in the z = 0 plane (``geometry.midsagittal.Similarity2D`` with scale 1)
 that lays our vault onto the trace (``register_trace``). Another speaker's palate does not
 match ours, so the residual is reported, not hidden.
 """
@@ -22,11 +22,11 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.fitting.vtl_registration import (
+from glasshead.geometry.midsagittal import (
     Similarity2D,
-    _two_point,
     point_to_polylines,
     resample,
+    two_point_similarity,
 )
 from glasshead.geometry.surface_distance import summarise
 
@@ -41,6 +41,8 @@ LABELS = {"max_TT": "t", "max_TD": "k"}
 #: The vault: the part of the maxilla's midline behind the incisors the trace is fitted to (mm
 #: behind the section's most anterior point); ultrasound does not see the teeth.
 VAULT_FROM_FRONT_MM = 8.0
+#: Spacing (mm) of the points the trace and the maxilla's section are resampled to.
+STEP_MM = 0.25
 
 
 class UltrasoundDataError(ValueError):
@@ -128,7 +130,7 @@ def vault_section(maxilla_section):
     """The oral surface of the maxilla's midline behind the incisors (VAULT_FROM_FRONT_MM), as
     points ordered front to back: in each 0.5 mm of x, the lowest point above the incisal edge
     (the section also crosses the palate's nasal side, above it)."""
-    points = np.vstack([resample(p) for p in maxilla_section])
+    points = np.vstack([resample(p, STEP_MM) for p in maxilla_section])
     front, edge = points[:, 0].max(), points[:, 1].min()
     keep = points[(points[:, 0] < front - VAULT_FROM_FRONT_MM) & (points[:, 1] > edge + 2.0)]
     bins = np.floor(keep[:, 0] / 0.5).astype(np.int64)
@@ -158,12 +160,13 @@ def register_trace(palate_trace, maxilla_section):
     """
     from scipy.optimize import minimize
 
-    source = resample(palate_trace)
+    source = resample(palate_trace, STEP_MM)
     vault = vault_section(maxilla_section)
     # Start: the trace's front end on the vault's front, turned so its highest point lies toward
     # the vault's highest point.
-    _, rot, shift = _two_point(source[0], source[np.argmax(source[:, 1])],
-                               vault[np.argmax(vault[:, 0])], vault[np.argmax(vault[:, 1])])
+    _, rot, shift = two_point_similarity(source[0], source[np.argmax(source[:, 1])],
+                                         vault[np.argmax(vault[:, 0])],
+                                         vault[np.argmax(vault[:, 1])])
     x0 = np.array([np.arctan2(rot[1, 0], rot[0, 0]), *(vault[np.argmax(vault[:, 0])]
                                                       - rot @ source[0])])
 

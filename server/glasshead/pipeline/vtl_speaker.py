@@ -3,7 +3,7 @@
 
 Everything here is in VocalTractLab's own frame converted to millimetres: +x anterior, +y
 superior, z lateral (VTL builds its half surfaces on z <= 0 and mirrors them). The transform
-into the project frame is ``fitting.vtl_registration``.
+into the project frame is ``pipeline.vtl_registration``.
 
 The bindings hold one speaker in global state (loaded on import); every function here reads
 shapes by name from that speaker, so the results depend only on the speaker file.
