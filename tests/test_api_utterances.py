@@ -5,7 +5,9 @@ import io
 import wave
 
 import pytest
+from fastapi import HTTPException
 
+from glasshead.api.routes.utterances import UtteranceRequest, speak
 from glasshead.speech import espeak
 
 API = "/api/v1"
@@ -49,17 +51,12 @@ def client(built_assets, start_app, tmp_path, monkeypatch):
 
 
 @pytest.fixture
-def synth_calls(monkeypatch):
-    """Counts espeak-ng syntheses (the real ones still run)."""
-    calls = []
-    real = espeak.Espeak.synthesize
-
-    def counted(self, *args, **kwargs):
-        calls.append(args)
-        return real(self, *args, **kwargs)
-
-    monkeypatch.setattr(espeak.Espeak, "synthesize", counted)
-    return calls
+def syntheses(client):
+    """``syntheses()``: how many utterances the compute workers have made since the fixture
+    began (a cached answer never reaches a worker)."""
+    pool = client.app.state.compute.pool
+    before = pool.tasks
+    return lambda: pool.tasks - before
 
 
 def test_text_gives_timed_phones_tracks_cues_and_audio(client):
@@ -154,35 +151,40 @@ def test_bad_input_is_refused_with_422_naming_the_problem(client, body, named):
     assert named in response.json()["detail"]
 
 
-def test_a_repeated_request_is_answered_from_the_cache_without_synthesis(client, synth_calls):
+def test_a_repeated_request_is_answered_from_the_cache_without_synthesis(client, syntheses):
     body = {"text": "the cat sat on the mat", "audio": {"kind": "lowpass", "cutoff_hz": 800}}
     first = client.post(f"{API}/utterances", json=body).json()
-    assert len(synth_calls) == 1
+    assert syntheses() == 1
     again = client.post(f"{API}/utterances", json=body).json()
-    assert len(synth_calls) == 1
+    assert syntheses() == 1
     assert again == first
     other = client.post(f"{API}/utterances", json={**body, "rate": 1.5}).json()
-    assert other["id"] != first["id"] and len(synth_calls) == 2
+    assert other["id"] != first["id"] and syntheses() == 2
 
 
-def test_a_cached_utterance_whose_audio_was_deleted_is_made_again(client, synth_calls,
+def test_a_cached_utterance_whose_audio_was_deleted_is_made_again(client, syntheses,
                                                                    tmp_path):
     first = client.post(f"{API}/utterances", json={"text": "hello"}).json()
     (tmp_path / "utterances" / f"{first['id']}.wav").unlink()
     again = client.post(f"{API}/utterances", json={"text": "hello"}).json()
-    assert again["id"] == first["id"] and len(synth_calls) == 2
+    assert again["id"] == first["id"] and syntheses() == 2
     assert client.get(again["audio_url"]).status_code == 200
 
 
-def test_without_espeak_ng_the_route_answers_503_saying_what_to_install(client, monkeypatch):
+def test_without_espeak_ng_the_speech_task_answers_503_saying_what_to_install(
+        client, monkeypatch, tmp_path):
+    """The route's task, run here as a worker runs it (the workers' own espeak-ng is real);
+    the pool answers what a task raises as the route would (tests/repro)."""
     def missing():
         raise OSError("libespeak-ng.so.1: cannot open shared object file")
 
     monkeypatch.setattr(espeak, "_ENGINE", None)
     monkeypatch.setattr(espeak, "load_library", missing)
-    response = client.post(f"{API}/utterances", json={"text": "hello there"})
-    assert response.status_code == 503
-    assert "apt-get install espeak-ng" in response.json()["detail"]
+    request = UtteranceRequest(text="hello there").model_dump(mode="json")
+    with pytest.raises(HTTPException) as refused:
+        speak(client.app.state.assets, {"request": request, "cache_dir": str(tmp_path)})
+    assert refused.value.status_code == 503
+    assert "apt-get install espeak-ng" in refused.value.detail
     assert client.get(f"{API}/health").status_code == 200
 
 

@@ -35,7 +35,7 @@ class Settings(BaseSettings):
     fit_workers: int = Field(1, ge=1, le=64)
     fit_queue_limit: int = Field(8, ge=1, le=10000)
     #: Worker processes for the CPU-heavy routes (default: the CPU count), and how many
-    #: requests may wait for them before the server answers 503 (glasshead.api.compute_pool).
+    #: requests may wait for them before the server answers 503 (glasshead.jobs.compute).
     compute_workers: int = Field(default_factory=lambda: os.cpu_count() or 1, ge=1, le=256)
     compute_queue_limit: int = Field(32, ge=0, le=10000)
 

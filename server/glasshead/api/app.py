@@ -10,13 +10,13 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
 from glasshead.api.compression import CompressionMiddleware
-from glasshead.api.compute_pool import ComputePool
 from glasshead.api.error_responses import install_error_responses, unknown_path_error
 from glasshead.api.limits import BodyLimitMiddleware
 from glasshead.api.security import install_safe_defaults
 from glasshead.api.static import mount_static
 from glasshead.asset_store import AssetStore, AssetUnavailableError
 from glasshead.fitting.job_runner import FitRunner
+from glasshead.jobs.compute import ComputePool
 from glasshead.settings import get_settings
 
 API_PREFIX = "/api/v1"

@@ -1,6 +1,6 @@
 """Dependencies shared by the routes, as ``Annotated`` aliases: ``AssetsDep`` (the built assets),
 ``SpeechCacheDep`` (where utterances are cached), ``BuiltUrlDep`` (content-hashed URLs of built
-files).
+files), ``ComputeDep`` (the worker processes of the heavy routes and of speech).
 
 The database session is ``glasshead.store.session.SessionDep``.
 """
@@ -13,6 +13,7 @@ from fastapi import Depends, Request
 
 from glasshead.api.static import hashed_url
 from glasshead.asset_store import AssetStore
+from glasshead.jobs.compute import ComputePool
 from glasshead.settings import get_settings
 
 
@@ -40,3 +41,11 @@ def get_built_url(request: Request) -> Callable[[str], str]:
 
 
 BuiltUrlDep = Annotated[Callable[[str], str], Depends(get_built_url)]
+
+
+def get_compute_pool(request: Request) -> ComputePool:
+    """The application's compute pool, made in ``create_app``."""
+    return request.app.state.compute
+
+
+ComputeDep = Annotated[ComputePool, Depends(get_compute_pool)]

@@ -33,6 +33,9 @@ INSTALL_HINT = "espeak-ng is not installed: apt-get install espeak-ng (Debian's 
 BASE_WPM = 175
 #: espeak-ng's accepted range of words per minute.
 WPM_RANGE = (80, 450)
+#: Longest word, in phones, handed to espeak-ng in one piece: its synthesis faults (a general
+#: protection fault) on a word of about 240 phones or more. Longer words are spoken in pieces.
+MAX_WORD_PHONES = 48
 #: A silence at either end of the audio shorter than this joins the neighbouring phone, s.
 EDGE_SILENCE_S = 0.02
 
@@ -144,7 +147,9 @@ class Espeak:
         at ``rate`` times the default speed. The phones come back aligned to the flat sequence
         of the request, with silences espeak-ng left at either end added."""
         wanted = [symbol for word in words for symbol, _ in word]
-        text = "[[" + " ".join(arpabet_to_espeak(word) for word in words) + "]]"
+        pieces = [word[i:i + MAX_WORD_PHONES] for word in words
+                  for i in range(0, len(word), MAX_WORD_PHONES)]
+        text = "[[" + " ".join(arpabet_to_espeak(piece) for piece in pieces) + "]]"
         wpm = int(round(min(max(BASE_WPM * rate, WPM_RANGE[0]), WPM_RANGE[1])))
         data = text.encode("utf-8")
         with _LOCK:

@@ -8,7 +8,9 @@ it). Accented Latin letters lose their accents. Anything else is dropped.
 A word is looked up in CMUdict (Carnegie Mellon's pronouncing dictionary, its first
 pronunciation; stress digits kept). A word CMUdict lacks goes to espeak-ng's letter-to-sound
 rules (``espeak_TextToPhonemes``), and so do numbers, which espeak-ng reads out ("123" -> one
-hundred and twenty-three). A word written in another script, or one whose espeak-ng phonemes we
+hundred and twenty-three). A number of more than ``MAX_NUMBER_DIGITS`` digits is read digit by
+digit ("4155550123456" -> four one five ...), as a phone or card number is, and its separators
+are dropped. A word written in another script, or one whose espeak-ng phonemes we
 cannot map, is unpronounceable: it is reported by name and the rest is spoken.
 """
 
@@ -21,6 +23,9 @@ from glasshead.speech.espeak_phones import PAUSE, VOWELS, parse_espeak_phonemes
 
 #: Longest text accepted, characters.
 MAX_TEXT_CHARS = 500
+
+#: Longer numbers are read digit by digit: espeak-ng's number reading once faulted on 60 zeros.
+MAX_NUMBER_DIGITS = 12
 
 _TOKEN = re.compile(r"[a-z]+(?:'[a-z]+)*|\d+(?:[.,]\d+)*|[.!?;:,()\u2013\u2014-]|\w+|\S")
 _PAUSE_MARKS = set(".!?;:,()\u2013\u2014-")
@@ -86,6 +91,8 @@ def tokenize(text: str) -> list[str]:
         if token in _PAUSE_MARKS:
             if tokens and tokens[-1] != PAUSE:
                 tokens.append(PAUSE)
+        elif token[0].isdigit() and sum(c.isdigit() for c in token) > MAX_NUMBER_DIGITS:
+            tokens.extend(c for c in token if c.isdigit())
         elif token[0].isalnum() or token[0] == "'":
             tokens.append(token)
     while tokens and tokens[-1] == PAUSE:

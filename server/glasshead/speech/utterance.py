@@ -172,15 +172,25 @@ def _spoken(words, rate: float, word_names: list[str | None]) -> tuple[list[dict
     return phones, synthesis
 
 
-def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> bytes:
-    """The response's JSON bytes for a validated request (``text`` | ``phonemes`` | ``phones``,
-    ``rate``, ``audio``), from the cache or made and cached. UtteranceInputError for input
-    that cannot be spoken; espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
+def cached_answer(request: dict, targets_sha256: str, cache_dir: Path) -> bytes | None:
+    """The cached response's JSON bytes for a validated request, or None when it (or the audio
+    it names) is not cached."""
     utterance_id = request_id(request, targets_sha256)
     hit = cached(cache_dir, utterance_id)
     if hit is not None and (request["audio"]["kind"] == "none"
                             or wav_path(cache_dir, utterance_id) is not None):
         return hit
+    return None
+
+
+def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> bytes:
+    """The response's JSON bytes for a validated request (``text`` | ``phonemes`` | ``phones``,
+    ``rate``, ``audio``), from the cache or made and cached. UtteranceInputError for input
+    that cannot be spoken; espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
+    hit = cached_answer(request, targets_sha256, cache_dir)
+    if hit is not None:
+        return hit
+    utterance_id = request_id(request, targets_sha256)
     rate, options = request["rate"], request["audio"]
     kind = options["kind"]
     warnings, word_names = [], []

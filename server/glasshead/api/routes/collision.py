@@ -8,7 +8,7 @@ The tables are one binary file built by `glasshead build` (format in
 ``glasshead.geometry.collision_format``). GET /collision/tables answers with its JSON header and
 the URL of the binary; the browser fetches the binary, checks it and corrects the tongue itself
 every frame. POST /collision/correct runs the Python twin of that correction on given vertices,
-in a compute worker (``api.compute_pool``).
+in a compute worker (``jobs.compute``).
 """
 
 from typing import Annotated
@@ -16,8 +16,7 @@ from typing import Annotated
 from fastapi import APIRouter, Response
 from pydantic import BaseModel, ConfigDict, Field
 
-from glasshead.api.compute_pool import ComputeDep
-from glasshead.api.deps import AssetsDep
+from glasshead.api.deps import AssetsDep, ComputeDep
 from glasshead.asset_store import AssetStore
 from glasshead.constants import (
     COLLISION_MAX_VERTICES,

@@ -2,7 +2,7 @@
 
 The layout is built by `glasshead build` (``pipeline.epg_layout``); the browser computes contacts
 itself every frame (``web/src/core/epgContacts.js``). POST /epg/contacts runs the Python twin,
-in a compute worker (``api.compute_pool``):
+in a compute worker (``jobs.compute``):
 with ``params`` it evaluates the tongue, corrects it against the palate and tests the probes;
 with ``vertices`` it tests a tongue the client already has (the rig's triangles, unless
 ``triangles`` are given).
@@ -14,8 +14,7 @@ import numpy as np
 from fastapi import APIRouter, HTTPException, Query, Response
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from glasshead.api.compute_pool import ComputeDep
-from glasshead.api.deps import AssetsDep
+from glasshead.api.deps import AssetsDep, ComputeDep
 from glasshead.api.params import split_params
 from glasshead.asset_store import AssetStore
 from glasshead.constants import COLLISION_MAX_VERTICES, EPG_LAYOUT_FORMAT_VERSION

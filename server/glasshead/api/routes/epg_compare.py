@@ -4,7 +4,7 @@ The reference is another stored recording, or frames sent by the client: the syn
 target (a saved pose, or a phoneme target) computed where the tongue model runs. One reference
 frame stands for the whole recording (a static target); a sequence is aligned by time from each
 side's first frame (see ``glasshead.epg.compare``). The comparisons and plots run in a compute
-worker (``api.compute_pool``), which reads the recording from the database itself: one of
+worker (``jobs.compute``), which reads the recording from the database itself: one of
 120,000 frames takes 2 to 4 s.
 
 As reading a recording, these are for clinicians and admins, on recordings the caller may read
@@ -21,7 +21,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from sqlalchemy.orm import Session
 
 from glasshead.api.auth import require_role
-from glasshead.api.compute_pool import ComputeDep
+from glasshead.api.deps import ComputeDep
 from glasshead.api.lookups import MAX_ID, RecordId, get_pose_record, get_record
 from glasshead.api.ownership import recording_for
 from glasshead.asset_store import AssetStore
@@ -170,7 +170,7 @@ async def plot_recording(recording_id: RecordId, compute: ComputeDep, user: Clin
     return Response(await compute.run(recording_svg, payload), media_type="image/svg+xml")
 
 
-# The work, in a compute worker (api.compute_pool): a recording of 120,000 frames takes seconds.
+# The work, in a compute worker (jobs.compute): a recording of 120,000 frames takes seconds.
 
 def comparison_json(assets: AssetStore, payload: tuple) -> bytes:
     """The ComparisonReport of (database URL, recording id, request), as JSON."""

@@ -4,7 +4,7 @@ import numpy as np
 from fastapi import APIRouter, HTTPException, Response
 from pydantic import BaseModel, ConfigDict, Field
 
-from glasshead.api.compute_pool import ComputeDep
+from glasshead.api.deps import ComputeDep
 from glasshead.asset_store import AssetStore
 from glasshead.epg.formats import rows_to_frame
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices

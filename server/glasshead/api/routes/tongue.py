@@ -1,7 +1,7 @@
 """GET /tongue/rig: the rig definition. POST /tongue/surface: the tongue for a parameter set.
 
 The surface comes from the Python reference evaluator (``geometry.tongue_surface``), run in a
-compute worker (``api.compute_pool``); the web app evaluates the same definition itself every
+compute worker (``jobs.compute``); the web app evaluates the same definition itself every
 frame (``web/src/core/tongue.js``).
 """
 
@@ -10,8 +10,7 @@ from typing import Annotated
 from fastapi import APIRouter, Body, HTTPException, Response
 from pydantic import BaseModel, ConfigDict, Field
 
-from glasshead.api.compute_pool import ComputeDep
-from glasshead.api.deps import AssetsDep
+from glasshead.api.deps import AssetsDep, ComputeDep
 from glasshead.api.params import split_params
 from glasshead.asset_store import AssetStore
 from glasshead.geometry.tongue_surface import ParameterError

@@ -3,17 +3,22 @@
 ``POST /utterances/textgrid`` takes a Praat TextGrid upload as the file form of ``phones``;
 ``GET /utterances/{id}/audio.wav`` serves an utterance's audio. The work is in
 ``glasshead.speech.utterance`` (docs/speech.md); results are cached by a hash of the request and
-of the phoneme targets, and a cached answer is the stored JSON as it was written. The routes are
-plain functions, so the synthesis runs in the thread pool, off the event loop.
+of the phoneme targets, and a cached answer is the stored JSON as it was written. An answer
+not in the cache is made in a compute worker (``jobs.compute``): espeak-ng and VocalTractLab are
+native code, and a fault in them costs that one request (502, naming what it spoke), never the
+server.
 """
 
+from pathlib import Path
 from typing import Annotated, Literal
 
 from fastapi import APIRouter, File, Form, HTTPException, Response, UploadFile
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from glasshead.api.deps import AssetsDep, SpeechCacheDep
+from glasshead.api.deps import AssetsDep, ComputeDep, SpeechCacheDep
+from glasshead.asset_store import AssetStore
+from glasshead.jobs.compute import ComputePool
 from glasshead.speech import audio, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
 from glasshead.speech.pronounce import MAX_TEXT_CHARS
@@ -117,32 +122,55 @@ class Utterance(BaseModel):
                                    "group}}")
 
 
-def _respond(request: dict, assets, cache_dir) -> Response:
-    entry = assets.entry("phoneme_targets")
+def speak(store: AssetStore, payload: dict) -> bytes:
+    """In a compute worker: the utterance's JSON (``utterance.make``), made and cached."""
+    entry = store.entry("phoneme_targets")
     try:
-        data = utterance.make(request, entry.value, entry.sha256, cache_dir)
+        return utterance.make(payload["request"], entry.value, entry.sha256,
+                              Path(payload["cache_dir"]))
     except utterance.UtteranceInputError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
     except EspeakUnavailableError as exc:
         raise HTTPException(status_code=503, detail=str(exc)) from None
-    return Response(content=data, media_type="application/json")
+
+
+def _speaking(request: dict) -> str:
+    """What a worker speaking ``request`` was doing, for an error that names the input."""
+    if request.get("text") is not None:
+        text = request["text"]
+        return f"speaking the text {text[:80] + ('…' if len(text) > 80 else '')!r}"
+    if request.get("phonemes") is not None:
+        phonemes = request["phonemes"]
+        shown = phonemes if isinstance(phonemes, str) else " ".join(phonemes)
+        return f"speaking the phonemes {shown[:80]!r}"
+    return f"speaking {len(request['phones'])} timed phones"
+
+
+async def _respond(request: dict, assets: AssetStore, cache_dir: Path,
+                   compute: ComputePool) -> Response:
+    hit = utterance.cached_answer(request, assets.entry("phoneme_targets").sha256, cache_dir)
+    if hit is not None:
+        return Response(content=hit, media_type="application/json")
+    return await compute.respond(speak, {"request": request, "cache_dir": str(cache_dir)},
+                                 doing=_speaking(request))
 
 
 @router.post("/utterances", operation_id="createUtterance", response_model=Utterance)
-def create_utterance(body: UtteranceRequest, assets: AssetsDep,
-                     cache_dir: SpeechCacheDep) -> Response:
+async def create_utterance(body: UtteranceRequest, assets: AssetsDep, cache_dir: SpeechCacheDep,
+                           compute: ComputeDep) -> Response:
     """Speak text, phonemes (IPA or ARPAbet) or timed phones: the phones with their times, the
     coarticulated tracks and cues, and the audio's URL."""
-    return _respond(body.model_dump(mode="json"), assets, cache_dir)
+    return await _respond(body.model_dump(mode="json"), assets, cache_dir, compute)
 
 
 @router.post("/utterances/textgrid", operation_id="createUtteranceFromTextGrid",
              response_model=Utterance,
              openapi_extra={"requestBody": {"content": {"multipart/form-data": {"example": {
                  "file": TEXTGRID_EXAMPLE, "rate": 1.0, "audio_kind": "none"}}}}})
-def create_utterance_from_textgrid(
+async def create_utterance_from_textgrid(
     assets: AssetsDep,
     cache_dir: SpeechCacheDep,
+    compute: ComputeDep,
     file: Annotated[UploadFile, File(description="a Praat TextGrid; its first interval tier")],
     rate: Annotated[float, Form(ge=0.5, le=2.0)] = 1.0,
     audio_kind: Annotated[AudioKind, Form()] = "none",
@@ -153,7 +181,7 @@ def create_utterance_from_textgrid(
 ) -> Response:
     """The phones of a TextGrid's first interval tier (empty labels are silence), spoken as
     ``POST /utterances`` speaks ``phones``."""
-    data = file.file.read(MAX_TEXTGRID_BYTES + 1)
+    data = await file.read(MAX_TEXTGRID_BYTES + 1)
     if len(data) > MAX_TEXTGRID_BYTES:
         raise HTTPException(status_code=413, detail=f"a TextGrid may be at most "
                                                     f"{MAX_TEXTGRID_BYTES} bytes")
@@ -164,7 +192,7 @@ def create_utterance_from_textgrid(
     body = UtteranceRequest(phones=phones, rate=rate,
                             audio={"kind": audio_kind, "cutoff_hz": cutoff_hz,
                                    "channels": channels})
-    return _respond(body.model_dump(mode="json"), assets, cache_dir)
+    return await _respond(body.model_dump(mode="json"), assets, cache_dir, compute)
 
 
 @router.get("/utterances/{utterance_id}/audio.wav", operation_id="getUtteranceAudio",
