@@ -13,7 +13,8 @@ document declares that array (``HTTPValidationError``) and leaves out every othe
   ``api/security.py``); 422 on every operation that takes a
   parameter or a body; 404 on every operation with a path parameter (the id or name may name
   nothing); 413 on every operation with a body (past its limit, ``api/limits.py``); 503 on every
-  operation that needs the built assets or the compute pool;
+  operation that needs the built assets or the compute pool; 502 and 504 on every operation
+  of the compute pool (a worker that died, a computation past its limit);
 - a route's own ``responses`` (409, 412, 415, a 503 for a full queue) keep their descriptions
   and gain the schema.
 
@@ -48,6 +49,10 @@ DESCRIPTIONS = {
     "404": "nothing has that id or name",
     "413": "the body is past the operation's size limit (docs/api.md), refused as it streams in",
     "422": "a parameter or the body is not valid; detail names the field and the problem",
+    "502": "the worker process that served the request died before it answered (a fault in "
+           "native code, a signal, out of memory); detail names what it was doing. It has "
+           "been replaced: retry, or change the request if it fails again",
+    "504": "the computation ran past its time limit and was stopped with its worker",
     "503": "a built asset the operation needs is missing or corrupt (rebuild with glasshead "
            "build), or the compute queue is full (Retry-After gives the seconds to wait)",
 }
@@ -55,6 +60,8 @@ DESCRIPTIONS = {
 #: Dependencies (by function name) whose operations can answer 503: the asset store raises
 #: AssetUnavailableError for a missing asset; the compute pool refuses work when it is full.
 UNAVAILABLE_DEPENDENCIES = frozenset({"get_asset_store", "get_compute_pool"})
+#: Dependencies whose operations run in a worker process: 502 when it dies, 504 past its limit.
+WORKER_DEPENDENCIES = frozenset({"get_compute_pool"})
 
 #: Operations that read the asset store without failing: /health reports a missing asset in its
 #: body, with 200.
@@ -128,6 +135,8 @@ def _generic_errors(operation: dict, route: APIRoute | None) -> list[str]:
     if (route is not None and operation.get("operationId") not in NEVER_UNAVAILABLE
             and _depends_on(route.dependant, UNAVAILABLE_DEPENDENCIES)):
         errors.append("503")
+    if route is not None and _depends_on(route.dependant, WORKER_DEPENDENCIES):
+        errors.extend(["502", "504"])
     return errors
 
 
