@@ -46,12 +46,22 @@ def slow_task(store, seconds: float) -> bytes:
     return json.dumps({"slept": seconds}).encode()
 
 
-def held_until(store, path: str) -> bytes:
-    """A task that holds its worker until the file ``path`` exists (at most HOLD_S)."""
+def held_until(store, paths: tuple[str, str]) -> bytes:
+    """A task that creates the file ``paths[0]`` once it runs, then holds its worker until the
+    file ``paths[1]`` exists (at most HOLD_S)."""
+    started, release = (Path(path) for path in paths)
+    started.touch()
     deadline = time.monotonic() + HOLD_S
-    while not Path(path).exists() and time.monotonic() < deadline:
+    while not release.exists() and time.monotonic() < deadline:
         time.sleep(0.01)
-    return json.dumps({"released": Path(path).exists()}).encode()
+    return json.dumps({"released": release.exists()}).encode()
+
+
+def _wait_until(condition) -> None:
+    """Wait (at most HOLD_S) until ``condition()`` is true."""
+    deadline = time.monotonic() + HOLD_S
+    while not condition() and time.monotonic() < deadline:
+        time.sleep(0.01)
 
 
 def test_the_pool_gives_the_same_answers_as_the_in_process_code(start_app, built_assets):
@@ -186,17 +196,17 @@ def test_health_and_a_read_route_are_answered_while_compute_requests_are_in_flig
     signed_in(client, "admin")
     pool = app.state.compute
     vertices = client.post(f"{API}/tongue/surface", json={"params": {}}).json()["vertices"]
-    release = tmp_path / "release"
+    started, release = tmp_path / "started", tmp_path / "release"
     in_flight = 4
-    holder = client.portal.start_task_soon(pool.run, held_until, str(release))
+    holder = client.portal.start_task_soon(pool.run, held_until, (str(started), str(release)))
+    heavy = []
     with ThreadPoolExecutor(in_flight) as threads:
-        heavy = [threads.submit(client.post, f"{API}/collision/correct",
-                                json={"vertices": vertices, "velum_opening": 0.5})
-                 for _ in range(in_flight)]
         try:
-            deadline = time.monotonic() + HOLD_S
-            while pool.pending < 1 + in_flight and time.monotonic() < deadline:
-                time.sleep(0.01)
+            _wait_until(started.exists)  # the worker is the held task's
+            heavy = [threads.submit(client.post, f"{API}/collision/correct",
+                                    json={"vertices": vertices, "velum_opening": 0.5})
+                     for _ in range(in_flight)]
+            _wait_until(lambda: pool.pending == 1 + in_flight)
             health = client.get(f"{API}/health")
             rig = client.get(f"{API}/tongue/rig")
             still = (pool.pending, holder.done(), [answer.done() for answer in heavy])
