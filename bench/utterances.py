@@ -6,7 +6,10 @@ phoneme targets, a temporary cache directory). Uncached: the cache directory is 
 each request, so each one pronounces, synthesises (espeak-ng), coarticulates and writes the JSON
 and WAV. Cached: the same request again, answered with the stored JSON. The first request of the
 process (CMUdict loaded, espeak-ng initialised) is printed apart. Also printed: the uncached
-request's parts, timed alone. The cached answer is checked to be the uncached one.
+request's parts, timed alone. Checked: the cached answer is the uncached answer it stored. Also
+printed: whether every uncached answer was the same (a fresh espeak-ng engine has been seen to
+time its first sentence differently from the next ones, so an answer can depend on which worker
+made it; that is the server's to fix, and tests', not this benchmark's, to catch).
 
 The client speaks to the application as a browser on this machine does: its Host header is a
 name the server's allow-list accepts (api/security.py; by default the loopback names).
@@ -74,17 +77,21 @@ def main():
     base_url = f"http://[{host}]" if ":" in host else f"http://{host}"
     try:
         with TestClient(create_app(), base_url=base_url) as client:
+            answers = []
+
             def post():
                 response = client.post("/api/v1/utterances", json=body)
                 assert response.status_code == 200, response.text
+                answers.append(response.content)
                 return response
 
             cold_ms, first = timed(post)
             n_words = len(first.json()["words"])
             uncached = median_ms(post, uncached_runs, before=clear) if uncached_runs else cold_ms
-            post()
+            stored = answers[-1]  # the last uncached answer, which the cache now holds
+            variants = len(set(answers))
             cached = median_ms(post, cached_runs)
-            same = post().content == first.content
+            same = post().content == stored
 
             engine = espeak.get_engine()
             said = pronounce.pronounce(SENTENCE, engine)
@@ -111,7 +118,8 @@ def main():
     print(f"    pronounce {pronounce_ms:.2f} ms, espeak-ng synthesis {synth_ms:.2f} ms, "
           f"coarticulation {coart_ms:.2f} ms")
     print(f"  first request of the process (CMUdict loaded, espeak-ng started) {cold_ms:.0f} ms")
-    print(f"check: the cached answer is the uncached one: {'ok' if same else 'FAILED'}")
+    print(f"  uncached answers: {variants} different of {1 + uncached_runs}")
+    print(f"check: the cached answer is the uncached one it stored: {'ok' if same else 'FAILED'}")
     return 0 if same else 1
 
 
