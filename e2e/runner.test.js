@@ -99,10 +99,17 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		state = await readDebug( page );
 		assert.deepEqual( [ state.runner.slow, state.speech.speed ], [ true, 0.25 ] );
 		assert.equal( await page.getByRole( 'button', { name: 'Slow (S)' } ).getAttribute( 'aria-pressed' ), 'true' );
+		// Looped (a click that leaves the focus where it is), so that the word is still playing
+		// when the second Space comes, however slowly the page goes.
+		const loop = page.getByRole( 'button', { name: 'Loop', exact: true } );
+		await loop.dispatchEvent( 'click' );
+		assert.equal( ( await readDebug( page ) ).speech.loop, true );
 		await page.keyboard.press( ' ' );
-		await page.waitForFunction( () => window.glasshead.speech.playing === true && window.glasshead.speech.time > 0, null, { timeout: 30_000 } );
+		await page.waitForFunction( () => window.glasshead.speech.playing === true && window.glasshead.speech.time > 0, null, { timeout: 60_000 } );
 		await page.keyboard.press( ' ' );
-		await page.waitForFunction( () => window.glasshead.speech.playing === false, null, { timeout: 30_000 } );
+		await page.waitForFunction( () => window.glasshead.speech.playing === false, null, { timeout: 60_000 } );
+		await loop.dispatchEvent( 'click' );
+		assert.equal( ( await readDebug( page ) ).speech.loop, false );
 		await page.keyboard.press( 'S' );
 		assert.equal( ( await readDebug( page ) ).speech.speed, 0.5 );
 
