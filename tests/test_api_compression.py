@@ -1,14 +1,16 @@
 """Compressed responses: built files sent as their precompressed gzip siblings when the request
-allows it, JSON answers gzipped by the middleware above its threshold, streams left alone."""
+allows it, JSON answers gzipped by Starlette's GZipMiddleware above its threshold, server-sent
+events and binary types left alone, and nothing gzipped under the identity body's ETag."""
 
 import asyncio
 import gzip
 import os
 import shutil
+import zlib
 
 import pytest
 
-from glasshead.api.compression import MINIMUM_SIZE, CompressionMiddleware, accepts_gzip
+from glasshead.api.compression import MINIMUM_SIZE, GZipUnlessETagMiddleware, accepts_gzip
 from glasshead.pipeline.precompress import precompress
 from glasshead.settings import get_settings
 
@@ -94,6 +96,20 @@ def test_a_large_json_answer_is_gzipped_and_a_small_one_is_not(compressed_assets
     assert "content-encoding" not in small.headers
 
 
+def test_a_built_file_without_a_sibling_is_never_gzipped_under_its_identity_etag(
+        compressed_assets, start_app):
+    """precompress skips files under 1 KiB, other suffixes and siblings saving under 5 %, and a
+    stale sibling is not served: such a file keeps its one encoding and its one ETag."""
+    name = "no-sibling.json"
+    (compressed_assets / name).write_text('{"v": [' + "1.25, " * 2000 + "0]}")
+    _, client = start_app(compressed_assets)
+    gzip_asked = client.get(f"/assets/build/{name}", headers={"Accept-Encoding": "gzip"})
+    plain = client.get(f"/assets/build/{name}", headers={"Accept-Encoding": "identity"})
+    assert gzip_asked.status_code == 200 and "content-encoding" not in gzip_asked.headers
+    assert gzip_asked.headers["etag"] == plain.headers["etag"]
+    assert gzip_asked.content == plain.content == (compressed_assets / name).read_bytes()
+
+
 def run_asgi(app, accept="gzip"):
     """The messages ``app`` sends for a GET with ``Accept-Encoding: accept``."""
     sent = []
@@ -106,7 +122,7 @@ def run_asgi(app, accept="gzip"):
 
     scope = {"type": "http", "method": "GET", "path": "/", "headers": [
         (b"accept-encoding", accept.encode())]}
-    asyncio.run(CompressionMiddleware(app)(scope, receive, send))
+    asyncio.run(GZipUnlessETagMiddleware(app)(scope, receive, send))
     return sent
 
 
@@ -124,57 +140,97 @@ def test_a_stream_of_server_sent_events_passes_through_untouched():
     assert all(name != b"content-encoding" for name, _ in sent[0]["headers"])
 
 
-def test_a_json_body_already_compressed_or_streamed_is_not_compressed_again():
-    body = gzip.compress(b'{"a": "' + b"y" * 5000 + b'"}')
-
-    async def encoded(scope, receive, send):
-        await send({"type": "http.response.start", "status": 200, "headers": [
-            (b"content-type", b"application/json"), (b"content-encoding", b"gzip")]})
+def one_body(content_type, body, *headers):
+    """An app that answers ``body`` as ``content_type`` in one message, with ``headers``."""
+    async def app(scope, receive, send):
+        await send({"type": "http.response.start", "status": 200,
+                    "headers": [(b"content-type", content_type), *headers]})
         await send({"type": "http.response.body", "body": body})
+    return app
 
-    sent = run_asgi(encoded)
+
+def test_a_json_body_already_compressed_or_with_an_etag_is_not_compressed():
+    body = gzip.compress(b'{"a": "' + b"y" * 5000 + b'"}')
+    sent = run_asgi(one_body(b"application/json", body, (b"content-encoding", b"gzip")))
     assert sent[1]["body"] == body
+
+    record = b'{"a": "' + b"y" * 5000 + b'"}'  # a record's JSON, as api/etags.py tags it
+    sent = run_asgi(one_body(b"application/json", record, (b"etag", b'"lesson-1-v2"')))
+    assert sent[1]["body"] == record
+    assert all(name != b"content-encoding" for name, _ in sent[0]["headers"])
+
+
+def test_a_streamed_json_body_is_gzipped_chunk_by_chunk():
+    """Starlette compresses a stream too, flushing after each chunk so that each reaches the
+    client as it is sent (no route streams JSON today; files carry ETags, events are excluded)."""
+    first = b"[" + b"1," * 3000
 
     async def streamed(scope, receive, send):
         await send({"type": "http.response.start", "status": 200,
                     "headers": [(b"content-type", b"application/json")]})
-        await send({"type": "http.response.body", "body": b"[" + b"1," * 3000, "more_body": True})
+        await send({"type": "http.response.body", "body": first, "more_body": True})
         await send({"type": "http.response.body", "body": b"1]"})
 
     sent = run_asgi(streamed)
-    assert sent[1]["body"].startswith(b"[1,1,")
-    assert (b"content-encoding", b"gzip") not in sent[0]["headers"]
+    assert (b"content-encoding", b"gzip") in sent[0]["headers"]
+    assert zlib.decompressobj(16 + zlib.MAX_WBITS).decompress(sent[1]["body"]) == first
+    assert gzip.decompress(sent[1]["body"] + sent[2]["body"]) == first + b"1]"
+
+
+@pytest.mark.parametrize(("content_type", "compressed"), [
+    (b"application/json", True), (b"image/svg+xml", True), (b"text/html; charset=utf-8", True),
+    (b"model/gltf-binary", False), (b"application/octet-stream", False), (b"image/png", False),
+    (b"audio/wav", False)])
+def test_only_types_that_shrink_are_gzipped(content_type, compressed):
+    body = b"<" + b"0123" * 2000 + b">"
+    sent = run_asgi(one_body(content_type, body))
+    assert ((b"content-encoding", b"gzip") in sent[0]["headers"]) is compressed
+    assert (gzip.decompress(sent[1]["body"]) if compressed else sent[1]["body"]) == body
+
+
+@pytest.mark.parametrize(("header", "compressed"), [
+    ("gzip, deflate, br", True), ("br;q=1.0, gzip;q=0.5", True), ("gzip;q=0", True),
+    ("identity", False), ("", False), ("*", False), ("br", False)])
+def test_json_answers_are_gzipped_when_accept_encoding_names_gzip(header, compressed):
+    """Starlette's documented rule: gzip for any request whose Accept-Encoding contains "gzip".
+    It reads no q-values, so "gzip;q=0" (which no browser sends) gets gzip, and "*" alone does
+    not. api/static.py chooses a file's sibling by the full rule (accepts_gzip, below)."""
+    body = b'{"v": "' + b"z" * 5000 + b'"}'
+    sent = run_asgi(one_body(b"application/json", body), accept=header)
+    assert ((b"content-encoding", b"gzip") in sent[0]["headers"]) is compressed
 
 
 @pytest.mark.parametrize(("header", "allowed"), [
     ("gzip, deflate, br", True), ("GZIP", True), ("br;q=1.0, gzip;q=0.5", True),
     ("gzip;q=0", False), ("identity", False), ("", False), ("*", True), ("*;q=0", False),
     ("gzip;q=0, *", False), ("deflate, *;q=0.1", True), ("gzip;q=x", False)])
-def test_accept_encoding_allows_gzip_only_with_a_quality_above_zero(header, allowed):
+def test_a_sibling_is_chosen_only_when_accept_encoding_allows_gzip_above_q0(header, allowed):
     assert accepts_gzip(header) is allowed
 
 
 def test_a_large_answer_is_gzipped_off_the_event_loop(monkeypatch):
     """A stream of large answers (tongue surfaces) once held /health up: gzip ran on the event
-    loop. A body from THREAD_SIZE on is compressed in a thread while the loop goes on: here gzip
-    waits until the loop has run a step of another task, which it never could if gzip held the
-    loop (the wait would give up after a minute)."""
+    loop. A body from THREAD_SIZE on is compressed in a thread while the loop goes on (Starlette's
+    thread_minimum_size): here gzip waits until the loop has run a step of another task, which it
+    never could if gzip held the loop (the wait would give up after a minute)."""
     import threading
+
+    from starlette.middleware.gzip import GZipResponder
 
     from glasshead.api import compression
 
     body = b'{"v": [' + b"1.25," * (compression.THREAD_SIZE // 5 + 10) + b"0]}"
-    plain_compress = gzip.compress
+    plain_compress = GZipResponder._compress_body
     compressing, loop_ran = threading.Event(), threading.Event()
     wait_s = 60.0
     during = {}
 
-    def waiting(data, **options):
+    def waiting(responder, data, more_body):
         compressing.set()
         during["loop ran while gzip worked"] = loop_ran.wait(timeout=wait_s)
-        return plain_compress(data, **options)
+        return plain_compress(responder, data, more_body)
 
-    monkeypatch.setattr(compression.gzip, "compress", waiting)
+    monkeypatch.setattr(GZipResponder, "_compress_body", waiting)
 
     async def large(scope, receive, send):
         await send({"type": "http.response.start", "status": 200,
@@ -201,7 +257,7 @@ def test_a_large_answer_is_gzipped_off_the_event_loop(monkeypatch):
 
         scope = {"type": "http", "method": "GET", "path": "/",
                  "headers": [(b"accept-encoding", b"gzip")]}
-        await asyncio.gather(CompressionMiddleware(large)(scope, receive, send), other_task())
+        await asyncio.gather(GZipUnlessETagMiddleware(large)(scope, receive, send), other_task())
         return sent
 
     sent = asyncio.run(both())

@@ -12,7 +12,7 @@ import re
 import pytest
 
 from accounts_support import signed_in
-from glasshead.api.security import allowed_host_names, host_name, inline_script_hashes
+from glasshead.api.security import allowed_host_names, inline_script_hashes
 from glasshead.api.static import HASH_PREFIX
 from glasshead.pipeline.report_paths import portable
 from glasshead.settings import REPO_ROOT, Settings
@@ -70,17 +70,32 @@ def test_by_default_only_loopback_names_and_the_configured_host_are_served(start
     client = start_app()[1]
     for host in ("localhost:8000", "127.0.0.1", "[::1]:8000", "glasshead.school.example"):
         assert client.get(f"{API}/health", headers={"host": host}).status_code == 200, host
-    for host in ("evil.example", "evil.example:8000", "127.0.0.1.evil.example", "testserver"):
+    for host in ("evil.example", "evil.example:8000", "127.0.0.1.evil.example", "testserver",
+                 "[::2]:8000", "not a host"):
         response = client.get(f"{API}/health", headers={"host": host})
         assert response.status_code == 400, host
+        assert response.headers["content-type"] == "application/json"  # the API's error shape
         assert "GLASSHEAD_ALLOWED_HOSTS" in response.json()["detail"]
+        assert "frame-ancestors 'none'" in response.headers["content-security-policy"]
+    refused_write = client.post(f"{API}/epg/recordings", json=ONE_FRAME,
+                                headers={"host": "evil.example", "origin": "http://evil.example"})
+    assert refused_write.status_code == 400  # the host is refused first, before any route
+
+
+def test_a_name_without_www_is_refused_not_redirected_to_the_allowed_www_name(start_app,
+                                                                              monkeypatch):
+    monkeypatch.setenv("GLASSHEAD_ALLOWED_HOSTS", "www.glasshead.example")
+    client = start_app()[1]
+    assert client.get(f"{API}/health", headers={"host": "www.glasshead.example"}).status_code == 200
+    response = client.get(f"{API}/health", headers={"host": "glasshead.example"},
+                          follow_redirects=False)
+    assert response.status_code == 400 and "detail" in response.json()
 
 
 def test_the_allowed_hosts_setting_replaces_the_defaults():
     names = allowed_host_names(Settings(allowed_hosts="Glasshead.District.example, lb"))
     assert names == {"glasshead.district.example", "lb"}
     assert "0.0.0.0" not in allowed_host_names(Settings(allowed_hosts="", host="0.0.0.0"))
-    assert host_name("[::1]:8000") == "::1" and host_name("Example.org:80") == "example.org"
 
 
 @pytest.mark.parametrize("headers", [

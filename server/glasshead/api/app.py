@@ -9,7 +9,7 @@ from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from glasshead import __version__
-from glasshead.api.compression import CompressionMiddleware
+from glasshead.api.compression import GZipUnlessETagMiddleware
 from glasshead.api.error_responses import install_error_responses, unknown_path_error
 from glasshead.api.limits import BodyLimitMiddleware
 from glasshead.api.security import install_safe_defaults
@@ -63,7 +63,7 @@ def create_app() -> FastAPI:
     app.state.compute = ComputePool(settings.assets_dir, workers=settings.compute_workers,
                                     queue_limit=settings.compute_queue_limit)
     app.add_middleware(BodyLimitMiddleware)  # 413 while the body streams in
-    app.add_middleware(CompressionMiddleware)  # gzip JSON answers; never streams or files
+    app.add_middleware(GZipUnlessETagMiddleware)  # gzip JSON answers; never events or files
     for name in ROUTE_MODULES:
         module = importlib.import_module(f"glasshead.api.routes.{name}")
         app.include_router(module.router, prefix=API_PREFIX)

@@ -1,19 +1,20 @@
 """Safe defaults for a server that anyone's browser can reach on loopback.
 
-``SecurityMiddleware`` (plain ASGI, so that streamed bodies pass through untouched) does three
-things to every HTTP request, in this order:
+Every HTTP request passes, in this order:
 
-1. **Host allow-list** (DNS rebinding): a page on ``evil.example`` whose name is re-pointed at
-   127.0.0.1 reaches this server with ``Host: evil.example``. Only the names in
-   ``settings.allowed_hosts`` are served (default: the loopback names and the configured host);
-   any other host gets 400.
-2. **Cross-site writes** (CSRF): a form on another site can POST to this server without any
-   script. A state-changing request (POST, PUT, PATCH, DELETE) whose ``Origin`` is not this
-   server's own origin (the same host and port as its ``Host``), or that has no ``Origin`` but
+1. **Host allow-list** (DNS rebinding; Starlette's ``TrustedHostMiddleware``): a page on
+   ``evil.example`` whose name is re-pointed at 127.0.0.1 reaches this server with
+   ``Host: evil.example``. Only the names in ``settings.allowed_hosts`` are served (default: the
+   loopback names and the configured host); any other host gets 400, as JSON like every error.
+2. **Cross-site writes** (CSRF; ``SecurityMiddleware``, plain ASGI, so that streamed bodies pass
+   through untouched): a form on another site can POST to this server without any script. A
+   state-changing request (POST, PUT, PATCH, DELETE) whose ``Origin`` is not this server's own
+   origin (the same host and port as its ``Host``), or that has no ``Origin`` but
    ``Sec-Fetch-Site: cross-site``, gets 403. A client that sends neither (curl, scripts) passes.
-3. **Headers on every response**: a Content-Security-Policy that allows only this origin
-   (``frame-ancestors 'none'`` among it), ``X-Content-Type-Options: nosniff``,
-   ``X-Frame-Options: DENY`` and ``Referrer-Policy: same-origin``.
+3. **Headers on every response** (``SecurityMiddleware``; the host refusal sends them itself): a
+   Content-Security-Policy that allows only this origin (``frame-ancestors 'none'`` among it),
+   ``X-Content-Type-Options: nosniff``, ``X-Frame-Options: DENY`` and
+   ``Referrer-Policy: same-origin``.
 
 The API's docs pages (Swagger UI and ReDoc) load their scripts and styles from the
 ``fastapi-offline`` package, served here, never from a CDN; their one inline script is allowed
@@ -25,6 +26,9 @@ import hashlib
 import json
 import re
 from urllib.parse import urlsplit
+
+from starlette.datastructures import Headers
+from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 #: The policy for every response but the docs pages: this origin only. Images may be data: URLs
 #: (the page's empty favicon); no plugins, no <base> elsewhere, forms post here, never framed.
@@ -45,14 +49,6 @@ def allowed_host_names(settings) -> frozenset[str]:
         if settings.host not in ("0.0.0.0", "::", ""):
             names.append(settings.host.lower())
     return frozenset(name.strip("[]") for name in names)
-
-
-def host_name(host_header: str) -> str:
-    """``example.org`` from ``Example.org:8000``; ``::1`` from ``[::1]:8000``."""
-    host = host_header.strip().lower()
-    if host.startswith("["):
-        return host[1:].split("]", 1)[0]
-    return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
 
 
 def _origin_netloc(origin: str) -> str | None:
@@ -81,9 +77,8 @@ def _netloc_of_host(host_header: str) -> str:
 class SecurityMiddleware:
     """See the module docstring. ``policies`` maps a path to its own CSP (the docs pages)."""
 
-    def __init__(self, app, allowed_hosts: frozenset[str], policies: dict[str, str]):
+    def __init__(self, app, policies: dict[str, str]):
         self.app = app
-        self.allowed_hosts = allowed_hosts
         self.policies = policies
 
     async def __call__(self, scope, receive, send):
@@ -108,9 +103,6 @@ class SecurityMiddleware:
         await self.app(scope, receive, send_with_headers)
 
     def _refusal(self, method: str, host: str, headers: dict) -> tuple[int, str] | None:
-        if host_name(host) not in self.allowed_hosts:
-            return 400, (f"host {host!r} is not served here; set GLASSHEAD_ALLOWED_HOSTS to the "
-                         "names this server is reached by")
         if method not in UNSAFE_METHODS:
             return None
         origin = headers.get("origin")
@@ -121,6 +113,40 @@ class SecurityMiddleware:
         elif headers.get("sec-fetch-site") == "cross-site":
             return 403, "cross-site request refused: Sec-Fetch-Site is cross-site"
         return None
+
+
+class JSONTrustedHostMiddleware(TrustedHostMiddleware):
+    """Starlette's host allow-list, www-redirect off, whose refusal is the API's JSON error
+    (``{"detail": ...}``, 400, the safe headers) instead of its plain-text "Invalid host header".
+
+    Starlette sends that refusal itself, so the ``send`` it is given is a ``_HostRefusal``, which
+    answers JSON whatever the refusal sends; the app behind it, called only for an allowed host,
+    gets the server's own ``send`` back (``_serve``).
+    """
+
+    def __init__(self, app, allowed_hosts: frozenset[str]):
+        # Starlette compares the Host's name as written, an IPv6 literal in brackets.
+        patterns = [f"[{name}]" if ":" in name else name for name in sorted(allowed_hosts)]
+        super().__init__(self._serve, allowed_hosts=patterns, www_redirect=False)
+        self.served = app
+
+    async def __call__(self, scope, receive, send):
+        await super().__call__(scope, receive, _HostRefusal(scope, send))
+
+    async def _serve(self, scope, receive, refusal: "_HostRefusal"):
+        await self.served(scope, receive, refusal.send)
+
+
+class _HostRefusal:
+    def __init__(self, scope, send):
+        self.scope, self.send = scope, send
+
+    async def __call__(self, message):
+        if message["type"] == "http.response.start":
+            host = Headers(scope=self.scope).get("host", "")
+            await _send_json(self.send, 400, {"detail": (
+                f"host {host!r} is not served here; set GLASSHEAD_ALLOWED_HOSTS to the names "
+                "this server is reached by")}, CSP)
 
 
 def _safe_headers(policy: str) -> list[tuple[bytes, bytes]]:
@@ -139,12 +165,13 @@ async def _send_json(send, status: int, body: dict, policy: str) -> None:
 
 
 def install_safe_defaults(app, settings, api_prefix: str) -> None:
-    """Mount the docs pages under ``api_prefix`` and wrap ``app`` in ``SecurityMiddleware``."""
+    """Mount the docs pages under ``api_prefix`` and wrap ``app`` in ``SecurityMiddleware``, and
+    that in the host allow-list, so that a request for another host goes no further."""
     from glasshead.api.docs_pages import mount_docs
 
     policies = mount_docs(app, api_prefix)
-    app.add_middleware(SecurityMiddleware, allowed_hosts=allowed_host_names(settings),
-                       policies=policies)
+    app.add_middleware(SecurityMiddleware, policies=policies)
+    app.add_middleware(JSONTrustedHostMiddleware, allowed_hosts=allowed_host_names(settings))
 
 
 def inline_script_hashes(html: str) -> list[str]:
