@@ -33,6 +33,16 @@ UNCACHED_GOAL_MS = 1000.0
 QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 
 
+def served_base_url(hosts):
+    """A base URL whose Host the allow-list serves: 127.0.0.1 when it is served, else the first
+    plain name, else a name under the first wildcard ("*.example.org")."""
+    if "127.0.0.1" in hosts or "*" in hosts:
+        return "http://127.0.0.1"
+    plain = sorted(name for name in hosts if "*" not in name)
+    host = plain[0] if plain else "bench" + sorted(hosts)[0].lstrip("*")
+    return f"http://[{host}]" if ":" in host else f"http://{host}"
+
+
 def timed(fn):
     start = time.perf_counter()
     out = fn()
@@ -72,9 +82,7 @@ def main():
         for path in cache.glob("*.wav"):
             path.unlink()
 
-    hosts = allowed_host_names(get_settings())
-    host = "127.0.0.1" if "127.0.0.1" in hosts else sorted(hosts)[0]
-    base_url = f"http://[{host}]" if ":" in host else f"http://{host}"
+    base_url = served_base_url(allowed_host_names(get_settings()))
     try:
         with TestClient(create_app(), base_url=base_url) as client:
             answers = []
