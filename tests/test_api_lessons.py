@@ -130,7 +130,7 @@ def test_an_exported_lesson_imports_as_a_new_lesson_with_the_same_content(client
 def test_the_published_schema_is_the_models_schema_and_the_file_in_docs(client):
     served = client.get(f"{API}/lessons/schema").json()
     assert served == json_schema() == json.loads(SCHEMA_FILE.read_text()), (
-        "docs/lesson.schema.json is stale: python -m glasshead.lessons.schema")
+        "docs/lesson.schema.json is stale: glasshead lesson-schema")
     assert served["required"] == ["title", "items"]
 
 

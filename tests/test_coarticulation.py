@@ -1,8 +1,8 @@
 """Coarticulation (speech.coarticulation, after Cohen and Massaro 1993) on the built phoneme
 targets: the issue's two examples, ranges, targets, the velum, cues, bad input and the frame
 convention; a brute-force per-frame loop as the reference. Phones are timed by the training's
-duration rule (speech.training.timed: stressed vowels 140 ms, stops 70 ms, fricatives 100 ms,
-150 ms of silence at each end)."""
+duration rule (training.coarticulation.timed: stressed vowels 140 ms, stops 70 ms, fricatives
+100 ms, 150 ms of silence at each end)."""
 
 import json
 import math
@@ -22,7 +22,7 @@ from glasshead.speech.coarticulation import (
     segments,
     target_matrix,
 )
-from glasshead.speech.training import timed
+from glasshead.training.coarticulation import timed
 
 #: The shipped (trained) constants and the hand-set ones: the examples must hold with both.
 CONSTANT_SETS = {"trained": None, "hand-set": dominance.DEFAULTS}
@@ -316,7 +316,7 @@ def test_a_bad_rate_or_constants_raise_value_error(targets):
 
 def test_the_shipped_constants_are_trained_and_say_how_they_were_made():
     stored = json.loads(dominance.CONSTANTS_FILE.read_text())
-    assert "python -m glasshead.speech.training" in stored["header"]
+    assert "VocalTractLab's gestural trajectories" in stored["header"]
     dominance.validate_constants(stored)
     assert dominance.load_constants()["c"] == stored["c"]
     held = stored["training"]["held_out_rms"]

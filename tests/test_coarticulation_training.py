@@ -1,6 +1,6 @@
-"""Training the coarticulation constants (speech.training) against VocalTractLab's gestural
-trajectories carried into our parameters (speech.vtl_reference): a short run on two sequences,
-and the mapping checked against the phoneme targets it reuses."""
+"""Training the coarticulation constants (training.coarticulation) against VocalTractLab's
+gestural trajectories carried into our parameters (training.vtl_reference): a short run on two
+sequences, and the mapping checked against the phoneme targets it reuses."""
 
 import json
 
@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 
 from glasshead.pipeline import vtl_speaker as vtl
-from glasshead.speech import dominance, training
-from glasshead.speech.vtl_reference import (
+from glasshead.speech import dominance
+from glasshead.training import coarticulation as training
+from glasshead.training.vtl_reference import (
     STATE_S,
     NoGestureError,
     ReferenceMapping,
@@ -40,6 +41,7 @@ def test_a_short_training_run_lowers_the_training_error_and_reports_both_sets(bu
     t_before = base["classes"]["labial_velar"]["theta_anticipation"] ** (-1.0 / base["c"])
     t_after = constants["classes"]["labial_velar"]["theta_anticipation"] ** (-1.0 / constants["c"])
     assert t_after == pytest.approx(t_before, rel=1e-3)
+    assert constants["header"].startswith("Made once by `glasshead train`")
     path = training.write_constants(made["constants"], tmp_path / "constants.json")
     assert json.loads(path.read_text())["c"] == constants["c"]
 

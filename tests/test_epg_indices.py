@@ -166,7 +166,7 @@ def test_the_shared_vectors_are_up_to_date_with_the_python_indices():
     try:
         assert_same_document(build_document(emur_path()), vectors, atol=index, rtol=index)
     except AssertionError as exc:
-        raise AssertionError(f"{exc}: run `python -m glasshead.vectors epg-indices.json`") \
+        raise AssertionError(f"{exc}: run `glasshead vectors epg-indices.json`") \
             from None
     assert vectors["constants"]["electrodes"] == EPG_ELECTRODES
     assert vectors["constants"]["zones"] == {k: list(v) for k, v in EPG_ZONES.items()}

@@ -15,7 +15,6 @@ from glasshead.fitting.fit3d import (
     fit_shape3d,
     fit_surface,
     free_groups,
-    main,
     shape_vertices,
     surface_parameters,
     tip_rib,
@@ -196,17 +195,6 @@ def test_a_mask_of_the_wrong_shape_or_leaving_too_few_vertices_is_refused(rig, k
     few[:MIN_RAYS - 1] = True
     with pytest.raises(ValueError, match="leaves"):
         fit_surface(rig, observed, mask=few)
-
-
-def test_the_command_prints_a_line_per_shape_and_a_summary(built_assets, capsys):
-    assert main(["bobyqa", "a"]) == 0
-    lines = capsys.readouterr().out.splitlines()
-    assert len(lines) == 2
-    assert lines[0].startswith("a ") and " mm (from " in lines[0] and "evals" in lines[0]
-    assert lines[1].startswith("1 shapes, bobyqa: median RMS ")
-    assert "within 1.5 mm" in lines[1]
-    with pytest.raises(ValueError, match="no such shapes: nonesuch"):
-        main(["bobyqa", "nonesuch"])
 
 
 def test_the_objective_takes_the_exact_volume_that_the_walk_summed(rig, section, known_pose):

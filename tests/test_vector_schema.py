@@ -18,7 +18,7 @@ JSON_FILES = sorted(path.name for path in VECTORS.glob("*.json"))
 def good_document():
     return {
         "description": "a small valid document",
-        "generator": "python -m glasshead.vectors example.json",
+        "generator": "glasshead vectors example.json",
         "format_version": 1,
         "constants": {"seed": 1},
         "tolerance": {"vertex_mm": {"value": 1e-4, "unit": "mm", "reason": "float32 in JS"}},

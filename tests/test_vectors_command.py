@@ -1,10 +1,11 @@
-"""`python -m glasshead.vectors`: one command for every vector file, with progress and a clear
-error when the reference data is missing."""
+"""`glasshead vectors`: one command for every vector file, with progress and a clear error when
+the reference data is missing."""
 
 import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -13,10 +14,12 @@ from glasshead.vectors import VECTOR_FILES
 from vector_support import assert_same_document, read_vectors, tol
 
 pytestmark = pytest.mark.vectors
+#: The installed command, beside the interpreter.
+COMMAND = Path(sys.executable).with_name("glasshead")
 
 
 def run(*args, env=None):
-    return subprocess.run([sys.executable, "-m", "glasshead.vectors", *args], cwd=REPO_ROOT,
+    return subprocess.run([str(COMMAND), "vectors", *args], cwd=REPO_ROOT,
                           capture_output=True, text=True, env={**os.environ, **(env or {})})
 
 

@@ -1,5 +1,6 @@
-"""The `glasshead` command: build the assets, fit the tongue to an observation, serve the app,
-add a user."""
+"""The `glasshead` command, the one entry point of the package: build the assets, fit the tongue
+to an observation, train the coarticulation constants, serve the app, add a user, and write the
+files made from code (the shared test vectors, the lesson format's JSON Schema)."""
 
 import argparse
 import json
@@ -116,12 +117,65 @@ def fit(args):
     return 0
 
 
+def train(args):
+    """Train the coarticulation constants (docs/coarticulation.md) and write them."""
+    from glasshead.training import coarticulation
+
+    max_evals = coarticulation.MAX_EVALS if args.max_evals is None else args.max_evals
+    made = coarticulation.train(get_settings().assets_dir, max_evals=max_evals)
+    coarticulation.print_report(made["report"])
+    path = coarticulation.write_constants(made["constants"])
+    print(f"wrote {path}")
+    return 0
+
+
+def vectors(args):
+    """Regenerate the shared test vectors (docs/vectors.md)."""
+    from glasshead.vectors import VECTOR_FILES
+    from glasshead.vectors.common import VECTORS_DIR
+    from glasshead.vectors.generate import generate
+    from glasshead.vectors.schema import VectorSchemaError
+
+    if args.list:
+        print("\n".join(VECTOR_FILES))
+        return 0
+    try:
+        written = generate(args.names, args.out or VECTORS_DIR)
+    except (ValueError, RuntimeError, VectorSchemaError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    print(f"wrote {len(written)} vector files")
+    return 0
+
+
+def lesson_schema(args):
+    """Write the lesson format's JSON Schema (docs/lessons.md)."""
+    from glasshead.lessons.schema import json_schema
+
+    path = Path(args.out)
+    path.write_text(json.dumps(json_schema(), indent=2, ensure_ascii=False) + "\n")
+    print(f"wrote {path}")
+    return 0
+
+
 def serve(args):
     import uvicorn
 
     settings = get_settings()
     uvicorn.run("glasshead.api.app:app", host=args.host or settings.host,
                 port=args.port or settings.port, log_level="info")
+    return 0
+
+
+def migrate(args):
+    """Bring the database up to date (the application also does it at start-up)."""
+    from sqlalchemy.engine import make_url
+
+    from glasshead.store.db import upgrade_to_head
+
+    url = get_settings().database_url
+    upgrade_to_head()
+    print(f"database at {make_url(url).render_as_string(hide_password=True)} is up to date")
     return 0
 
 
@@ -178,10 +232,31 @@ def main(argv=None):
     fit_parser.add_argument("--save", action="store_true",
                             help="store the result in the database as a fitted target")
     fit_parser.set_defaults(handler=fit)
+    train_parser = commands.add_parser(
+        "train", help="train the coarticulation constants against VocalTractLab's trajectories "
+                      "and write speech/constants.json (docs/coarticulation.md)")
+    train_parser.add_argument("--max-evals", type=int, default=None,
+                              help="cap on the optimiser's evaluations (default: the trainer's)")
+    train_parser.set_defaults(handler=train)
+    vectors_parser = commands.add_parser(
+        "vectors", help="regenerate the shared test vectors in tests/vectors (docs/vectors.md)")
+    vectors_parser.add_argument("names", nargs="*", metavar="FILE",
+                                help="vector files to write (default: all)")
+    vectors_parser.add_argument("--out", help="output directory (default: tests/vectors)")
+    vectors_parser.add_argument("--list", action="store_true", help="list the files and stop")
+    vectors_parser.set_defaults(handler=vectors)
+    schema_parser = commands.add_parser(
+        "lesson-schema", help="write the lesson format's JSON Schema (docs/lessons.md)")
+    schema_parser.add_argument("out", nargs="?", default="docs/lesson.schema.json",
+                               help="where (default: docs/lesson.schema.json)")
+    schema_parser.set_defaults(handler=lesson_schema)
     serve_parser = commands.add_parser("serve", help="serve the API and the web app")
     serve_parser.add_argument("--host", help="default: HOST or 127.0.0.1")
     serve_parser.add_argument("--port", type=int, help="default: PORT or 8000")
     serve_parser.set_defaults(handler=serve)
+    migrate_parser = commands.add_parser(
+        "migrate", help="apply the database migrations (the app does it at start-up)")
+    migrate_parser.set_defaults(handler=migrate)
     user_parser = commands.add_parser("user", help="manage the people who sign in "
                                                    "(docs/auth.md)")
     user_commands = user_parser.add_subparsers(dest="user_command", required=True)

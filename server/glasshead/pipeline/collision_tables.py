@@ -22,7 +22,6 @@ missing) the cells' exact triangle tests take over, so the correction is exact e
 """
 
 import hashlib
-import sys
 import time
 from pathlib import Path
 
@@ -234,23 +233,3 @@ def build_step(assets_dir):
     summary = build_collision_tables(v, f, assets_dir)
     return {"step": "collision-tables", "file": str(out), "skipped": False,
             "bytes": summary["bytes"], "stats": summary["stats"]}
-
-
-def main(argv=None):
-    """python -m glasshead.pipeline.collision_tables [assets_dir]"""
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    assets = Path(argv[0]) if argv else get_settings().assets_dir
-    report = build_step(assets)
-    s = report["stats"]
-    print(f"{report['file']}: {report['bytes']} bytes" + (" (up to date)" if report["skipped"]
-                                                          else ""))
-    print(f"liner {s.get('cells')} cells ({s.get('cells_plane')} plane, {s.get('cells_list')} "
-          f"list, {s.get('cells_empty')} empty); voxels {s.get('voxels_ok')} ok, "
-          f"{s.get('voxels_borderline')} borderline, {s.get('voxels_not_ok')} not ok")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -9,7 +9,6 @@ The API reads the file through the asset store (``glasshead.asset_store``).
 
 import hashlib
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -74,19 +73,3 @@ def read_layout(path):
         raise LayoutFileError(f"{path} is missing: run `glasshead build`") from None
     except (OSError, json.JSONDecodeError, LayoutError) as exc:
         raise LayoutFileError(f"{path}: not an electrode layout ({exc})") from None
-
-
-def main(argv=None):
-    """python -m glasshead.pipeline.epg_layout [assets_dir]"""
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    assets = Path(argv[0]) if argv else get_settings().assets_dir
-    report = build_step(assets)
-    counts = ", ".join(f"{name} {n}" for name, n in report["electrodes"].items())
-    print(f"{report['file']}: {counts}" + (" (up to date)" if report["skipped"] else ""))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

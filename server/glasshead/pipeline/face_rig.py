@@ -13,12 +13,10 @@ It holds everything the skin and lip deformation (``glasshead.geometry.face_rig`
 - the lips' mid-sagittal crossing edges, for measuring the lip gap.
 
 The jaw pose itself is not here: it is the tongue rig's (``geometry.jaw``), one for the head.
-Run alone with ``python -m glasshead.pipeline.face_rig [assets_dir]``.
 """
 
 import hashlib
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -223,22 +221,3 @@ def write_face_rig(rig, assets_dir):
     temporary.write_text(json.dumps(rig, separators=(",", ":")))
     temporary.replace(path)
     return path
-
-
-def main(argv=None):
-    from types import SimpleNamespace
-
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    settings = get_settings()
-    assets_dir = Path(argv[0]) if argv else settings.assets_dir
-    report = build_step(SimpleNamespace(data_dir=settings.data_dir, assets_dir=assets_dir))
-    suffix = " (up to date)" if report["skipped"] else ""
-    print(f"{report['file']}: {report['vertices']}{suffix}")
-    print(json.dumps(report["stats"], indent=1))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

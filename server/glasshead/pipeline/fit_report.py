@@ -14,10 +14,9 @@ Writes, under the assets directory:
   (``pipeline.fit_report_html``).
 
 The fits are ``fit2d.fit_shape``'s (BOBYQA, the sagittal parameters and the widths free from
-neutral, the jaw from VTL's JA, default weights): the same fits ``python -m
-glasshead.fitting.fit2d`` prints. The rays, their origin and the per-ray errors are read from an
-``Objective2D`` made with the fit's own start, so the errors are those the fit minimised, at the
-fitted values.
+neutral, the jaw from VTL's JA, default weights): the same fits ``bench/fit2d.py`` times. The
+rays, their origin and the per-ray errors are read from an ``Objective2D`` made with the fit's own
+start, so the errors are those the fit minimised, at the fitted values.
 
 The step is skipped when the SHA-256 of its inputs (the built rig and observations, and the code
 of this module, the fit and its objective, the optimiser, the tongue surface and the two
@@ -272,22 +271,3 @@ def build_step(ctx) -> dict:
             "summary": document["summary"],
             "shapes": {e["name"]: {"rms_mm": e["rms_mm"], "evaluations": e.get("evaluations"),
                                    "seconds": e.get("seconds")} for e in document["shapes"]}}
-
-
-def main(argv=None):
-    import sys
-
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    document, skipped = build_fit_report(get_settings().assets_dir, force="--force" in argv)
-    s = document["summary"]
-    print(f"{document['count']} shapes ({'up to date' if skipped else 'built'} in "
-          f"{document['build_seconds']:.1f} s): median RMS {s['median_rms_mm']:.2f} mm, "
-          f"{s['within_1mm']} within 1.0 mm, worst {s['worst']['name']} "
-          f"{s['worst']['rms_mm']:.2f} mm; fits {s['fit_seconds']:.1f} s in all")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

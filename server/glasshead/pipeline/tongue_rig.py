@@ -5,13 +5,10 @@ tongue) and ``jaw.obj`` (for the temporomandibular pivot), converts them into th
 fits the rest shape (``pipeline.tongue_fit``), measures it against the MRI with closest-point
 distances both ways, and writes the definition with the fit report in it. It skips the work when
 the output already records the same inputs (the SHA-256 of the sources and of the code).
-
-Run it alone with ``python -m glasshead.pipeline.tongue_rig [out_dir]``.
 """
 
 import hashlib
 import json
-import sys
 import time
 from pathlib import Path
 
@@ -153,27 +150,3 @@ def _report(path, definition, skipped):
     return {"step": "tongue-rig", "file": str(path), "skipped": skipped,
             "vertices": surface["vertex_count"], "triangles": surface["triangle_count"],
             "fit": definition.get("fit", {})}
-
-
-def main(argv=None):
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    settings = get_settings()
-    out_dir = Path(argv[0]) if argv else settings.assets_dir
-    report = build_tongue_rig(settings.data_dir, out_dir)
-    fit = report["fit"]
-    print(f"{report['file']}: {report['vertices']} vertices, {report['triangles']} triangles"
-          + (" (up to date)" if report["skipped"] else ""))
-    if fit:
-        d = fit["distance_mm"]
-        print(f"rest shape vs MRI: mean {d['mean_both_ways']:.3f} mm; rig->MRI mean "
-              f"{d['rig_to_mri']['mean']:.3f} max {d['rig_to_mri']['max']:.3f}; MRI->rig mean "
-              f"{d['mri_to_rig']['mean']:.3f} max {d['mri_to_rig']['max']:.3f}")
-        v = fit["volume_mm3"]
-        print(f"volume: rig {v['rig'] / 1000:.2f} cm3, MRI {v['mri'] / 1000:.2f} cm3")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

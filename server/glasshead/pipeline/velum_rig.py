@@ -9,13 +9,10 @@ It holds what ``velum_opening`` needs on both sides (``geometry.velum``, ``web/s
 - the nasal port's samples: fixed points of the raised velum's posterior surface (triangle and
   barycentric weights), on cuts across the passage at and above the palatal plane, over the
   width of the posterior pharyngeal wall, with the wall's normal at each (docs/velum.md).
-
-Run alone with ``python -m glasshead.pipeline.velum_rig [assets_dir]``.
 """
 
 import hashlib
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -246,19 +243,3 @@ def build_step(ctx):
     temporary.write_text(json.dumps(definition, separators=(",", ":")))
     temporary.replace(out)
     return {"step": "velum-rig", "file": str(out), "skipped": False, **report}
-
-
-def main(argv=None):
-    from types import SimpleNamespace
-
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    assets_dir = Path(argv[0]) if argv else get_settings().assets_dir
-    report = build_step(SimpleNamespace(assets_dir=assets_dir))
-    print(json.dumps(report, indent=1))
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

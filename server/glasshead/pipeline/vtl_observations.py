@@ -5,14 +5,12 @@ speaker the ``vocaltractlab-cython`` bindings ship (``vtl_speaker``), registers 
 and upper incisor onto the built maxilla (``vtl_registration``), moves every outline and
 surface into the project frame and writes one JSON (default ``assets/build/vtl-observations.json``)
 with the registration's residuals and the SHA-256 of its inputs. It skips the work when the
-output already records the same inputs. Not yet part of ``glasshead build``.
-
-Run it alone with ``python -m glasshead.pipeline.vtl_observations [out.json]``.
+output already records the same inputs. ``glasshead build`` runs it as its step
+``vtl-observations``.
 """
 
 import hashlib
 import inspect
-import sys
 import time
 from importlib import metadata
 from pathlib import Path
@@ -143,25 +141,3 @@ def build_vtl_observations(assets_dir, out_path=None, force=False):
     out_path.parent.mkdir(parents=True, exist_ok=True)
     write_json(out_path, document)
     return document, False
-
-
-def main(argv=None):
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    force = "--force" in argv
-    paths = [a for a in argv if a != "--force"]
-    settings = get_settings()
-    started = time.perf_counter()
-    document, skipped = build_vtl_observations(settings.assets_dir,
-                                               Path(paths[0]) if paths else None, force)
-    registration = document["registration"]
-    print(f"{document['shape_count']} VocalTractLab shapes; palate midline residual "
-          f"RMS {registration['midline']['rms_mm']} mm, max {registration['midline']['max_mm']} "
-          f"mm; {'unchanged, skipped' if skipped else 'written'} in "
-          f"{time.perf_counter() - started:.2f} s")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -3,11 +3,10 @@
 The URL comes from ``GLASSHEAD_DATABASE_URL`` (settings.database_url): a SQLite file under
 ``<repo>/var/`` by default, which needs no set-up, or ``postgresql+psycopg://...`` (install the
 ``postgres`` extra). ``upgrade_to_head`` applies the Alembic migrations shipped inside this
-package; the application runs it at start-up, and ``python -m glasshead.store.db`` runs it alone.
+package; the application runs it at start-up, and ``glasshead migrate`` runs it alone.
 """
 
 import fcntl
-import sys
 from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
@@ -107,13 +106,3 @@ def _sqlite_migration_lock(url):
         finally:
             fcntl.flock(lock, fcntl.LOCK_UN)
 
-
-def main() -> int:
-    upgrade_to_head()
-    print(f"database at {make_url(database_url()).render_as_string(hide_password=True)} "
-          "is up to date")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

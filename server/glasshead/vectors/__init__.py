@@ -1,7 +1,7 @@
 """The shared test vectors: every file in tests/vectors/, written by Python, checked by both sides.
 
-``python -m glasshead.vectors`` regenerates them all; ``python -m glasshead.vectors FILE ...``
-only the files named; ``--list`` lists them. The generators read the reference data
+``glasshead vectors`` regenerates them all (``generate``); ``glasshead vectors FILE ...`` only
+the files named; ``--list`` lists them. The generators read the reference data
 (``../shared/data``) and the built assets (running ``glasshead build`` first when they are stale).
 
 Every JSON file follows one schema (``schema``): ``{description, generator, format_version,

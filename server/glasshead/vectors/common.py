@@ -20,7 +20,7 @@ import numpy as np
 from glasshead.settings import REPO_ROOT
 
 VECTORS_DIR = REPO_ROOT / "tests" / "vectors"
-COMMAND = "python -m glasshead.vectors"
+COMMAND = "glasshead vectors"
 #: Documents larger than this (characters) are written without indentation.
 COMPACT_ABOVE = 100_000
 

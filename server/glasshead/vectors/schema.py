@@ -23,7 +23,7 @@ TOLERANCE_KEYS = ("value", "unit", "reason")
 #: Units a tolerance may have: millimetres, cubic millimetres, relative (a fraction of the
 #: expected magnitude), "1" (absolute, for dimensionless numbers), radians, degrees.
 UNITS = ("mm", "mm2", "mm3", "relative", "1", "rad", "deg")
-GENERATOR_PREFIX = "python -m glasshead.vectors"
+GENERATOR_PREFIX = "glasshead vectors"
 
 
 class VectorSchemaError(ValueError):

@@ -1,14 +1,12 @@
-"""``python -m glasshead.vectors [FILE ...] [--list] [--out DIR]``: regenerate the vectors."""
+"""Writing the vector files, for ``glasshead vectors [FILE ...] [--list] [--out DIR]``."""
 
-import argparse
 import importlib
-import sys
 import time
 from pathlib import Path
 
 from glasshead.vectors import GENERATORS, VECTOR_FILES
 from glasshead.vectors.common import VECTORS_DIR, dumps
-from glasshead.vectors.schema import VectorSchemaError, check
+from glasshead.vectors.schema import check
 
 
 def _produce(generator):
@@ -44,26 +42,3 @@ def generate(names=None, out_dir=VECTORS_DIR, log=print):
         log(f"    done in {time.perf_counter() - started:.1f} s")
     return written
 
-
-def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m glasshead.vectors",
-                                     description="Regenerate the shared test vectors.")
-    parser.add_argument("names", nargs="*", metavar="FILE",
-                        help="vector files to write (default: all)")
-    parser.add_argument("--out", default=str(VECTORS_DIR), help="output directory")
-    parser.add_argument("--list", action="store_true", help="list the files and stop")
-    args = parser.parse_args(argv)
-    if args.list:
-        print("\n".join(VECTOR_FILES))
-        return 0
-    try:
-        written = generate(args.names, args.out)
-    except (ValueError, RuntimeError, VectorSchemaError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    print(f"wrote {len(written)} vector files")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

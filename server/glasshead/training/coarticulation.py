@@ -2,7 +2,7 @@
 
 The paper fits the dominance functions' constants by minimisation (DESIGN.md part 7); here the
 measurements are the trajectories VocalTractLab's gestural model makes for the same timed phone
-sequences, carried into our parameters (``speech.vtl_reference``). For every sequence of
+sequences, carried into our parameters (``training.vtl_reference``). For every sequence of
 ``SEQUENCES``, timed by the duration rule ``DURATIONS_S`` between two silences, the error is
 the RMS over the speech frames (100 Hz, the silences left out) of the difference between our
 tracks and the reference, each parameter divided by its rig range, over ``COMPARED`` (the
@@ -17,14 +17,13 @@ close it) and VTL's short velic gestures would only trade against the other arti
 BOBYQA (``fitting.optimizer``) from the hand-set
 ``dominance.DEFAULTS``; every fourth sequence is held out and reported before and after.
 
-``python -m glasshead.speech.training [--max-evals N]`` prints the report and writes
-``speech/constants.json``, which ``coarticulate`` loads by default (docs/coarticulation.md).
+``glasshead train [--max-evals N]`` prints the report and writes ``speech/constants.json``,
+which ``coarticulate`` loads by default (docs/coarticulation.md).
 """
 
 import copy
 import json
 import math
-import sys
 import time
 from pathlib import Path
 
@@ -33,7 +32,7 @@ import numpy as np
 from glasshead.fitting import optimizer
 from glasshead.phonemes import lookup
 from glasshead.speech import coarticulation, dominance
-from glasshead.speech.vtl_reference import ReferenceMapping
+from glasshead.training.vtl_reference import ReferenceMapping
 
 #: Frames per second of the comparison.
 RATE_HZ = 100.0
@@ -83,6 +82,8 @@ RESTART_GAIN = 0.005
 #: time constants would wander without changing a track.
 UNTRAINED = ("silence", "glottal")
 OUTPUT = dominance.CONSTANTS_FILE
+#: The command that runs the training (``glasshead.cli``), named in the constants it writes.
+COMMAND = "glasshead train"
 
 
 def timed(text: str, edge_s: float = EDGE_SILENCE_S) -> list[dict]:
@@ -285,10 +286,9 @@ def train(assets_dir: Path, sequences=SEQUENCES, *, held_out=None, max_evals: in
         "tongue_map": {"shapes": mapping.tongue.shapes, "ridge": mapping.tongue.ridge,
                        "leave_one_out_rms": mapping.tongue.loo_rms},
     }
-    trained["header"] = ("Made once by `python -m glasshead.speech.training` (BOBYQA against "
-                         "VocalTractLab's gestural trajectories) and committed: a small "
-                         "definition file that coarticulate loads by default. "
-                         "docs/coarticulation.md")
+    trained["header"] = (f"Made once by `{COMMAND}` (BOBYQA against VocalTractLab's gestural "
+                         "trajectories) and committed: a small definition file that "
+                         "coarticulate loads by default. docs/coarticulation.md")
     trained["training"] = report
     return {"constants": trained, "report": report}
 
@@ -319,20 +319,3 @@ def print_report(report: dict) -> None:
           + ", ".join(f"{k} {v:.2f}" for k, v in m["leave_one_out_rms"].items()
                       if k in COMPARED))
 
-
-def main(argv=None) -> int:
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    max_evals = MAX_EVALS
-    if "--max-evals" in argv:
-        max_evals = int(argv[argv.index("--max-evals") + 1])
-    made = train(get_settings().assets_dir, max_evals=max_evals)
-    print_report(made["report"])
-    path = write_constants(made["constants"])
-    print(f"wrote {path}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
