@@ -1,10 +1,10 @@
 """Benchmark: coarticulated tracks for a ten-word sentence (``speech.coarticulation``).
 
 "Please call Stella, ask her to bring these things with" (35 phones with the two silences,
-timed by ``speech.training.timed``, 2.5 s) at 100 Hz: every parameter and cue track, against a
-naive implementation in the same run, a Python loop over frames and phones that evaluates each
-phone's dominance per parameter group once per frame and accumulates each parameter's
-weighted sum (the same result, checked). Prints the medians and the ratio.
+timed by ``training.coarticulation.timed``, 2.5 s) at 100 Hz: every parameter and cue track,
+against a naive implementation in the same run, a Python loop over frames and phones that
+evaluates each phone's dominance per parameter group once per frame and accumulates each
+parameter's weighted sum (the same result, checked). Prints the medians and the ratio.
 
     .venv/bin/python bench/coarticulation.py [--runs N]
     GLASSHEAD_BENCH_QUICK=1: 5 runs.
@@ -27,7 +27,7 @@ from glasshead.speech.coarticulation import (
     segments,
     target_matrix,
 )
-from glasshead.speech.training import timed
+from glasshead.training.coarticulation import timed
 
 REPO = Path(__file__).resolve().parents[1]
 SENTENCE = ("P L IY Z  K AO L  S T EH L AH0  AE S K  HH ER0  T UW  B R IH NG  DH IY Z  "
