@@ -6,7 +6,7 @@
 //
 // The suites run in two lanes side by side, lint then Python in one, JavaScript then the browser
 // in the other: pytest keeps about one core busy and Chromium the other, so the whole run takes
-// about as long as its longer lane instead of the sum. The benchmarks' quick pass (about a minute)
+// about as long as its longer lane instead of the sum. The benchmarks' quick pass (40 to 50 s of CPU)
 // follows whichever lane ends first, in the time the other lane still takes. Each suite's output
 // is printed whole when it ends, never interleaved. GLASSHEAD_TEST_LANES=1 runs them one after
 // another.
