@@ -11,10 +11,10 @@ from glasshead.constants import TONGUE_RIG_FILE
 from glasshead.fitting.fit2d import (
     RESTARTS,
     WIDTH_WEIGHT,
+    OutlineFit,
     fit_all,
     fit_outline,
     fit_shape,
-    jaw_opening_from_vtl,
     outline_parameters,
     width_parameters,
 )
@@ -26,6 +26,7 @@ from glasshead.fitting.objective2d import (
     compared_outline,
 )
 from glasshead.fitting.optimizer import METHODS, minimize
+from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.vtl_observations import build_vtl_observations
 
@@ -110,11 +111,23 @@ def test_the_objective_poses_once_for_its_outline_and_volume_and_sums_the_same_t
 def test_fit_recovers_a_known_outline_from_neutral(rig, section, method):
     values = rig.values_from(KNOWN_POSE)
     # The outline is exact, so neither pull is needed; the weights would bias the fit.
-    report = fit_outline(rig, rig_outline(section, values), method=method, volume_weight=0.0,
-                         neutral_weight=0.0, section=section)
+    report = fit_outline(rig, rig_outline(section, values),
+                         OutlineFit(method=method, volume_weight=0.0, neutral_weight=0.0,
+                                    section=section))
     assert report.rms_mm < RECOVERY_RMS_MM, report
     assert report.method == method
     assert 0 < report.evaluations <= 3000 and report.seconds > 0
+
+
+def test_a_keyword_is_shorthand_for_a_field_of_the_options_and_a_misspelt_one_is_refused(
+        rig, section, shapes):
+    outline = shapes["a"]["tongue_outline"]
+    by_object = fit_outline(rig, outline, OutlineFit(method="sbplx", section=section),
+                            max_evals=60)
+    by_keyword = fit_outline(rig, outline, method="sbplx", section=section, max_evals=60)
+    assert by_keyword.method == "sbplx" and by_keyword.params == by_object.params
+    with pytest.raises(TypeError, match=r"unknown option\(s\) volume_wieght of OutlineFit"):
+        fit_outline(rig, outline, volume_wieght=0.0)
 
 
 def test_compared_part_leaves_out_the_underside_and_the_hyoid(rig, shapes):

@@ -12,6 +12,8 @@ from glasshead.fitting.fit3d import (
     VTL_POINTS,
     VTL_RIBS,
     Objective3D,
+    ShapeFit3D,
+    SurfaceFit,
     fit_shape3d,
     fit_surface,
     free_groups,
@@ -72,15 +74,17 @@ def synthetic_fit(rig, section, known_pose):
     calls = []
     # The surface is exact, so neither pull is needed; they would bias the recovery (toward the
     # rest volume and neutral, from a pose 1.2 % smaller than rest).
-    report = fit_surface(rig, rig.vertices(known_pose), section=section, name="synthetic",
-                         volume_weight=0.0, neutral_weight=0.0,
+    options = SurfaceFit(section=section, name="synthetic", volume_weight=0.0,
+                         neutral_weight=0.0)
+    report = fit_surface(rig, rig.vertices(known_pose), options,
                          progress=lambda evaluations, best: calls.append((evaluations, best)))
     return report, calls
 
 
 @pytest.fixture(scope="module")
 def vowel_fits(rig, shapes, section):
-    return {name: fit_shape3d(rig, shapes[name], section=section) for name in ("a", "i")}
+    return {name: fit_shape3d(rig, shapes[name], ShapeFit3D(section=section))
+            for name in ("a", "i")}
 
 
 def test_the_rigs_own_surface_at_a_known_pose_is_recovered_from_neutral(rig, known_pose,

@@ -218,10 +218,9 @@ def test_a_jaw_slack_asks_the_wanted_contacts_again_with_the_jaw_more_open(scene
     rig, _tables, probes = scene
     values, frame = _own(scene, POSES["back"])
     section = MidSagittalSection(rig)
-    groups = fit_contact.free_groups(rig)
     made = {slack: fit_contact.contact_objective(
-        rig, section.outline(values), probes, frame.grid, base=values, groups=groups,
-        section=section, margin=0.0, press_mm=None, jaw_slack_deg=slack)
+        rig, section.outline(values), probes, frame.grid, values,
+        fit_contact.ContactFit(section=section, margin=0.0, press_mm=None, jaw_slack_deg=slack))
         for slack in (0.0, 3.0)}
     x = made[0.0].x0
     assert made[0.0].slack_epg is None and made[0.0].slack_error(x) == 0.0

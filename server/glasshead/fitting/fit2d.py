@@ -25,15 +25,16 @@ RMS error, the volume change and the parameters that ended at a range limit.
 """
 
 import json
-import time
-from dataclasses import asdict, dataclass, field
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.constants import TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection, Objective2D
-from glasshead.fitting.optimizer import minimize_restarted
+from glasshead.fitting.optimizer import Progress, minimize_restarted, with_changes
 from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 from glasshead.geometry.tongue_rig import SECTIONS
 from glasshead.geometry.tongue_surface import TongueRig
@@ -119,56 +120,100 @@ def own_pulls(rig: TongueRig, free) -> dict[str, float]:
     return {name: pulls[name] for name in free if name in pulls}
 
 
-def fit_outline(rig: TongueRig, outline, *, method="bobyqa", free=None, base=None,
-                volume_weight=VOLUME_WEIGHT, neutral_weight=NEUTRAL_WEIGHT,
-                volume_bound_pct=VOLUME_BOUND_PCT, volume_bound_weight=VOLUME_BOUND_WEIGHT,
-                max_evals=MAX_EVALS, section=None, name="", ftol_abs=FTOL_ABS,
-                xtol_abs=XTOL_ABS, root_cut_deg=ROOT_CUT_DEG, restarts=0,
-                **options) -> FitReport:
-    """Fit the free parameters (default: the sagittal ones) to one mid-sagittal outline (n, 2),
-    starting from ``base`` (P,) values (default neutral), which also hold the others;
-    ``restarts`` (see RESTARTS) restarts the method from its best point; other keyword options
-    go to ``optimizer.minimize``."""
-    free = list(free) if free is not None else sagittal_parameters(rig)
-    objective = Objective2D(rig, outline, free, base=base, volume_weight=volume_weight,
-                            neutral_weight=neutral_weight, volume_bound_pct=volume_bound_pct,
-                            volume_bound_weight=volume_bound_weight, section=section,
-                            root_cut_deg=root_cut_deg, neutral_weights=own_pulls(rig, free))
+@dataclass(frozen=True, eq=False)
+class OutlineFit:
+    """How ``fit_outline`` fits: the method, what moves and from where, the objective's weights
+    (``objective2d``) and the stopping tests. Every field has the fits' default."""
+
+    method: str = "bobyqa"
+    #: The parameters the fit moves (default: the sagittal ones).
+    free: Sequence[str] | None = None
+    #: (P,) values to start from, which also hold the parameters not fitted (default: neutral).
+    base: npt.ArrayLike | None = None
+    volume_weight: float = VOLUME_WEIGHT
+    neutral_weight: float = NEUTRAL_WEIGHT
+    volume_bound_pct: float = VOLUME_BOUND_PCT
+    volume_bound_weight: float = VOLUME_BOUND_WEIGHT
+    root_cut_deg: float = ROOT_CUT_DEG
+    #: Restarts of the method from its best point (see RESTARTS).
+    restarts: int = 0
+    ftol_abs: float = FTOL_ABS
+    xtol_abs: float = XTOL_ABS
+    #: The rig's section, shared by many fits (made from the rig when None).
+    section: MidSagittalSection | None = None
+    #: The report's shape name.
+    name: str = ""
+
+
+@dataclass(frozen=True, eq=False)
+class ShapeFit(OutlineFit):
+    """How ``fit_shape`` fits a VTL shape: ``OutlineFit``'s fields (its ``free``, ``base`` and
+    ``name`` are the shape's), restarted, with the jaw from VTL's JA (``jaw="vtl"``) or free
+    from there (``jaw="free"``)."""
+
+    restarts: int = RESTARTS
+    jaw: str = "vtl"
+
+
+def fit_outline(rig: TongueRig, outline, options: OutlineFit | None = None, *,
+                max_evals: int = MAX_EVALS, progress: Progress | None = None,
+                **changes) -> FitReport:
+    """Fit ``options.free`` to one mid-sagittal outline (n, 2) from ``options.base``, within
+    ``max_evals`` evaluations, calling ``progress`` after each; keyword ``changes`` replace
+    fields of ``options`` (``optimizer.with_changes``)."""
+    options = with_changes(options or OutlineFit(), changes)
+    free = list(options.free) if options.free is not None else sagittal_parameters(rig)
+    objective = Objective2D(rig, outline, free, base=options.base,
+                            volume_weight=options.volume_weight,
+                            neutral_weight=options.neutral_weight,
+                            volume_bound_pct=options.volume_bound_pct,
+                            volume_bound_weight=options.volume_bound_weight,
+                            section=options.section, root_cut_deg=options.root_cut_deg,
+                            neutral_weights=own_pulls(rig, free))
     x0 = objective.base[objective.index]
-    result = minimize_restarted(objective, x0, objective.lower, objective.upper, method=method,
-                                max_evals=max_evals, ftol_abs=ftol_abs, xtol_abs=xtol_abs,
-                                restarts=restarts, restart_gain=RESTART_GAIN, **options)
+    result = minimize_restarted(objective, x0, objective.lower, objective.upper,
+                                method=options.method, max_evals=max_evals,
+                                ftol_abs=options.ftol_abs, xtol_abs=options.xtol_abs,
+                                restarts=options.restarts, restart_gain=RESTART_GAIN,
+                                progress=progress)
     errors = objective.errors(result.x)
     margin = LIMIT_FRACTION * (objective.upper - objective.lower)
     near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
     at_limit = [n for n, hit in zip(free, near, strict=True) if hit]
     values = objective.values(result.x)
     return FitReport(
-        shape=name, method=method, evaluations=result.evaluations, seconds=result.seconds,
+        shape=options.name, method=options.method, evaluations=result.evaluations,
+        seconds=result.seconds,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         volume_change_pct=objective.volume_change(result.x), at_limit=at_limit,
         rays=len(errors), stop=result.stop,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)})
 
 
-def fit_shape(rig: TongueRig, shape, *, method="bobyqa", jaw="vtl", section=None,
-              **options) -> FitReport:
-    """Fit one VTL shape record (from vtl-observations.json) by its tongue outline."""
-    if jaw not in ("vtl", "free"):
-        raise ValueError(f"jaw must be 'vtl' or 'free', got {jaw!r}")
+def fit_shape(rig: TongueRig, shape, options: ShapeFit | None = None, *,
+              max_evals: int = MAX_EVALS, progress: Progress | None = None,
+              **changes) -> FitReport:
+    """Fit one VTL shape record (from vtl-observations.json) by its tongue outline: the outline
+    parameters (and the jaw, when free) from neutral with the jaw from VTL."""
+    options = with_changes(options or ShapeFit(), changes)
+    if options.jaw not in ("vtl", "free"):
+        raise ValueError(f"jaw must be 'vtl' or 'free', got {options.jaw!r}")
     base = rig.neutral.copy()
     base[rig.jaw_parameter] = jaw_opening_from_vtl(shape, rig)
-    free = outline_parameters(rig) + ([rig.jaw["parameter"]] if jaw == "free" else [])
-    options.setdefault("restarts", RESTARTS)
-    return fit_outline(rig, shape["tongue_outline"], method=method, free=free, base=base,
-                       section=section, name=shape["name"], **options)
+    free = outline_parameters(rig) + ([rig.jaw["parameter"]] if options.jaw == "free" else [])
+    return fit_outline(rig, shape["tongue_outline"],
+                       replace(options, free=free, base=base, name=shape["name"]),
+                       max_evals=max_evals, progress=progress)
 
 
-def fit_all(rig: TongueRig, observations, *, method="bobyqa", names=None,
-            **options) -> list[FitReport]:
-    """Fit every shape of an observations document (or those named), in its order."""
-    section = MidSagittalSection(rig)
-    return [fit_shape(rig, s, method=method, section=section, **options)
+def fit_all(rig: TongueRig, observations, options: ShapeFit | None = None, *,
+            names: Sequence[str] | None = None, max_evals: int = MAX_EVALS,
+            **changes) -> list[FitReport]:
+    """``fit_shape`` of every shape of an observations document (or those named), in its
+    order, on one section of the rig."""
+    options = with_changes(options or ShapeFit(), changes)
+    options = replace(options, section=options.section or MidSagittalSection(rig))
+    return [fit_shape(rig, s, options, max_evals=max_evals)
             for s in select_shapes(observations, names)]
 
 
@@ -191,27 +236,3 @@ def load_inputs(assets_dir):
     rig = TongueRig(json.loads((assets_dir / TONGUE_RIG_FILE).read_text()))
     observations = json.loads((assets_dir / VTL_OBSERVATIONS_FILE).read_text())
     return rig, observations
-
-
-def main(argv=None):
-    import sys
-
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    method = argv[0] if argv else "bobyqa"
-    rig, observations = load_inputs(get_settings().assets_dir)
-    started = time.perf_counter()
-    reports = fit_all(rig, observations, method=method)
-    for r in reports:
-        print(f"{r.shape:32s} {r.rms_mm:6.2f} mm  max {r.max_error_mm:5.2f}  "
-              f"dV {r.volume_change_pct:+5.1f} %  {r.evaluations:5d} evals "
-              f"{r.seconds:5.2f} s  {','.join(r.at_limit)}")
-    rms = np.array([r.rms_mm for r in reports])
-    print(f"{len(reports)} shapes, {method}: median RMS {np.median(rms):.2f} mm, "
-          f"{int(np.sum(rms <= 1.0))} within 1.0 mm; {time.perf_counter() - started:.1f} s")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -55,10 +55,11 @@ many times over).
 """
 
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.fitting import fit2d, fit_contact
 from glasshead.fitting.fit2d import (
@@ -73,7 +74,7 @@ from glasshead.fitting.fit2d import (
 )
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection
 from glasshead.fitting.objective3d import RayError3D
-from glasshead.fitting.optimizer import minimize_restarted
+from glasshead.fitting.optimizer import Progress, minimize_restarted, with_changes
 from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 from glasshead.geometry.tongue_surface import TongueRig
 
@@ -266,24 +267,56 @@ def free_groups(rig: TongueRig, symmetric=False) -> list[tuple[str, list[str]]]:
     return [(name, [name]) for name in surface_parameters(rig)]
 
 
-def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=None,
-                max_evals=MAX_EVALS, progress: Callable[[int, float], None] | None = None,
-                name="", symmetric=False, groups=None,
-                section: MidSagittalSection | None = None, volume_weight=VOLUME_WEIGHT,
-                neutral_weight=NEUTRAL_WEIGHT, volume_bound_pct=VOLUME_BOUND_PCT,
-                volume_bound_weight=VOLUME_BOUND_WEIGHT, max_rays=MAX_RAYS,
-                restarts=RESTARTS, step_fraction=STEP_FRACTION, ftol_abs=FTOL_ABS,
-                xtol_abs=XTOL_ABS, **options) -> FitReport3D:
-    """Fit the rig's surface to observed vertices (k, 3) float mm in the project frame.
+@dataclass(frozen=True, eq=False)
+class SurfaceFit:
+    """How ``fit_surface`` fits: the method, the start, the free variables and the vertices
+    compared, the objective's weights (fit2d's), the rays kept and the stopping tests. Every
+    field has the fits' default."""
 
-    ``base`` (P,) values to start from, which also hold the parameters not fitted (default
-    neutral); the free variables are ``groups`` (name, parameters), default ``free_groups(rig,
-    symmetric)``; ``mask`` (k,) bool of the vertices to compare (default ``visible_mask``'s root
-    cut); ``progress(evaluations, best_error)`` after every evaluation (counted over the
-    restarts); other keyword options go to ``optimizer.minimize``. Raises ValueError for a
-    malformed surface or base, a mask of the wrong shape, or fewer than MIN_RAYS vertices left
-    to compare.
+    method: str = "bobyqa"
+    #: (P,) values to start from, which also hold the parameters not fitted (default: neutral).
+    base: npt.ArrayLike | None = None
+    #: (k,) bool of the vertices to compare (default: ``visible_mask``'s root cut).
+    mask: npt.ArrayLike | None = None
+    #: The free variables, (name, rig parameters) each (default: ``free_groups(rig, symmetric)``).
+    groups: Sequence[tuple[str, Sequence[str]]] | None = None
+    symmetric: bool = False
+    volume_weight: float = VOLUME_WEIGHT
+    neutral_weight: float = NEUTRAL_WEIGHT
+    volume_bound_pct: float = VOLUME_BOUND_PCT
+    volume_bound_weight: float = VOLUME_BOUND_WEIGHT
+    max_rays: int = MAX_RAYS
+    restarts: int = RESTARTS
+    step_fraction: float = STEP_FRACTION
+    ftol_abs: float = FTOL_ABS
+    xtol_abs: float = XTOL_ABS
+    #: The rig's section, shared by many fits (made from the rig when None).
+    section: MidSagittalSection | None = None
+    #: The report's shape name.
+    name: str = ""
+
+
+@dataclass(frozen=True, eq=False)
+class ShapeFit3D(SurfaceFit):
+    """How ``fit_shape3d`` fits a VTL sheet: ``SurfaceFit``'s fields (its ``base``, ``mask`` and
+    ``name`` are the shape's), the coronal groups symmetric, from the mid-sagittal fit of the
+    shape's outline (``from_2d``) or from neutral, the jaw from VTL either way."""
+
+    symmetric: bool = True
+    from_2d: bool = True
+
+
+def fit_surface(rig: TongueRig, observed, options: SurfaceFit | None = None, *,
+                max_evals: int = MAX_EVALS, progress: Progress | None = None,
+                **changes) -> FitReport3D:
+    """Fit the rig's surface to observed vertices (k, 3) float mm in the project frame, within
+    ``max_evals`` evaluations; ``progress(evaluations, best_error)`` after every evaluation
+    (counted over the restarts); keyword ``changes`` replace fields of ``options``
+    (``optimizer.with_changes``). Raises ValueError for a malformed surface or base, a mask of
+    the wrong shape, or fewer than MIN_RAYS vertices left to compare.
     """
+    options = with_changes(options or SurfaceFit(), changes)
+    base, mask = options.base, options.mask
     points = check_observed(observed)
     start = rig.neutral.copy() if base is None else np.array(base, dtype=np.float64)
     if start.shape != rig.neutral.shape or not np.all(np.isfinite(start)):
@@ -300,27 +333,32 @@ def fit_surface(rig: TongueRig, observed, *, method="bobyqa", base=None, mask=No
     if int(keep.sum()) < MIN_RAYS:
         raise ValueError(f"the mask leaves {int(keep.sum())} vertices to compare; at least "
                          f"{MIN_RAYS} are needed")
-    objective = Objective3D(rig, points, keep, groups or free_groups(rig, symmetric),
-                            base=start, origin=origin, section=section or MidSagittalSection(rig),
-                            volume_weight=volume_weight, neutral_weight=neutral_weight,
-                            volume_bound_pct=volume_bound_pct,
-                            volume_bound_weight=volume_bound_weight, max_rays=max_rays)
+    groups = options.groups or free_groups(rig, options.symmetric)
+    objective = Objective3D(rig, points, keep, groups, base=start, origin=origin,
+                            section=options.section or MidSagittalSection(rig),
+                            volume_weight=options.volume_weight,
+                            neutral_weight=options.neutral_weight,
+                            volume_bound_pct=options.volume_bound_pct,
+                            volume_bound_weight=options.volume_bound_weight,
+                            max_rays=options.max_rays)
     before = objective.residuals(objective.x0)
-    options.setdefault("initial_step", step_fraction * (objective.upper - objective.lower))
     started, cpu = time.perf_counter(), time.process_time()
     # BOBYQA's models go stale where rays slip from one triangle to the next: restart from
     # the best point, with fresh models, while that still gains.
     result = minimize_restarted(objective, objective.x0, objective.lower, objective.upper,
-                                method=method, max_evals=max_evals, progress=progress,
-                                restarts=restarts, restart_gain=RESTART_GAIN,
-                                ftol_abs=ftol_abs, xtol_abs=xtol_abs, **options)
+                                method=options.method, max_evals=max_evals, progress=progress,
+                                restarts=options.restarts, restart_gain=RESTART_GAIN,
+                                ftol_abs=options.ftol_abs, xtol_abs=options.xtol_abs,
+                                initial_step=options.step_fraction
+                                * (objective.upper - objective.lower))
     seconds, cpu = time.perf_counter() - started, time.process_time() - cpu
     errors = objective.residuals(result.x)
     margin = LIMIT_FRACTION * (objective.upper - objective.lower)
     near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
     values = objective.values(result.x)
     return FitReport3D(
-        shape=name, method=method, evaluations=result.evaluations, seconds=seconds,
+        shape=options.name, method=options.method, evaluations=result.evaluations,
+        seconds=seconds,
         cpu_seconds=cpu,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         volume_change_pct=objective.volume_change(result.x),
@@ -336,19 +374,21 @@ def shape_vertices(shape) -> np.ndarray:
     return np.asarray(shape["tongue_surface_vertices"], dtype=np.float64)
 
 
-def fit_shape3d(rig: TongueRig, shape, *, method="bobyqa", from_2d=True, symmetric=True,
-                section: MidSagittalSection | None = None, **options) -> FitReport3D:
-    """Fit one VTL shape record by its tongue sheet: jaw from VTL, from the mid-sagittal fit of
-    its outline when ``from_2d`` (else from neutral), rib-grid mask; ``symmetric`` coronal
-    groups, since VTL builds its sheet from a half surface and its mirror."""
-    section = section or MidSagittalSection(rig)
+def fit_shape3d(rig: TongueRig, shape, options: ShapeFit3D | None = None, *,
+                max_evals: int = MAX_EVALS, progress: Progress | None = None,
+                **changes) -> FitReport3D:
+    """Fit one VTL shape record by its tongue sheet (see ``ShapeFit3D``), with the rib-grid
+    mask."""
+    options = with_changes(options or ShapeFit3D(), changes)
+    section = options.section or MidSagittalSection(rig)
     base = rig.neutral.copy()
     base[rig.jaw_parameter] = jaw_opening_from_vtl(shape, rig)
     started, cpu = time.perf_counter(), time.process_time()
     start_evaluations = 0
-    if from_2d:
-        outline = fit2d.fit_outline(rig, shape["tongue_outline"], base=base, section=section,
-                                    name=shape["name"])
+    if options.from_2d:
+        outline = fit2d.fit_outline(rig, shape["tongue_outline"],
+                                    fit2d.OutlineFit(base=base, section=section,
+                                                     name=shape["name"]))
         base = np.array([outline.params[n] for n in rig.parameter_names])
         start_evaluations = outline.evaluations
     start_seconds, start_cpu = time.perf_counter() - started, time.process_time() - cpu
@@ -356,51 +396,21 @@ def fit_shape3d(rig: TongueRig, shape, *, method="bobyqa", from_2d=True, symmetr
     origin = np.append(rig.control_points(base)[1], 0.0)
     mask = visible_mask(vertices, origin, grid=(VTL_RIBS, VTL_POINTS)) \
         if len(vertices) == VTL_RIBS * VTL_POINTS else None
-    report = fit_surface(rig, vertices, method=method, base=base, mask=mask,
-                         name=shape["name"], section=section, symmetric=symmetric,
-                         **options)
+    report = fit_surface(rig, vertices, replace(options, base=base, mask=mask,
+                                                name=shape["name"], section=section),
+                         max_evals=max_evals, progress=progress)
     report.start_evaluations = start_evaluations
     report.start_seconds = start_seconds
     report.start_cpu_seconds = start_cpu
     return report
 
 
-def fit_all3d(rig: TongueRig, observations, *, method="bobyqa", names=None,
-              **options) -> list[FitReport3D]:
-    """Fit every shape of an observations document (or those named), in its order."""
-    section = MidSagittalSection(rig)
-    return [fit_shape3d(rig, s, method=method, section=section, **options)
+def fit_all3d(rig: TongueRig, observations, options: ShapeFit3D | None = None, *,
+              names: Sequence[str] | None = None, max_evals: int = MAX_EVALS,
+              **changes) -> list[FitReport3D]:
+    """``fit_shape3d`` of every shape of an observations document (or those named), in its
+    order, on one section of the rig."""
+    options = with_changes(options or ShapeFit3D(), changes)
+    options = replace(options, section=options.section or MidSagittalSection(rig))
+    return [fit_shape3d(rig, s, options, max_evals=max_evals)
             for s in select_shapes(observations, names)]
-
-
-def main(argv=None):
-    """``python -m glasshead.fitting.fit3d [method] [shape ...]``: every shape (or those named),
-    one line each, and a summary."""
-    import sys
-
-    from glasshead.settings import get_settings
-
-    argv = sys.argv[1:] if argv is None else argv
-    method = argv[0] if argv else "bobyqa"
-    rig, observations = fit2d.load_inputs(get_settings().assets_dir)
-    started = time.perf_counter()
-    reports = fit_all3d(rig, observations, method=method, names=argv[1:] or None)
-    for r in reports:
-        print(f"{r.shape:28s} {r.rms_mm:5.2f} mm (from {r.start_rms_mm:5.2f})  "
-              f"max {r.max_error_mm:5.2f}  dV {r.volume_change_pct:+5.1f} %  "
-              f"{r.evaluations:5d} evals {r.seconds:5.2f} s, CPU {r.cpu_seconds:5.2f} s "
-              f"(2D {r.start_cpu_seconds:4.2f} s)  {','.join(r.at_limit)}")
-    rms = np.array([r.rms_mm for r in reports])
-    cpu = np.array([r.cpu_seconds + r.start_cpu_seconds for r in reports])
-    print(f"{len(reports)} shapes, {method}: median RMS {np.median(rms):.2f} mm, "
-          f"{int(np.sum(rms <= GOAL_RMS_MM))} within {GOAL_RMS_MM} mm; median "
-          f"{np.median([r.evaluations for r in reports]):.0f} evaluations, "
-          f"{np.median([r.seconds for r in reports]):.2f} s wall, "
-          f"{np.median([r.cpu_seconds for r in reports]):.2f} s CPU (with the 2D fit "
-          f"{np.median(cpu):.2f} s, at most {cpu.max():.2f} s); "
-          f"{time.perf_counter() - started:.1f} s")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

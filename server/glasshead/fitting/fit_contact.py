@@ -37,15 +37,17 @@ still gains (``RESTARTS``), within ``MAX_EVALS`` evaluations in all.
 """
 
 import time
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
+import numpy.typing as npt
 
 from glasshead.epg.contacts import Probes
 from glasshead.fitting import fit2d
 from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.fitting.objective_epg import EpgObjective
-from glasshead.fitting.optimizer import minimize_restarted
+from glasshead.fitting.optimizer import minimize_restarted, with_changes
 from glasshead.geometry.tongue_surface import TongueRig
 
 #: mm^2 per mm^2: weight of the squared EPG error against the squared outline RMS.
@@ -183,52 +185,77 @@ class ContactObjective:
         return value
 
 
-def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, *, base, groups,
-                      weights=None, section: MidSagittalSection | None = None,
-                      epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
-                      press_mm=PRESS_MM, jaw_slack_deg=0.0, ranges=None,
-                      volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
-                      ) -> ContactObjective:
-    """The ``ContactObjective`` of ``fit_contact`` (see there for the arguments)."""
-    epg = EpgObjective(probes, wanted, rig.triangles, weights=weights, margin=margin,
-                       contact_margin=contact_margin, press_mm=press_mm)
+@dataclass(frozen=True, eq=False)
+class ContactFit:
+    """How ``fit_contact`` fits: the method, the free variables (``free_groups``: the coronal
+    ``sections`` and ``coronal`` groups, the jaw, the sagittal parameters ``held`` at their
+    start), the EPG goal's weights and margins (``objective_epg.EpgObjective``), the steeper
+    volume bound, the jaw's slack and narrower coronal ranges. Every field has the fits'
+    default."""
+
+    method: str = "bobyqa"
+    #: Per electrode, (k,) or an (8, 8) grid, non-negative (default 1).
+    weights: npt.ArrayLike | None = None
+    sections: Sequence[str] = SECTIONS
+    jaw: bool = True
+    coronal: Sequence[str] = CORONAL_GROUPS
+    held: Sequence[str] = ()
+    epg_weight: float = EPG_WEIGHT
+    margin: float = MARGIN_MM
+    #: The wanted contacts' own margin (``EpgObjective``; default ``margin``).
+    contact_margin: float | None = None
+    press_mm: float | None = PRESS_MM
+    volume_bound_weight: float = VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT
+    #: The wanted contacts are also asked with the jaw this much more open (module docstring).
+    jaw_slack_deg: float = 0.0
+    #: ``{coronal group: (min, max)}`` narrower than the rig's, for every section.
+    ranges: Mapping[str, tuple[float, float]] | None = None
+    #: The rig's section, shared by many fits (made from the rig when None).
+    section: MidSagittalSection | None = None
+    #: The report's shape name.
+    name: str = ""
+
+    def groups(self, rig: TongueRig) -> list[tuple[str, list[str]]]:
+        """The free variables these options give (``free_groups``)."""
+        return free_groups(rig, self.sections, self.jaw, self.coronal, self.held)
+
+
+def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, base,
+                      options: ContactFit | None = None, **changes) -> ContactObjective:
+    """The ``ContactObjective`` of ``fit_contact`` from ``base`` (P,) values, for an outline
+    (n, 2) and a wanted EPG pattern (see there)."""
+    options = with_changes(options or ContactFit(), changes)
+    epg = EpgObjective(probes, wanted, rig.triangles, weights=options.weights,
+                       margin=options.margin, contact_margin=options.contact_margin,
+                       press_mm=options.press_mm)
     slack_epg = None
-    if jaw_slack_deg:
+    if options.jaw_slack_deg:
         # Only the wanted contacts, at the plain margin: the closure must be there, and what the
         # looser jaw frees elsewhere is no error.
         slack_epg = EpgObjective(probes, wanted, rig.triangles,
-                                 weights=epg.weights * epg.wanted, margin=margin)
-    return ContactObjective(rig, outline, epg, base=base, groups=groups, section=section,
-                            epg_weight=epg_weight, volume_bound_weight=volume_bound_weight,
-                            slack_epg=slack_epg, jaw_slack_deg=jaw_slack_deg, ranges=ranges)
+                                 weights=epg.weights * epg.wanted, margin=options.margin)
+    return ContactObjective(rig, outline, epg, base=base, groups=options.groups(rig),
+                            section=options.section, epg_weight=options.epg_weight,
+                            volume_bound_weight=options.volume_bound_weight,
+                            slack_epg=slack_epg, jaw_slack_deg=options.jaw_slack_deg,
+                            ranges=options.ranges)
 
 
-def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weights=None,
-                section: MidSagittalSection | None = None, sections=SECTIONS, jaw=True,
-                coronal=CORONAL_GROUPS, held=(),
-                epg_weight=EPG_WEIGHT, margin=MARGIN_MM, contact_margin=None,
-                press_mm=PRESS_MM,
-                volume_bound_weight=VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
-                jaw_slack_deg=0.0, ranges=None, max_evals=MAX_EVALS, name="",
-                method="bobyqa") -> ContactFitReport:
+def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, base,
+                options: ContactFit | None = None, *, max_evals: int = MAX_EVALS,
+                **changes) -> ContactFitReport:
     """Fit the sagittal and grouped coronal parameters to an outline (n, 2) and a wanted EPG
     pattern (``EpgObjective``'s ``wanted``: per electrode or an (8, 8) grid) from ``base`` (P,)
-    values (normally the 2D fit's result, which also holds the jaw and the other parameters).
-    ``contact_margin``: the wanted contacts' own margin (``EpgObjective``), default ``margin``;
-    ``held``: sagittal parameters that keep their ``base`` value; ``jaw_slack_deg``: the wanted
-    contacts are also asked with the jaw this much more open (module docstring); ``ranges``:
-    ``{coronal group: (min, max)}`` narrower than the rig's, for every section."""
-    objective = contact_objective(rig, outline, probes, wanted, base=base, weights=weights,
-                                  groups=free_groups(rig, sections, jaw, coronal, held),
-                                  section=section, epg_weight=epg_weight, margin=margin,
-                                  contact_margin=contact_margin, press_mm=press_mm,
-                                  jaw_slack_deg=jaw_slack_deg, ranges=ranges,
-                                  volume_bound_weight=volume_bound_weight)
+    values (normally the 2D fit's result, which also holds the jaw and the other parameters),
+    within ``max_evals`` evaluations; keyword ``changes`` replace fields of ``options``
+    (``optimizer.with_changes``)."""
+    options = with_changes(options or ContactFit(), changes)
+    objective = contact_objective(rig, outline, probes, wanted, base, options)
     started = time.perf_counter()
     # BOBYQA's quadratic models stall where a ray's crossing jumps (a ray slipping off an edge of
     # the tongue): restart it from its best point, with fresh models, while that still gains.
     result = minimize_restarted(objective, objective.x0, objective.lower, objective.upper,
-                                method=method, max_evals=max_evals, restarts=RESTARTS,
+                                method=options.method, max_evals=max_evals, restarts=RESTARTS,
                                 restart_gain=RESTART_GAIN, ftol_abs=fit2d.FTOL_ABS,
                                 xtol_abs=fit2d.XTOL_ABS)
     evaluations = result.evaluations
@@ -237,9 +264,9 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, *, base, weight
     margin_x = fit2d.LIMIT_FRACTION * (objective.upper - objective.lower)
     near = (result.x <= objective.lower + margin_x) | (result.x >= objective.upper - margin_x)
     values = objective.values(result.x)
-    plain = EpgObjective(probes, wanted, rig.triangles, weights=weights)
+    plain = EpgObjective(probes, wanted, rig.triangles, weights=options.weights)
     return ContactFitReport(
-        shape=name, evaluations=evaluations, seconds=time.perf_counter() - started,
+        shape=options.name, evaluations=evaluations, seconds=time.perf_counter() - started,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         epg_error_mm=plain(rig.vertices(values)),
         volume_change_pct=objective.plane.volume_change(full),

@@ -18,12 +18,19 @@ crosses). NLopt offers three such local methods with bounds:
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import nlopt
 import numpy as np
 
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
+
 METHODS = {"praxis": nlopt.LN_PRAXIS, "bobyqa": nlopt.LN_BOBYQA, "sbplx": nlopt.LN_SBPLX}
+#: ``progress(evaluations, best_error)``: called after every evaluation of a fit.
+Progress = Callable[[int, float], None]
+Options = TypeVar("Options", bound="DataclassInstance")
 
 #: NLopt's result codes, as words for reports.
 STOP_REASONS = {
@@ -169,3 +176,18 @@ def minimize_restarted(objective: Callable[[np.ndarray], float], x0, lower, uppe
             break
     result.evaluations, result.seconds = done["n"], seconds
     return result
+
+
+def with_changes(options: Options, changes: dict[str, Any]) -> Options:
+    """A fit's options (a dataclass) with the fields named in ``changes`` replaced: the keyword
+    shorthand every fit function takes, ``fit_outline(rig, outline, method="sbplx")`` for
+    ``fit_outline(rig, outline, OutlineFit(method="sbplx"))``. TypeError naming a keyword that is
+    not one of its fields."""
+    if not changes:
+        return options
+    known = [f.name for f in fields(options)]
+    unknown = sorted(set(changes) - set(known))
+    if unknown:
+        raise TypeError(f"unknown option(s) {', '.join(unknown)} of {type(options).__name__}; "
+                        f"it has {', '.join(known)}")
+    return replace(options, **changes)

@@ -119,7 +119,7 @@ def fit_entry(ctx: Context, shape: dict) -> tuple[dict, dict | None]:
     try:
         objective = Objective2D(rig, shape["tongue_outline"], fit2d.outline_parameters(rig),
                                 base=base, section=ctx.section)
-        report = fit2d.fit_shape(rig, shape, method=METHOD, section=ctx.section)
+        report = fit2d.fit_shape(rig, shape, fit2d.ShapeFit(method=METHOD, section=ctx.section))
     except ValueError as exc:
         return {**entry, "error": str(exc), "rms_mm": None}, None
     fitted = np.array([report.params[n] for n in rig.parameter_names])

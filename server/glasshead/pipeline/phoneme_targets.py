@@ -39,6 +39,7 @@ import inspect
 import json
 import multiprocessing
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -145,15 +146,15 @@ def outline_fit(ctx: Context, shape_name: str) -> tuple[fit2d.FitReport, dict]:
         base[rig.parameter_names.index(name)] = value
     weight = fit2d.VOLUME_WEIGHT
     free = [n for n in fit2d.sagittal_parameters(rig) if n not in HELD_IN_TARGETS]
-    report = fit2d.fit_outline(rig, shape["tongue_outline"], base=base, section=ctx.section,
-                               name=shape_name, volume_weight=weight, free=free)
+    options = fit2d.OutlineFit(free=free, base=base, volume_weight=weight, section=ctx.section,
+                               name=shape_name)
+    report = fit2d.fit_outline(rig, shape["tongue_outline"], options)
     refits = 0
     while abs(report.volume_change_pct) > VOLUME_REFIT_PCT and refits < VOLUME_REFITS:
         weight *= 10.0
         refits += 1
-        start = rig.values_from(report.params)
-        report = fit2d.fit_outline(rig, shape["tongue_outline"], base=start, free=free,
-                                   section=ctx.section, name=shape_name, volume_weight=weight)
+        options = replace(options, base=rig.values_from(report.params), volume_weight=weight)
+        report = fit2d.fit_outline(rig, shape["tongue_outline"], options)
     return report, {"shape": shape_name, "rms_mm": round(report.rms_mm, 3),
                     "max_error_mm": round(report.max_error_mm, 3), "at_limit": report.at_limit,
                     "evaluations": report.evaluations, "volume_weight": weight,
@@ -328,16 +329,15 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
     penetration = goal.get("penetration_mm")
     jaw_slack = JAW_SLACK_OF_GOAL.get(goal["name"], 0.0)
     contact_margin = None if penetration is None else ctx.probes.tolerance + penetration
-    options = {"weights": goal["weights"], "section": ctx.section,
-               "epg_weight": goal["epg_weight"], "contact_margin": contact_margin,
-               "jaw_slack_deg": jaw_slack, "ranges": TARGET_CORONAL_RANGES}
-    objective = fit_contact.contact_objective(
-        rig, shape["tongue_outline"], ctx.probes, goal["wanted"], base=fitted,
-        groups=fit_contact.free_groups(rig, coronal=coronal, held=held), **options)
+    options = fit_contact.ContactFit(
+        weights=goal["weights"], coronal=coronal, held=held, epg_weight=goal["epg_weight"],
+        contact_margin=contact_margin, jaw_slack_deg=jaw_slack, ranges=TARGET_CORONAL_RANGES,
+        section=ctx.section, name=shape_name)
+    objective = fit_contact.contact_objective(rig, shape["tongue_outline"], ctx.probes,
+                                              goal["wanted"], fitted, options)
     start = _contact_start(ctx, objective, fitted)
     contact = fit_contact.fit_contact(rig, shape["tongue_outline"], ctx.probes, goal["wanted"],
-                                      base=objective.values(start), coronal=coronal, held=held,
-                                      name=shape_name, **options)
+                                      objective.values(start), options)
     tongue = {n: round(v, 4) for n, v in contact.params.items()}
     after_grid = ctx.epg(tongue)["grid"]
     fit = {**fit, "rms_mm": round(contact.rms_mm, 3),
