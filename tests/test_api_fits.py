@@ -12,7 +12,7 @@ import pytest
 
 from accounts_support import signed_in
 from glasshead.fitting import fit2d
-from glasshead.fitting.job_runner import FitRunner
+from glasshead.jobs.fit_runner import FitRunner
 from glasshead.store.db import engine_for
 from glasshead.store.fit_jobs import FitJob
 
@@ -142,9 +142,9 @@ def test_real_epg_frames_fit_to_their_majority_with_the_agreement_reported(clien
 def test_a_full_queue_is_503_with_retry_after_and_stores_nothing(start_app, outline,
                                                                  monkeypatch):
     monkeypatch.setenv("GLASSHEAD_FIT_QUEUE_LIMIT", "1")
+    monkeypatch.setenv("GLASSHEAD_FIT_WORKERS", "0")  # this server runs no fits
     app, client = start_app()
     signed_in(client, "author")
-    monkeypatch.setattr(app.state.fits, "submit", lambda job_id: None)  # nothing runs
     assert post_fit(client, contour_csv(outline), "contour").status_code == 202
     full = post_fit(client, contour_csv(outline), "contour")
     assert full.status_code == 503 and full.headers["retry-after"].isdigit()
@@ -159,7 +159,7 @@ def test_a_job_left_running_by_a_stopped_server_fails_and_a_live_ones_is_left_al
 
     from sqlalchemy.orm import Session
 
-    from glasshead.fitting.job_runner import STALE_AFTER_S
+    from glasshead.jobs.fit_runner import STALE_AFTER_S
     from glasshead.store.base import utc_now
     from glasshead.store.db import upgrade_to_head
 
@@ -187,15 +187,16 @@ def test_a_job_left_running_by_a_stopped_server_fails_and_a_live_ones_is_left_al
     engine.dispose()
 
 
-def test_a_job_queued_by_a_server_that_died_is_run_by_another_servers_sweep(tmp_path, outline,
-                                                                            built_assets,
-                                                                            monkeypatch):
+def test_a_job_queued_by_another_process_on_sqlite_is_run_by_this_servers_sweep(
+        tmp_path, outline, built_assets, monkeypatch):
+    """SQLite has no NOTIFY: a job stored by another process (a uvicorn worker on the same
+    file, or a server that died) is found by the sweep."""
     from sqlalchemy.orm import Session
 
-    from glasshead.fitting import job_runner
+    from glasshead.jobs import fit_runner
     from glasshead.store.db import upgrade_to_head
 
-    monkeypatch.setattr(job_runner, "SWEEP_S", 0.2)
+    monkeypatch.setattr(fit_runner, "SWEEP_S", 0.2)
     url = f"sqlite:///{tmp_path / 'fits.sqlite3'}"
     engine = engine_for(url)
     upgrade_to_head(engine)

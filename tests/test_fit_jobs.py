@@ -1,9 +1,11 @@
 """Fit jobs without the API: uploads read into observations, fits of each kind, the worker's job
-(its row's states and progress) run in this process, and the pool of workers stopped and
-started again."""
+(its row's states and progress) run in this process, and the runner's pool of workers stopped
+and started again, and losing a worker mid-fit."""
 
 import io
 import json
+import os
+import signal
 import time
 
 import numpy as np
@@ -11,15 +13,17 @@ import pytest
 from sqlalchemy.orm import Session
 
 from glasshead import uploads
+from glasshead.asset_store import AssetStore
 from glasshead.fitting import fit3d, jobs
-from glasshead.fitting.job_runner import FitRunner
+from glasshead.jobs import fit_job, fit_queue
+from glasshead.jobs.fit_runner import FitRunner
 from glasshead.store.db import engine_for, upgrade_to_head
 from glasshead.store.fit_jobs import FitJob
 
 
 @pytest.fixture(scope="module")
 def inputs(built_assets):
-    return jobs.load_inputs(built_assets)
+    return fit_job.fit_inputs(AssetStore(built_assets))
 
 
 @pytest.fixture(scope="module")
@@ -117,24 +121,32 @@ def _queue(engine, points, kind="contour", **source) -> int:
         return job.id
 
 
-def test_the_worker_runs_a_queued_job_to_done_with_its_target_and_report(
+def _claim(engine) -> int | None:
+    with Session(engine) as session:
+        return fit_queue.claim_next(session)
+
+
+def test_the_worker_runs_a_claimed_job_to_done_with_its_target_and_report(
         engine, shape_a, built_assets):
     url, eng = engine
     job_id = _queue(eng, np.asarray(shape_a["tongue_outline"]), max_evals=150)
-    assert jobs.run_job(url, str(built_assets), job_id) == "done"
+    assert fit_job.run_job(url, str(built_assets), job_id) == "queued"  # not claimed: not run
+    assert _claim(eng) == job_id and _claim(eng) is None
+    assert fit_job.run_job(url, str(built_assets), job_id) == "done"
     with Session(eng) as session:
         job = session.get(FitJob, job_id)
         assert job.state == "done" and job.message is None
         assert job.report["evaluations"] == 150 and job.progress["fraction"] == 1.0
         assert job.started_at <= job.finished_at and len(job.params) > 32
-    assert jobs.run_job(url, str(built_assets), job_id) == "done"  # not run twice
+    assert fit_job.run_job(url, str(built_assets), job_id) == "done"  # not run twice
 
 
 def test_a_fit_that_cannot_run_fails_its_job_with_the_reason(engine, built_assets):
     url, eng = engine
     short = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [4.0, 0.0]])  # 5 rays
     job_id = _queue(eng, short)
-    assert jobs.run_job(url, str(built_assets), job_id) == "failed"
+    assert _claim(eng) == job_id
+    assert fit_job.run_job(url, str(built_assets), job_id) == "failed"
     with Session(eng) as session:
         job = session.get(FitJob, job_id)
         assert job.state == "failed" and "ValueError" in job.message and job.params is None
@@ -146,7 +158,7 @@ def test_progress_is_written_a_few_times_a_second_and_a_deleted_row_stops_the_fi
     with Session(eng) as session:
         session.get(FitJob, job_id).state = "running"
         session.commit()
-        writer = jobs.ProgressWriter(session, job_id, interval_s=0.25)
+        writer = fit_job.ProgressWriter(session, job_id, interval_s=0.25)
         commits = []
         real_commit = session.commit
         session.commit = lambda: (commits.append(1), real_commit())
@@ -159,7 +171,7 @@ def test_progress_is_written_a_few_times_a_second_and_a_deleted_row_stops_the_fi
         session.execute(FitJob.__table__.delete().where(FitJob.id == job_id))
         real_commit()
         writer.last = 0.0
-        with pytest.raises(jobs.JobDeletedError):
+        with pytest.raises(fit_job.JobDeletedError):
             writer(2001, 0.5, 1.0)
 
 
@@ -202,8 +214,32 @@ def test_a_stop_fails_the_running_fit_keeps_the_queued_one_and_a_restart_runs_it
             session.delete(session.get(FitJob, second))
             session.commit()
         deadline = time.monotonic() + 10.0
-        while again._futures and time.monotonic() < deadline:
+        while again.running and time.monotonic() < deadline:
             time.sleep(0.1)
-        assert not again._futures, "the deleted job's fit did not stop"
+        assert not again.running, "the deleted job's fit did not stop"
     finally:
         again.shutdown()
+
+
+def test_a_worker_killed_mid_fit_fails_only_its_job_and_the_next_job_runs(
+        engine, built_assets, shape_a):
+    url, eng = engine
+    goal = np.stack([np.eye(8), np.ones((8, 8))])
+    doomed = _queue(eng, goal, kind="epg", max_evals=20000)
+    runner = FitRunner(url, built_assets)
+    runner.start()
+    try:
+        _wait_running(eng, doomed)
+        after = _queue(eng, np.asarray(shape_a["tongue_outline"]), max_evals=100)
+        runner.wake()
+        (pid,) = runner._pool.pids()
+        os.kill(pid, signal.SIGKILL)  # as the out-of-memory killer would
+        deadline = time.monotonic() + 60.0
+        while _state(eng, after)[0] != "done" and time.monotonic() < deadline:
+            time.sleep(0.1)
+        state, _, message = _state(eng, doomed)
+        assert state == "failed" and "SIGKILL" in message, message
+        assert _state(eng, after)[0] == "done"
+        assert runner._pool.started == 2  # the dead worker was replaced
+    finally:
+        runner.shutdown()

@@ -71,7 +71,9 @@ class ProgressBar:
 
 def fit(args):
     from glasshead import uploads
+    from glasshead.asset_store import AssetStore, AssetUnavailableError
     from glasshead.fitting import jobs
+    from glasshead.jobs.fit_job import fit_inputs, save_fit
 
     settings = get_settings()
     path = Path(args.file)
@@ -82,11 +84,11 @@ def fit(args):
         content = handle.read(uploads.MAX_BYTES[args.kind] + 1)
     try:
         observation = uploads.read_observation(args.kind, content, path.name, frame=args.frame)
-        inputs = jobs.load_inputs(settings.assets_dir)
+        inputs = fit_inputs(AssetStore(settings.assets_dir))
     except uploads.ObservationError as error:
         print(f"glasshead fit: {path}: {error}", file=sys.stderr)
         return 3
-    except FileNotFoundError as error:
+    except AssetUnavailableError as error:
         print(f"glasshead fit: {error}", file=sys.stderr)
         return 2
     method = args.method or jobs.DEFAULT_METHOD[args.kind]
@@ -103,8 +105,8 @@ def fit(args):
     document = {"name": name, "kind": args.kind, "method": method, "source": observation.source,
                 **result}
     if args.save:
-        document["id"] = jobs.save_fit(settings.database_url, observation, result, name=name,
-                                       method=method, max_evals=args.max_evals)
+        document["id"] = save_fit(settings.database_url, observation, result, name=name,
+                                  method=method, max_evals=args.max_evals)
         print(f"saved as fit {document['id']}", file=sys.stderr)
     text = json.dumps(document, indent=1)
     if args.out:

@@ -31,8 +31,9 @@ class Settings(BaseSettings):
     speech_cache_dir: Path = REPO_ROOT / "assets" / "build" / "utterances"
     #: SQLAlchemy URL; SQLite by default, PostgreSQL in docker-compose.
     database_url: str = f"sqlite:///{REPO_ROOT / 'var' / 'glasshead.sqlite3'}"
-    #: Worker processes that run fit jobs (POST /fits), and how many jobs may wait for them.
-    fit_workers: int = Field(1, ge=1, le=64)
+    #: Worker processes that run fit jobs (POST /fits; 0: this server runs none, others on the
+    #: same database do), and how many jobs may wait for them.
+    fit_workers: int = Field(1, ge=0, le=64)
     fit_queue_limit: int = Field(8, ge=1, le=10000)
     #: Worker processes for the CPU-heavy routes (default: the CPU count), and how many
     #: requests may wait for them before the server answers 503 (glasshead.jobs.compute).

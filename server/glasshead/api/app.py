@@ -15,8 +15,8 @@ from glasshead.api.limits import BodyLimitMiddleware
 from glasshead.api.security import install_safe_defaults
 from glasshead.api.static import mount_static
 from glasshead.asset_store import AssetStore, AssetUnavailableError
-from glasshead.fitting.job_runner import FitRunner
 from glasshead.jobs.compute import ComputePool
+from glasshead.jobs.fit_runner import FitRunner
 from glasshead.settings import get_settings
 
 API_PREFIX = "/api/v1"
@@ -38,7 +38,8 @@ async def lifespan(app: FastAPI):
         getattr(importlib.import_module(module_name), function_name)()
     # Every built asset is read once, here; a missing or corrupt one is reported, not fatal.
     app.state.assets.load_all()
-    # Fit jobs run in worker processes; those a stopped server left are failed or queued again.
+    # Fit jobs run in worker processes, taken from the queue in the database; the jobs a
+    # server that died left running are failed.
     app.state.fits.start()
     app.state.compute.start()
     yield

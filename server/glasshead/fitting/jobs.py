@@ -1,5 +1,4 @@
-"""Authors' fits: one observation (``fitting.uploads``) fitted into a target, and the job that runs
-it in a worker process.
+"""Authors' fits: one observation (``glasshead.uploads``) fitted into a target.
 
 What each kind fits (``fit_observation``):
 
@@ -23,30 +22,18 @@ BOBYQA's quadratic models stall. Toward the majority of engassim's first three /
 frames) from the rest tongue, BOBYQA with its restarts stops after 221 evaluations at 0.82
 agreement; subplex reaches 0.87 in 600 evaluations (1.6 s) and 0.94 in 1500 (4.5 s).
 
-A job (``run_job``) runs in a worker process with its own database session: it takes its queued
-row, writes ``progress`` at most every ``PROGRESS_INTERVAL_S`` seconds, and ends it ``done``
-(``params`` and ``report``) or ``failed`` (``message``). A row deleted while its fit runs stops
-the fit at the next progress write.
+The inputs (``FitInputs.from_assets``) are built from assets already loaded (the asset store's
+values); nothing here reads a file or a database. The job that runs a fit in a worker process,
+its row and its progress writes are ``glasshead.jobs.fit_job``.
 """
 
 import inspect
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
-from sqlalchemy import update
-from sqlalchemy.orm import Session
 
-from glasshead.constants import (
-    COLLISION_TABLES_FILE,
-    EPG_LAYOUT_FILE,
-    FACE_RIG_FILE,
-    TONGUE_RIG_FILE,
-    VELUM_RIG_FILE,
-)
 from glasshead.epg import synthetic
 from glasshead.epg.classes import ELECTRODES, agreement
 from glasshead.epg.contacts import Probes, probes_from_layout
@@ -56,22 +43,12 @@ from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.fitting.objective_epg import EpgObjective
 from glasshead.fitting.optimizer import METHODS, minimize
 from glasshead.geometry.tongue_surface import TongueRig
-from glasshead.store.base import utc_now
-from glasshead.store.db import engine_for
-from glasshead.store.fit_jobs import FitJob
 
 DEFAULT_METHOD = {"contour": "bobyqa", "surface": "bobyqa", "epg": "sbplx"}
 #: Evaluations a fit may spend when the upload names no cap.
 MAX_EVALS = {"contour": fit2d.MAX_EVALS, "epg": 1500}
-#: Seconds between progress writes to a job's row (a fit evaluates hundreds of times a second).
-PROGRESS_INTERVAL_S = 0.25
-
 #: progress(evaluations, best_error, fraction of the evaluation budget spent)
 Progress = Callable[[int, float, float], None]
-
-
-class JobDeletedError(Exception):
-    """The job's row was deleted (or finished elsewhere) while its fit ran."""
 
 
 @dataclass
@@ -86,37 +63,16 @@ class FitInputs:
     others: dict[str, float]
 
     @classmethod
-    def load(cls, assets_dir: Path) -> "FitInputs":
-        import json
-
-        from glasshead.geometry.collision_format import decode_collision_tables
-
-        rig = TongueRig(json.loads((assets_dir / TONGUE_RIG_FILE).read_text()))
-        layout = json.loads((assets_dir / EPG_LAYOUT_FILE).read_text())
-        others = {}
-        for name in (FACE_RIG_FILE, VELUM_RIG_FILE):
-            for spec in json.loads((assets_dir / name).read_text())["parameters"]:
-                others[spec["name"]] = float(spec["neutral"])
-        return cls(rig, MidSagittalSection(rig), probes_from_layout(layout["grids"]["reading62"]),
-                   decode_collision_tables((assets_dir / COLLISION_TABLES_FILE).read_bytes()),
+    def from_assets(cls, rig: TongueRig, epg_layout: dict, collision_tables,
+                    face_rig: dict, velum_rig: dict) -> "FitInputs":
+        """The inputs from loaded assets: the tongue rig, the EPG layout document (its
+        ``reading62`` grid), the decoded collision tables and the face and velum rig
+        definitions (their parameters' neutral values)."""
+        others = {spec["name"]: float(spec["neutral"])
+                  for definition in (face_rig, velum_rig) for spec in definition["parameters"]}
+        return cls(rig, MidSagittalSection(rig),
+                   probes_from_layout(epg_layout["grids"]["reading62"]), collision_tables,
                    others)
-
-
-@lru_cache(maxsize=2)
-def _inputs(assets_dir: str, stamp: tuple) -> FitInputs:
-    return FitInputs.load(Path(assets_dir))
-
-
-def load_inputs(assets_dir) -> FitInputs:
-    """The inputs of ``assets_dir``, read once per process and again when a file changes."""
-    assets_dir = Path(assets_dir)
-    files = (TONGUE_RIG_FILE, EPG_LAYOUT_FILE, COLLISION_TABLES_FILE, FACE_RIG_FILE,
-             VELUM_RIG_FILE)
-    missing = [f for f in files if not (assets_dir / f).is_file()]
-    if missing:
-        raise FileNotFoundError(f"built assets missing in {assets_dir}: {', '.join(missing)} "
-                                "(run glasshead build)")
-    return _inputs(str(assets_dir), tuple((assets_dir / f).stat().st_mtime_ns for f in files))
 
 
 def rest_outline(section: MidSagittalSection, rig: TongueRig) -> np.ndarray:
@@ -242,99 +198,3 @@ def fit_epg(inputs: FitInputs, wanted, weights, *, method: str, max_evals: int,
     }
     params = {n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)}
     return _EpgFit(params), report
-
-
-class ProgressWriter:
-    """The progress callback of a job: writes ``{evaluations, best_error, fraction}`` to its
-    row at most every ``interval_s`` seconds; raises ``JobDeletedError`` once the row is gone."""
-
-    def __init__(self, session: Session, job_id: int, interval_s: float = PROGRESS_INTERVAL_S):
-        self.session, self.job_id, self.interval_s = session, job_id, interval_s
-        self.last = time.monotonic()
-        self.latest: dict = {}
-
-    def __call__(self, evaluations: int, best_error: float, fraction: float) -> None:
-        self.latest = {"evaluations": int(evaluations),
-                       "best_error": best_error if np.isfinite(best_error) else None,
-                       "fraction": round(float(fraction), 4)}
-        now = time.monotonic()
-        if now - self.last < self.interval_s:
-            return
-        self.last = now
-        changed = self.session.execute(
-            update(FitJob).where(FitJob.id == self.job_id, FitJob.state == "running")
-            .values(progress=self.latest, updated_at=utc_now()))
-        self.session.commit()
-        if changed.rowcount == 0:
-            raise JobDeletedError(self.job_id)
-
-
-def claim_job(session: Session, job_id: int) -> bool:
-    """Mark the queued job ``job_id`` running, in one conditional UPDATE; False when it is not
-    queued (any more). Several servers (workers, replicas) may each hand the same queued job to
-    their pool at start-up: only one of them runs it."""
-    now = utc_now()
-    claimed = session.execute(
-        update(FitJob).where(FitJob.id == job_id, FitJob.state == "queued")
-        .values(state="running", started_at=now, updated_at=now,
-                progress={"evaluations": 0, "best_error": None, "fraction": 0.0}))
-    session.commit()
-    return claimed.rowcount == 1
-
-
-def run_job(database_url: str, assets_dir: str, job_id: int) -> str:
-    """Run the queued job ``job_id`` (in a worker process); returns its final state."""
-    with Session(engine_for(database_url), expire_on_commit=False) as session:
-        if not claim_job(session, job_id):
-            job = session.get(FitJob, job_id)
-            return "gone" if job is None else job.state
-        job = session.get(FitJob, job_id)
-        kind, method, name = job.kind, job.method, job.name
-        points, options = job.get_observation(), dict(job.source.get("options", {}))
-        writer = ProgressWriter(session, job_id)
-        try:
-            result = fit_observation(load_inputs(assets_dir), kind, points, method=method,
-                                     max_evals=options.get("max_evals"), progress=writer,
-                                     name=name)
-        except JobDeletedError:
-            session.rollback()
-            return "deleted"
-        except Exception as error:  # any failure of the fit is the job's, reported on its row
-            session.rollback()
-            return _finish(session, job_id, "failed", writer.latest,
-                           message=f"{error.__class__.__name__}: {error}")
-        final = {**writer.latest, "fraction": 1.0}
-        return _finish(session, job_id, "done", final, params=result["params"],
-                       report=result["report"])
-
-
-def _finish(session: Session, job_id: int, state: str, progress: dict, **values) -> str:
-    now = utc_now()
-    changed = session.execute(
-        update(FitJob).where(FitJob.id == job_id, FitJob.state == "running")
-        .values(state=state, progress=progress, finished_at=now, updated_at=now, **values))
-    session.commit()
-    return state if changed.rowcount else "deleted"
-
-
-def save_fit(database_url: str, observation, result: dict, *, name: str, method: str,
-             max_evals: int | None = None) -> int:
-    """Store a fit made in this process (``glasshead fit --save``) as a finished job, so that it
-    lists with the API's fitted targets; returns its id. Brings the database up to date first."""
-    from glasshead.store.db import upgrade_to_head
-
-    engine = engine_for(database_url)
-    upgrade_to_head(engine)
-    now = utc_now()
-    report = result["report"]
-    job = FitJob(name=name, kind=observation.kind, method=method, state="done",
-                 progress={"evaluations": report["evaluations"], "best_error": None,
-                           "fraction": 1.0},
-                 source={**observation.source,
-                         "options": {} if max_evals is None else {"max_evals": max_evals}},
-                 params=result["params"], report=report, started_at=now, finished_at=now)
-    job.set_observation(observation.points)
-    with Session(engine, expire_on_commit=False) as session:
-        session.add(job)
-        session.commit()
-        return job.id

@@ -64,12 +64,18 @@ def _pool(workers: int) -> WorkerPool:
         return pool
 
 
-def run_task(assets_dir: str, task: Task, payload: Any) -> tuple:
-    """In a worker: ``task(store, payload)`` as ("ok", bytes), or the error it raised on purpose
-    as ("http", status, detail, headers) or ("asset", name, file, problem, reason)."""
+def worker_store(assets_dir: str) -> AssetStore:
+    """In a worker process (compute or fit): the process's one asset store of ``assets_dir``."""
     store = _worker_stores.get(assets_dir)
     if store is None:
         store = _worker_stores[assets_dir] = AssetStore(assets_dir)
+    return store
+
+
+def run_task(assets_dir: str, task: Task, payload: Any) -> tuple:
+    """In a worker: ``task(store, payload)`` as ("ok", bytes), or the error it raised on purpose
+    as ("http", status, detail, headers) or ("asset", name, file, problem, reason)."""
+    store = worker_store(assets_dir)
     try:
         return ("ok", task(store, payload))
     except HTTPException as exc:

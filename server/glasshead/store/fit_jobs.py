@@ -1,10 +1,12 @@
 """The ``fit_jobs`` table: an author's observation, the fit's state and progress, and its result.
 
-A fit runs in a worker process (``glasshead.fitting.jobs``), never in a request; this row is all
-the request and the worker share. The worker moves it from ``queued`` to ``running`` and on to
-``done`` (``params`` and ``report`` set) or ``failed`` (``message`` set), and writes
-``progress`` a few times a second while it runs. A finished fit is a target: ``params`` holds a
-value for every articulation parameter (tongue, jaw, lips, velum), as a saved pose does.
+A fit runs in a worker process (``glasshead.jobs.fit_job``), never in a request; this row is all
+the request and the worker share, and the rows in state ``queued`` are the queue every server
+takes jobs from (``glasshead.jobs.fit_queue``). A server with a free worker moves a row from
+``queued`` to ``running``; its worker moves it on to ``done`` (``params`` and ``report`` set) or
+``failed`` (``message`` set), and writes ``progress`` a few times a second while it runs. A
+finished fit is a target: ``params`` holds a value for every articulation parameter (tongue,
+jaw, lips, velum), as a saved pose does.
 
 The observation is kept as one little-endian float64 blob (``observation_shape`` gives its
 shape): a contour (n, 2), a surface's vertices (k, 3) or a wanted EPG pattern (8, 8). A

@@ -4,7 +4,8 @@ POST /fits takes a multipart upload (``file``, ``kind``, optional ``name``, ``me
 ``max_evals`` and, for EPG, ``frame``), reads and checks it whole (``fitting.uploads``: 413 past
 the kind's size limit, 415 not the kind's format, 422 bad content, each naming the problem; no
 row is stored), stores a ``queued`` job and answers 202 with it and its Location. The fit runs
-in a worker process (``fitting.job_runner``), never in the request. Its progress is read by
+in a worker process of whichever server (``jobs.fit_runner``) takes it from the queue in the
+database (``jobs.fit_queue``), never in the request. Its progress is read by
 polling GET /fits/{id} or as server-sent events from GET /fits/{id}/events. A finished fit's
 ``params`` are a target, listed by GET /fits?state=done. docs/fits.md describes it all.
 
@@ -41,8 +42,8 @@ from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.examples import EMUR_EXAMPLE
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import check_owner
-from glasshead.fitting.job_runner import FitRunner
 from glasshead.fitting.jobs import DEFAULT_METHOD
+from glasshead.jobs.fit_runner import FitRunner
 from glasshead.store.db import get_engine
 from glasshead.store.fit_jobs import FitJob
 from glasshead.store.session import SessionDep
@@ -193,13 +194,14 @@ def _store(session: Session, runner: FitRunner, observation: uploads.Observation
     job.set_observation(observation.points)
     session.add(job)
     session.flush()
+    runner.announce(session)  # every server hears of it when this commits
     if key is not None:
         idempotency.remember(session, "createFit", key, digest, status.HTTP_202_ACCEPTED,
                              FitOut.model_validate(job).model_dump(mode="json"),
                              {"Location": location(job.id)})
     if (replayed := idempotency.commit_or_replay(session, "createFit", key, digest)) is not None:
         return replayed
-    runner.submit(job.id)
+    runner.wake()
     return job
 
 
