@@ -3,6 +3,7 @@
 import os
 from functools import lru_cache
 from pathlib import Path
+from typing import Literal
 
 from pydantic import AliasChoices, Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
@@ -28,9 +29,14 @@ class Settings(BaseSettings):
     #: The built web app (`vite build web`).
     web_dist_dir: Path = REPO_ROOT / "web" / "dist"
     #: Utterances made by POST /utterances (JSON and WAV, named by content hash); disposable.
+    #: Used when the utterance cache is a directory (see ``utterance_cache``).
     speech_cache_dir: Path = REPO_ROOT / "assets" / "build" / "utterances"
     #: SQLAlchemy URL; SQLite by default, PostgreSQL in docker-compose.
     database_url: str = f"sqlite:///{REPO_ROOT / 'var' / 'glasshead.sqlite3'}"
+    #: Where utterances are cached: ``directory`` (``speech_cache_dir``, this machine's disk),
+    #: ``database`` (a table, shared by every server on the database) or ``auto``: the database
+    #: on PostgreSQL, the directory on SQLite.
+    utterance_cache: Literal["auto", "directory", "database"] = "auto"
     #: Worker processes that run fit jobs (POST /fits; 0: this server runs none, others on the
     #: same database do), and how many jobs may wait for them.
     fit_workers: int = Field(1, ge=0, le=64)
@@ -39,6 +45,17 @@ class Settings(BaseSettings):
     #: requests may wait for them before the server answers 503 (glasshead.jobs.compute).
     compute_workers: int = Field(default_factory=lambda: os.cpu_count() or 1, ge=1, le=256)
     compute_queue_limit: int = Field(32, ge=0, le=10000)
+
+    @property
+    def on_postgres(self) -> bool:
+        return self.database_url.startswith(("postgresql:", "postgresql+", "postgres:"))
+
+    @property
+    def utterance_cache_kind(self) -> Literal["directory", "database"]:
+        """``utterance_cache`` with ``auto`` decided."""
+        if self.utterance_cache == "auto":
+            return "database" if self.on_postgres else "directory"
+        return self.utterance_cache
 
 
 @lru_cache

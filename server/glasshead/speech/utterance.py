@@ -10,17 +10,22 @@ The three inputs meet in one list of timed phones:
   those times (``audio.retime``).
 
 The tracks and cues come from ``speech.coarticulation.coarticulate`` on the phones and the built
-phoneme targets. The result is cached in ``speech_cache_dir`` as ``<id>.json`` and ``<id>.wav``,
-where the id is a hash of the request's content, the targets' content hash, the coarticulation
-constants and ``FORMAT_VERSION``: the same request on the same targets and constants is read
-back, not made again.
+phoneme targets. The result is cached under an id that is a hash of the request's content, the
+targets' content hash, the coarticulation constants and ``FORMAT_VERSION``: the same request on
+the same targets and constants is read back, not made again. The cache is given to ``make`` as
+an object with ``answer``, ``audio`` and ``put``: a ``DirectoryCache`` (``<id>.json`` and
+``<id>.wav`` in ``speech_cache_dir``, on this machine's disk) or the database's
+(``store.utterance_cache.DatabaseCache``, shared by every server on the database).
 """
 
 import hashlib
+import io
 import json
 import os
 import re
+import wave
 from pathlib import Path
+from typing import Protocol
 
 from glasshead.phonemes import UnknownPhonemeError, lookup
 from glasshead.speech import audio, espeak, vtl_voice
@@ -52,26 +57,86 @@ def request_id(request: dict, targets_sha256: str) -> str:
     return digest.hexdigest()[:24]
 
 
-def cached(cache_dir: Path, utterance_id: str) -> bytes | None:
-    """The cached response's JSON bytes, or None."""
-    try:
-        return (cache_dir / f"{utterance_id}.json").read_bytes()
-    except FileNotFoundError:
-        return None
+def is_id(text: str) -> bool:
+    """Whether ``text`` has the form of an utterance id (24 hex digits)."""
+    return re.fullmatch(r"[0-9a-f]{24}", text) is not None
 
 
-def wav_path(cache_dir: Path, utterance_id: str) -> Path | None:
-    """The cached WAV of an utterance, or None (unknown id, or an utterance without audio)."""
-    if not re.fullmatch(r"[0-9a-f]{24}", utterance_id):
-        return None
-    path = cache_dir / f"{utterance_id}.wav"
-    return path if path.is_file() else None
+class UtteranceCache(Protocol):
+    """Where made utterances are kept, by id: the response's JSON bytes and its WAV."""
+
+    #: What a compute worker is sent to open the same cache (``cache_dir`` or ``database_url``).
+    location: dict
+
+    def answer(self, utterance_id: str, *, with_audio: bool = False) -> bytes | None: ...
+
+    def audio(self, utterance_id: str) -> bytes | None: ...
+
+    def put(self, utterance_id: str, answer: bytes, wav: bytes | None) -> None: ...
+
+
+class DirectoryCache:
+    """The cache as files in ``directory``: ``<id>.json`` and ``<id>.wav``, each written to a
+    temporary name and renamed, the WAV first, so that a reader never sees half a file."""
+
+    def __init__(self, directory):
+        self.directory = Path(directory)
+
+    @property
+    def location(self) -> dict:
+        return {"cache_dir": str(self.directory)}
+
+    def answer(self, utterance_id: str, *, with_audio: bool = False) -> bytes | None:
+        """The cached response's JSON bytes, or None (with ``with_audio``: also None when its
+        WAV is missing)."""
+        if not is_id(utterance_id):
+            return None
+        try:
+            data = (self.directory / f"{utterance_id}.json").read_bytes()
+        except FileNotFoundError:
+            return None
+        return None if with_audio and self.audio_path(utterance_id) is None else data
+
+    def audio_path(self, utterance_id: str) -> Path | None:
+        """The cached WAV of an utterance, or None (unknown id, or an utterance without
+        audio)."""
+        if not is_id(utterance_id):
+            return None
+        path = self.directory / f"{utterance_id}.wav"
+        return path if path.is_file() else None
+
+    def audio(self, utterance_id: str) -> bytes | None:
+        path = self.audio_path(utterance_id)
+        try:
+            return None if path is None else path.read_bytes()
+        except FileNotFoundError:
+            return None
+
+    def put(self, utterance_id: str, answer: bytes, wav: bytes | None) -> None:
+        self.directory.mkdir(parents=True, exist_ok=True)
+        if wav is not None:
+            _write_atomic(self.directory / f"{utterance_id}.wav", wav)
+        _write_atomic(self.directory / f"{utterance_id}.json", answer)
 
 
 def _write_atomic(path: Path, data: bytes) -> None:
     temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     temporary.write_bytes(data)
     os.replace(temporary, path)
+
+
+def wav_bytes(samples, sample_rate: int) -> bytes:
+    """A mono 16-bit PCM WAV file of (n,) samples (int16, or float in -1..1), as
+    ``audio.write_wav`` writes it."""
+    import numpy as np
+
+    buffer = io.BytesIO()
+    with wave.open(buffer, "wb") as out:
+        out.setnchannels(1)
+        out.setsampwidth(2)
+        out.setframerate(int(sample_rate))
+        out.writeframes(audio.to_int16(np.asarray(samples)).astype("<i2").tobytes())
+    return buffer.getvalue()
 
 
 def parse_phonemes(phonemes: list[str] | str) -> list[tuple[str, int | None]]:
@@ -172,22 +237,18 @@ def _spoken(words, rate: float, word_names: list[str | None]) -> tuple[list[dict
     return phones, synthesis
 
 
-def cached_answer(request: dict, targets_sha256: str, cache_dir: Path) -> bytes | None:
+def cached_answer(request: dict, targets_sha256: str, cache: UtteranceCache) -> bytes | None:
     """The cached response's JSON bytes for a validated request, or None when it (or the audio
     it names) is not cached."""
-    utterance_id = request_id(request, targets_sha256)
-    hit = cached(cache_dir, utterance_id)
-    if hit is not None and (request["audio"]["kind"] == "none"
-                            or wav_path(cache_dir, utterance_id) is not None):
-        return hit
-    return None
+    return cache.answer(request_id(request, targets_sha256),
+                        with_audio=request["audio"]["kind"] != "none")
 
 
-def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> bytes:
+def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCache) -> bytes:
     """The response's JSON bytes for a validated request (``text`` | ``phonemes`` | ``phones``,
-    ``rate``, ``audio``), from the cache or made and cached. UtteranceInputError for input
+    ``rate``, ``audio``), from ``cache`` or made and kept there. UtteranceInputError for input
     that cannot be spoken; espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
-    hit = cached_answer(request, targets_sha256, cache_dir)
+    hit = cached_answer(request, targets_sha256, cache)
     if hit is not None:
         return hit
     utterance_id = request_id(request, targets_sha256)
@@ -236,11 +297,9 @@ def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> 
                                 channels=options.get("channels"), seed=seed)
         sample_rate = synthesis.sample_rate
         voice = f"espeak-ng {espeak.VOICE}"
-    cache_dir.mkdir(parents=True, exist_ok=True)
+    wav = None
     if voice is not None:
-        wav = cache_dir / f"{utterance_id}.wav"
-        audio.write_wav(wav.with_name(f".{wav.name}.{os.getpid()}.tmp"), samples, sample_rate)
-        os.replace(wav.with_name(f".{wav.name}.{os.getpid()}.tmp"), wav)
+        wav = wav_bytes(samples, sample_rate)
         audio_url = f"/api/v1/utterances/{utterance_id}/audio.wav"
 
     response = {
@@ -264,7 +323,7 @@ def make(request: dict, targets: dict, targets_sha256: str, cache_dir: Path) -> 
     if request.get("dominance"):
         response["dominance"] = _dominance(timed, targets)
     data = json.dumps(response, separators=(",", ":")).encode()
-    _write_atomic(cache_dir / f"{utterance_id}.json", data)
+    cache.put(utterance_id, data, wav)
     return data
 
 

@@ -108,3 +108,4 @@ from glasshead.store.users import (  # noqa: E402, F401
     SignInAttempt,
     User,
 )
+from glasshead.store.utterance_cache import CachedUtterance  # noqa: E402, F401

@@ -6,19 +6,22 @@
 of the phoneme targets, and a cached answer is the stored JSON as it was written. An answer
 not in the cache is made in a compute worker (``jobs.compute``): espeak-ng and VocalTractLab are
 native code, and a fault in them costs that one request (502, naming what it spoke), never the
-server.
+server. The worker keeps what it made in the cache it is sent (``settings.utterance_cache``: a
+directory on this machine, or the database, where every server on it finds it).
 """
 
-from pathlib import Path
+import re
 from typing import Annotated, Literal
 
-from fastapi import APIRouter, File, Form, HTTPException, Response, UploadFile
+from fastapi import APIRouter, Depends, File, Form, HTTPException, Request, Response, UploadFile
+from fastapi.concurrency import run_in_threadpool
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from glasshead.api.deps import AssetsDep, ComputeDep, SpeechCacheDep
+from glasshead.api.deps import AssetsDep, ComputeDep
 from glasshead.asset_store import AssetStore
 from glasshead.jobs.compute import ComputePool
+from glasshead.settings import get_settings
 from glasshead.speech import audio, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
 from glasshead.speech.pronounce import MAX_TEXT_CHARS
@@ -122,12 +125,34 @@ class Utterance(BaseModel):
                                    "group}}")
 
 
+def open_cache(location: dict) -> utterance.UtteranceCache:
+    """The utterance cache a ``location`` names: ``{"cache_dir": path}`` or
+    ``{"database_url": url}``."""
+    if location.get("database_url"):
+        from glasshead.store.utterance_cache import DatabaseCache
+
+        return DatabaseCache(location["database_url"])
+    return utterance.DirectoryCache(location["cache_dir"])
+
+
+def get_utterance_cache() -> utterance.UtteranceCache:
+    """The utterance cache of the settings (``utterance_cache``, ``speech_cache_dir``)."""
+    settings = get_settings()
+    if settings.utterance_cache_kind == "database":
+        return open_cache({"database_url": settings.database_url})
+    return open_cache({"cache_dir": str(settings.speech_cache_dir)})
+
+
+CacheDep = Annotated[utterance.UtteranceCache, Depends(get_utterance_cache)]
+
+
 def speak(store: AssetStore, payload: dict) -> bytes:
-    """In a compute worker: the utterance's JSON (``utterance.make``), made and cached."""
+    """In a compute worker: the utterance's JSON (``utterance.make``), made and kept in the
+    cache the payload names (``cache_dir`` or ``database_url``, as ``open_cache`` takes)."""
     entry = store.entry("phoneme_targets")
     try:
         return utterance.make(payload["request"], entry.value, entry.sha256,
-                              Path(payload["cache_dir"]))
+                              open_cache(payload))
     except utterance.UtteranceInputError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
     except EspeakUnavailableError as exc:
@@ -146,21 +171,22 @@ def _speaking(request: dict) -> str:
     return f"speaking {len(request['phones'])} timed phones"
 
 
-async def _respond(request: dict, assets: AssetStore, cache_dir: Path,
+async def _respond(request: dict, assets: AssetStore, cache: utterance.UtteranceCache,
                    compute: ComputePool) -> Response:
-    hit = utterance.cached_answer(request, assets.entry("phoneme_targets").sha256, cache_dir)
+    hit = await run_in_threadpool(utterance.cached_answer, request,
+                                  assets.entry("phoneme_targets").sha256, cache)
     if hit is not None:
         return Response(content=hit, media_type="application/json")
-    return await compute.respond(speak, {"request": request, "cache_dir": str(cache_dir)},
+    return await compute.respond(speak, {"request": request, **cache.location},
                                  doing=_speaking(request))
 
 
 @router.post("/utterances", operation_id="createUtterance", response_model=Utterance)
-async def create_utterance(body: UtteranceRequest, assets: AssetsDep, cache_dir: SpeechCacheDep,
+async def create_utterance(body: UtteranceRequest, assets: AssetsDep, cache: CacheDep,
                            compute: ComputeDep) -> Response:
     """Speak text, phonemes (IPA or ARPAbet) or timed phones: the phones with their times, the
     coarticulated tracks and cues, and the audio's URL."""
-    return await _respond(body.model_dump(mode="json"), assets, cache_dir, compute)
+    return await _respond(body.model_dump(mode="json"), assets, cache, compute)
 
 
 @router.post("/utterances/textgrid", operation_id="createUtteranceFromTextGrid",
@@ -169,7 +195,7 @@ async def create_utterance(body: UtteranceRequest, assets: AssetsDep, cache_dir:
                  "file": TEXTGRID_EXAMPLE, "rate": 1.0, "audio_kind": "none"}}}}})
 async def create_utterance_from_textgrid(
     assets: AssetsDep,
-    cache_dir: SpeechCacheDep,
+    cache: CacheDep,
     compute: ComputeDep,
     file: Annotated[UploadFile, File(description="a Praat TextGrid; its first interval tier")],
     rate: Annotated[float, Form(ge=0.5, le=2.0)] = 1.0,
@@ -192,15 +218,47 @@ async def create_utterance_from_textgrid(
     body = UtteranceRequest(phones=phones, rate=rate,
                             audio={"kind": audio_kind, "cutoff_hz": cutoff_hz,
                                    "channels": channels})
-    return await _respond(body.model_dump(mode="json"), assets, cache_dir, compute)
+    return await _respond(body.model_dump(mode="json"), assets, cache, compute)
 
 
 @router.get("/utterances/{utterance_id}/audio.wav", operation_id="getUtteranceAudio",
             response_class=FileResponse)
-def get_utterance_audio(utterance_id: str, cache_dir: SpeechCacheDep) -> FileResponse:
-    """The WAV of an utterance made before (16-bit mono)."""
-    path = utterance.wav_path(cache_dir, utterance_id)
-    if path is None:
+def get_utterance_audio(utterance_id: str, cache: CacheDep, request: Request) -> Response:
+    """The WAV of an utterance made before (16-bit mono), by this server or any other that
+    shares its cache; a ``Range`` of bytes is answered 206."""
+    if isinstance(cache, utterance.DirectoryCache):
+        path = cache.audio_path(utterance_id)
+        if path is not None:
+            return FileResponse(path, media_type="audio/wav")
+        data = None
+    else:
+        data = cache.audio(utterance_id) if utterance.is_id(utterance_id) else None
+    if data is None:
         raise HTTPException(status_code=404, detail=f"no audio for utterance {utterance_id!r}; "
                                                     "POST /api/v1/utterances makes it")
-    return FileResponse(path, media_type="audio/wav")
+    return byte_range_response(data, "audio/wav", request.headers.get("range"))
+
+
+def byte_range_response(data: bytes, media_type: str, range_header: str | None) -> Response:
+    """``data`` whole (200), or the one range ``bytes=first-last``, ``first-`` or ``-suffix``
+    asks for (206 with Content-Range; 416 when it starts past the end), as a media element
+    seeking in the audio asks. Several ranges, or a header not understood, get it whole."""
+    headers = {"Accept-Ranges": "bytes"}
+    size = len(data)
+    match = re.fullmatch(r"\s*bytes\s*=\s*(\d*)\s*-\s*(\d*)\s*", range_header or "")
+    if match is None or match.groups() == ("", ""):
+        return Response(data, media_type=media_type, headers=headers)
+    first, last = match.groups()
+    if first and last and int(last) < int(first):  # not a valid range: ignored
+        return Response(data, media_type=media_type, headers=headers)
+    if first == "":  # the last ``suffix`` bytes
+        start, end = max(0, size - int(last)), size - 1
+    else:
+        start, end = int(first), min(int(last), size - 1) if last else size - 1
+    if start >= size or start > end:
+        raise HTTPException(status_code=416,
+                            headers={**headers, "Content-Range": f"bytes */{size}"},
+                            detail=f"the range {range_header!r} starts past the audio's "
+                                   f"{size} bytes")
+    return Response(data[start:end + 1], status_code=206, media_type=media_type,
+                    headers={**headers, "Content-Range": f"bytes {start}-{end}/{size}"})
