@@ -1,6 +1,10 @@
-# Glasshead: one image with the API, the built assets and the web bundle.
-# Build context is the repository; the reference data is mounted at /data at build and run time
-# (see docker-compose.yml), never copied into the image's source tree.
+# syntax=docker/dockerfile:1
+# Glasshead: one image with the API, the built assets and the web bundle; it holds no state, so
+# the same image runs on any number of hosts (the state is in the database).
+# Build context is the repository. The reference data is a second, named build context, "data"
+# (docker-compose.yml sets it to ../shared/data): it is mounted read-only while `glasshead build`
+# runs and never copied into the image, only what the build makes from it is. Alone:
+#   docker build --build-context data=../shared/data -t glasshead .
 FROM node:20-bookworm-slim AS web
 WORKDIR /app
 COPY package.json package-lock.json ./
@@ -16,8 +20,9 @@ COPY pyproject.toml README.md ./
 COPY server ./server
 RUN pip install --no-cache-dir '.[postgres]'
 COPY --from=web /app/web/dist ./web/dist
-# The server runs as an unprivileged user that owns only what it writes: the built assets, and
-# var/ for the utterance cache and a SQLite database when no PostgreSQL is given.
+# The server runs as an unprivileged user. It owns the built assets (written once, below) and
+# var/, which only a container run without PostgreSQL writes (a SQLite database and the
+# utterance cache in a directory).
 RUN useradd --system --uid 10001 --home-dir /app --shell /usr/sbin/nologin glasshead \
     && mkdir -p /app/assets/build /app/var/utterances \
     && chown -R glasshead:glasshead /app/assets /app/var
@@ -29,6 +34,8 @@ ENV GLASSHEAD_DATA_DIR=/data \
     GLASSHEAD_WEB_DIST_DIR=/app/web/dist \
     HOST=0.0.0.0 \
     PORT=8000
+# The assets, built once into the image from the mounted data: every container on every host
+# serves the same files, with no volume and no build at start-up.
+RUN --mount=type=bind,from=data,target=/data glasshead build
 EXPOSE 8000
-# Build the assets from the mounted data (skipped when up to date), then serve.
-CMD ["sh", "-c", "glasshead build && glasshead serve"]
+CMD ["glasshead", "serve"]

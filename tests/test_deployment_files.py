@@ -1,6 +1,8 @@
-"""The deployment files say what the docs say: the image runs as an unprivileged user, and
-docker-compose.yml runs PostgreSQL and several health-checked app containers behind a load
-balancer. There is no container engine here, so the files are parsed and read."""
+"""The deployment files say what the docs say: the image runs as an unprivileged user with the
+assets built into it, and docker-compose.yml runs PostgreSQL and several health-checked app
+containers behind a load balancer, which keep nothing on a host's disk (their state, the fit
+queue and the utterance cache are in PostgreSQL). There is no container engine here, so the
+files are parsed and read."""
 
 import re
 from pathlib import Path
@@ -34,18 +36,40 @@ def test_compose_runs_several_health_checked_app_containers_on_postgres():
     assert app["deploy"]["replicas"] >= 2
     assert "--workers" in app["command"]
     assert app["depends_on"]["db"]["condition"] == "service_healthy"
-    assert app["depends_on"]["build"]["condition"] == "service_completed_successfully"
     environment = app["environment"]
     assert environment["GLASSHEAD_DATABASE_URL"].startswith("postgresql+psycopg://")
     assert "@db:5432/" in environment["GLASSHEAD_DATABASE_URL"]
     # the health check asks 127.0.0.1, which the host allow-list must let through
     assert "127.0.0.1" in " ".join(app["healthcheck"]["test"])
     assert "127.0.0.1" in environment["GLASSHEAD_ALLOWED_HOSTS"].split(",")
-    # every container reads the same assets and shares one utterance cache
-    assert "assets:/app/assets/build:ro" in app["volumes"]
-    cache = environment["GLASSHEAD_SPEECH_CACHE_DIR"]
-    assert any(volume.split(":")[1] == cache for volume in app["volumes"])
-    assert services["build"]["command"] == ["glasshead", "build"]
+
+
+def test_the_app_containers_keep_nothing_on_a_hosts_disk():
+    """So that they can run on several hosts: no volume, a read-only file system (scratch
+    files in memory), the utterance cache in the database, and the only named volume the
+    database's own."""
+    document = compose()
+    app = document["services"]["app"]
+    assert "volumes" not in app
+    assert app["read_only"] is True and "/tmp" in app["tmpfs"]
+    assert app["environment"]["GLASSHEAD_UTTERANCE_CACHE"] == "database"
+    assert set(document["volumes"]) == {"db-data"}
+    assert set(document["services"]) == {"db", "app", "lb"}
+
+
+def test_the_assets_are_built_into_the_image_from_data_mounted_at_build_time():
+    build = compose()["services"]["app"]["build"]
+    assert build["additional_contexts"]["data"] == "../shared/data"
+    dockerfile = (REPO / "Dockerfile").read_text()
+    assert dockerfile.startswith("# syntax=docker/dockerfile:1")
+    final_stage = dockerfile.split("\nFROM ")[-1]
+    built = re.search(r"^RUN --mount=type=bind,from=data,target=(\S+) glasshead build$",
+                      final_stage, flags=re.MULTILINE)
+    assert built is not None
+    data_dir = re.search(r"GLASSHEAD_DATA_DIR=(\S+)", final_stage).group(1)
+    assert built.group(1) == data_dir  # the build reads the data where the settings say
+    assert not re.search(r"^(COPY|ADD) .*(--from=data|shared)", dockerfile, flags=re.MULTILINE)
+    assert final_stage.index("USER") < final_stage.index("glasshead build")  # owned by the user
 
 
 def test_compose_puts_a_load_balancer_in_front_of_every_app_container():
