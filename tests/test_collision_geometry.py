@@ -3,6 +3,8 @@
 Seeded random cases; the seed is in each test so a failure can be replayed.
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import trimesh
@@ -154,6 +156,17 @@ def test_the_build_surface_distances_use_the_one_closest_point_kernel():
     from glasshead.geometry import surface_distance
 
     assert surface_distance.closest_points_on_triangles is closest_points_on_triangles
+
+
+def test_the_moller_trumbore_kernel_is_written_once_and_the_ray_queries_call_it():
+    from glasshead.fitting import ray_walk
+    from glasshead.geometry import collision_exact, ray_triangle
+
+    package = Path(ray_triangle.__file__).parents[1]
+    written = sorted(str(path.relative_to(package)) for path in package.rglob("*.py")
+                     if "dy * e2z - dz * e2y" in path.read_text())
+    assert written == ["geometry/ray_triangle.py"]
+    assert collision_exact.ray_triangle is ray_walk.ray_triangle is ray_triangle.ray_triangle
 
 
 def test_moller_trumbore_hits_inside_and_misses_outside_and_parallel():

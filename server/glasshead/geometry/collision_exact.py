@@ -6,7 +6,7 @@
 - ``closest_points_on_segments``: Ericson (2005), 5.1.2, "Closest point on line segment to
   point".
 - ``ray_triangle_hits``: Moller and Trumbore (1997), "Fast, minimum storage ray-triangle
-  intersection", two-sided.
+  intersection", two-sided: the kernel of ``geometry.ray_triangle`` over arrays of 3-vectors.
 - ``first_hits_from_origin``: the exact answer to "does the segment from O to P cross the maxilla,
   and where first", brute force over all triangles, the definition of inside used by the tables.
 - ``project_onto_closest``: the paper's slow exact correction (closest polygon, edge or vertex,
@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from glasshead.constants import COLLISION_TOL
+from glasshead.geometry.ray_triangle import inside_triangle, ray_triangle
 
 Floats = npt.NDArray[np.float64]
 
@@ -100,27 +101,30 @@ def closest_points_on_triangles(p: npt.ArrayLike, a: npt.ArrayLike, b: npt.Array
 
 def ray_triangle_hits(direction: npt.ArrayLike, a: npt.ArrayLike, e1: npt.ArrayLike,
                       e2: npt.ArrayLike, origin: npt.ArrayLike | None = None) -> Floats:
-    """Two-sided Moller-Trumbore hits of rays ``origin + t * direction`` with triangles.
+    """Two-sided Moller-Trumbore hits of rays ``origin + t * direction`` with triangles: the one
+    kernel (``geometry.ray_triangle``) over arrays of 3-vectors.
 
     direction, a, e1, e2 : (..., 3) float, broadcast together; e1 = b - a, e2 = c - a.
     origin : (..., 3) float or None for the zero vector.
     Returns t, (...,) float64: the ray parameter of the hit, +inf where the ray misses (parallel
     rays miss). Barycentric tests are widened by ``COLLISION_TOL.barycentric`` so that a ray
     through an edge shared by two triangles cannot slip between them.
+
+    The kernel is given the components in the order x, z, y. That order is a reflection, which
+    only flips the determinant's sign (u, v and t are unchanged), and its dot products then sum
+    (x + z) + y, the order of the einsum this function summed with before: the liner's tables
+    keep their bits.
     """
-    eps = COLLISION_TOL.barycentric
     direction = np.asarray(direction, dtype=np.float64)
     a, e1, e2 = (np.asarray(x, dtype=np.float64) for x in (a, e1, e2))
     s = -a if origin is None else np.asarray(origin, dtype=np.float64) - a
-    h = np.cross(direction, e2)
-    det = _dot(e1, h)
-    ok = det != 0.0
-    inv = 1.0 / np.where(ok, det, 1.0)
-    u = _dot(s, h) * inv
-    q = np.cross(s, e1)
-    v = _dot(direction, q) * inv
-    t = _dot(e2, q) * inv
-    hit = ok & (u >= -eps) & (v >= -eps) & (u + v <= 1.0 + eps) & (t > 0.0)
+    x, z, y = 0, 2, 1
+    det, u, v, t = ray_triangle(s[..., x], s[..., z], s[..., y],
+                                direction[..., x], direction[..., z], direction[..., y],
+                                e1[..., x], e1[..., z], e1[..., y],
+                                e2[..., x], e2[..., z], e2[..., y])
+    with np.errstate(invalid="ignore"):  # u + v is nan where det == 0, a miss either way
+        hit = inside_triangle(det, u, v, COLLISION_TOL.barycentric) & (t > 0.0)
     return np.where(hit, t, np.inf)
 
 

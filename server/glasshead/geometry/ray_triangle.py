@@ -1,8 +1,10 @@
-"""Ray-triangle intersection parameters, shared by the collision and EPG contact kernels.
+"""Ray-triangle intersection parameters: the project's one Python copy of the kernel.
 
 Two-sided Moller and Trumbore (1997), "Fast, minimum storage ray-triangle intersection", written
 operation by operation as in ``web/src/core/collision.js`` and ``epgContacts.js``, so that the
-Python and JavaScript twins round alike.
+Python and JavaScript twins round alike. The collision correction and its tables, the exact
+references (``collision_exact.ray_triangle_hits``), the EPG contacts, the EPG error and the 3D
+ray walk all call it.
 """
 
 from typing import overload
@@ -34,7 +36,8 @@ def ray_triangle(sx: Coordinate, sy: Coordinate, sz: Coordinate,
 
     s = ray origin minus the triangle's first corner a; d = ray direction; e1 = b - a, e2 = c - a.
     Each argument is a float or an (m,) float64 array (broadcast together).
-    Returns (det, u, v, t), each (m,) float64; u, v and t are inf or nan where det == 0.
+    Returns (det, u, v, t), each (m,) float64; u, v and t are inf or nan where det == 0 (Python
+    floats raise ZeroDivisionError there instead).
     """
     hx = dy * e2z - dz * e2y
     hy = dz * e2x - dx * e2z
