@@ -5,9 +5,11 @@ import json
 import numpy as np
 import pytest
 
+from glasshead.fitting.first_hits import exhaustive_first_hits
 from glasshead.fitting.objective3d import RayError3D
-from glasshead.fitting.ray_walk import RayWalker, exhaustive_first_hits, triangle_adjacency
+from glasshead.fitting.ray_walk import RayWalker
 from glasshead.geometry.collision_exact import first_hits_from_origin
+from glasshead.geometry.mesh_topology import triangle_adjacency
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.settings import get_settings
 

@@ -20,7 +20,8 @@ search), walking from the hits of the previous call; with the origin inside the 
 import numpy as np
 import numpy.typing as npt
 
-from glasshead.fitting.ray_walk import FirstHits, RayWalker, check_rays
+from glasshead.fitting.first_hits import FirstHits, check_rays
+from glasshead.fitting.ray_walk import RayWalker
 
 Floats = npt.NDArray[np.float64]
 

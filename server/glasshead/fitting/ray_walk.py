@@ -2,8 +2,8 @@
 the triangle adjacency from the previous hits, certified by counting crossings (most rays) or
 against a refitted sphere hierarchy.
 
-Definition (the reference, ``exhaustive_first_hits``): for ray i, origin O and direction d_i,
-every triangle is tested with the project's two-sided Moller-Trumbore kernel
+Definition (the reference, ``first_hits.exhaustive_first_hits``): for ray i, origin O and
+direction d_i, every triangle is tested with the project's two-sided Moller-Trumbore kernel
 (``geometry.ray_triangle``, op by op) in origin-relative coordinates (s = O - a computed as
 -(a - O), e1 = b - a, e2 = c - a from the shifted vertices, as ``first_hits_from_origin`` does),
 with the barycentric slack ``COLLISION_TOL.barycentric`` and t > 0; the first hit is the smallest
@@ -32,15 +32,16 @@ Method, per evaluation (vertices change, triangles never do):
    within ``TIE`` (barycentric) of an edge, the triangles round T's corners are tested too, and
    the smallest (t, index) kept.
 3. Certificate (the other rays: those meeting N(B), a walk without a hit, a winding number that
-   may exceed 1). A hierarchy of bounding spheres over fixed groups of triangles (built once per
-   topology from the rest pose, a k-d split so groups are compact; leaves are two triangles
-   sharing their longest edge, mid nodes ``MID`` leaves, top nodes ``TOP`` mid nodes) is
-   refitted to the current vertices: a leaf's sphere holds its triangles' vertices, a parent's
-   holds its children's spheres, every radius widened by ``MARGIN_MM`` plus ``MARGIN_REL`` of
-   its distance from O. A triangle can only be crossed at distance r along a ray if that ray
-   meets each enclosing sphere, at a distance from O no smaller than |c| - R. The search keeps
-   the top spheres the ray meets no farther than r_w = t_w |d| (widened), then the mid and
-   leaf spheres it meets, and tests every triangle of every kept leaf with the same kernel.
+   may exceed 1). A hierarchy of bounding spheres over fixed groups of triangles
+   (``fitting.sphere_tree``: built once per topology from the rest pose, a k-d split so groups
+   are compact; leaves are two triangles sharing their longest edge, mid nodes ``MID`` leaves,
+   top nodes ``TOP`` mid nodes) is refitted to the current vertices: a leaf's sphere holds its
+   triangles' vertices, a parent's holds its children's spheres, every radius widened by
+   ``MARGIN_MM`` plus ``MARGIN_REL`` of its distance from O. A triangle can only be crossed at
+   distance r along a ray if that ray meets each enclosing sphere, at a distance from O no
+   smaller than |c| - R. The search keeps the top spheres the ray meets no farther than
+   r_w = t_w |d| (widened), then the mid and leaf spheres it meets, and tests every triangle of
+   every kept leaf with the same kernel.
    Up to ``BRUTE_RAYS`` such rays are tested against every triangle instead (cheaper than the
    refit). Answer: the smallest (t, index) among the walk's T and the tested triangles.
 
@@ -66,27 +67,35 @@ and counted as crossing when within 1e-6 rad of its planes.
 """
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
-from glasshead.constants import COLLISION_TOL
+from glasshead.fitting.first_hits import (
+    SLACK,
+    FirstHits,
+    check_rays,
+    exhaustive_first_hits,
+    points,
+)
+from glasshead.fitting.sphere_tree import (
+    MARGIN_MM,
+    MARGIN_REL,
+    SphereTree,
+    gather,
+    norm2,
+    rows,
+)
+from glasshead.geometry.mesh_topology import closed_and_oriented, triangle_adjacency, vertex_stars
 from glasshead.geometry.ray_triangle import inside_triangle, ray_triangle
 
 Floats = npt.NDArray[np.float64]
 Ints = npt.NDArray[np.int64]
 
-SLACK = COLLISION_TOL.barycentric
 #: Steps a walk may take before the ray falls back to the unbounded search.
 WALK_STEPS = 8
 #: Rays left in the walk below which it goes on one ray at a time.
 TAIL = 16
-#: Leaves (two triangles) per mid node, mid nodes per top node.
-MID, TOP = 4, 8
-#: Widening of every bounding sphere: absolute (mm) and relative to its distance from O.
-MARGIN_MM = 1e-5
-MARGIN_REL = 1e-9
 #: Up to this many rays to certify are searched exhaustively rather than through the hierarchy
 #: (whose refit alone costs about as much as four exhaustive rays).
 BRUTE_RAYS = 4
@@ -105,136 +114,6 @@ GRAZE = 1e-6
 #: A walk's hit with a barycentric below this lies near an edge or a vertex: the triangles round
 #: that hit's corners are tested too, for ties.
 TIE = 1e-6
-
-
-def triangle_adjacency(triangles: Ints) -> Ints:
-    """(m, 3) int64: the triangle across the edge opposite corner k of each triangle, -1 where the
-    edge is a boundary or shared by more than two triangles."""
-    m = len(triangles)
-    lo = np.minimum(triangles[:, [1, 2, 0]], triangles[:, [2, 0, 1]]).ravel()
-    hi = np.maximum(triangles[:, [1, 2, 0]], triangles[:, [2, 0, 1]]).ravel()
-    key = lo * (int(triangles.max()) + 1) + hi
-    order = np.argsort(key, kind="stable")
-    k = key[order]
-    adjacency = np.full(3 * m, -1, dtype=np.int64)
-    same = k[1:] == k[:-1]
-    # a pair is two equal keys not part of a longer run
-    before = np.r_[False, same[:-1]]
-    after = np.r_[same[1:], False]
-    pair = np.flatnonzero(same & ~before & ~after)
-    first, second = order[pair], order[pair + 1]
-    adjacency[first] = second // 3
-    adjacency[second] = first // 3
-    return adjacency.reshape(m, 3)
-
-
-def _closed_and_oriented(triangles: Ints) -> bool:
-    """True when every edge is used by exactly two triangles, once in each direction: a closed,
-    consistently oriented surface, around which crossings can be counted."""
-    n = int(triangles.max()) + 1
-    start, end = triangles.ravel(), triangles[:, [1, 2, 0]].ravel()
-    key = np.sort(start * n + end)
-    if np.any(key[1:] == key[:-1]) or np.any(start == end):
-        return False
-    return bool(np.array_equal(key, np.sort(end * n + start)))
-
-
-def _kd_order(centroids: Floats, units: tuple[int, ...]) -> Ints:
-    """Order in which consecutive blocks of each size in ``units`` are spatially compact: median
-    splits on the longest axis, each split rounded to the largest unit that fits."""
-    out: list[Ints] = []
-    stack = [np.arange(len(centroids))]
-    while stack:
-        idx = stack.pop()
-        n = len(idx)
-        if n <= units[-1]:
-            out.append(idx)
-            continue
-        unit = next(u for u in units if 2 * u <= n)
-        left = max(unit, int(round(n / 2 / unit)) * unit)
-        pts = centroids[idx]
-        axis = int(np.argmax(np.ptp(pts, axis=0)))
-        part = np.argpartition(pts[:, axis], left - 1)
-        stack.append(idx[part[left:]])
-        stack.append(idx[part[:left]])
-    return np.concatenate(out)
-
-
-def _leaves(triangles: Ints, adjacency: Ints, rest: Floats) -> tuple[Ints, Ints]:
-    """Leaves of the hierarchy: pairs of triangles that share their longest edge (the quads of a
-    quad-dominant mesh), else single triangles. Returns (triangles (n, 2), vertices (n, 4));
-    a single triangle repeats itself and a corner."""
-    corners = rest[triangles]
-    # edge k is opposite corner k
-    length = np.stack([np.linalg.norm(corners[:, (k + 2) % 3] - corners[:, (k + 1) % 3], axis=1)
-                       for k in range(3)], axis=1)
-    longest = np.argmax(length, axis=1)
-    rows = np.arange(len(triangles))
-    partner = adjacency[rows, longest]
-    mutual = (partner >= 0) & (adjacency[np.maximum(partner, 0), longest[np.maximum(partner, 0)]]
-                               == rows)
-    first = mutual & (rows < partner)
-    single = ~mutual
-    pair_a, pair_b = rows[first], partner[first]
-    tris = np.concatenate([np.stack([pair_a, pair_b], 1),
-                           np.stack([rows[single], rows[single]], 1)])
-    far = triangles[pair_b, longest[pair_b]]
-    verts = np.concatenate([np.column_stack([triangles[pair_a], far]),
-                            np.column_stack([triangles[single], triangles[single][:, 0]])])
-    return tris, verts
-
-
-def _rows(a: Floats) -> np.ndarray:
-    """A contiguous (n, c) float64 array viewed as n opaque records, so that ``np.take`` gathers
-    whole rows at the cost of one element each."""
-    a = np.ascontiguousarray(a)
-    return a.view(np.dtype((np.void, a.shape[1] * 8))).ravel()
-
-
-def _gather(records: np.ndarray, index: Ints, width: int) -> Floats:
-    return np.take(records, index).view(np.float64).reshape(-1, width)
-
-
-@dataclass
-class FirstHits:
-    """Per ray: ``triangle`` (k,) int64 (-1: no hit), ``t`` (k,) the ray parameter (inf: none),
-    ``point`` (k, 3) O + t d (nan: none), ``fallback`` (k,) bool rays whose walk found no hit and
-    were searched without a bound, ``overturned`` (k,) bool rays where a nearer triangle than the
-    walk's was found (a fold in front of it, or a tie on an edge), ``shortcut`` (k,) bool rays
-    answered by the crossing count (no sphere search), ``back_facing`` |B|, the triangles that
-    do not face away from O in this pose, and ``volume`` the signed volume enclosed by the mesh
-    in this pose, mm^3 (the sum of det[a - O, b - O, c - O] / 6, which the certificate computes
-    anyway; a closed mesh's is the same from any O)."""
-
-    triangle: Ints
-    t: Floats
-    point: Floats
-    fallback: npt.NDArray[np.bool_]
-    overturned: npt.NDArray[np.bool_]
-    shortcut: npt.NDArray[np.bool_]
-    back_facing: int
-    volume: float
-
-
-def check_rays(origin: npt.ArrayLike, directions: npt.ArrayLike) -> tuple[Floats, Floats]:
-    """(origin (3,), directions (k, 3)) as float64, or ValueError with what is wrong."""
-    o = np.asarray(origin, dtype=np.float64)
-    d = np.asarray(directions, dtype=np.float64)
-    if o.shape != (3,):
-        raise ValueError(f"origin must have shape (3,), got {o.shape}")
-    if d.ndim != 2 or d.shape[1] != 3:
-        raise ValueError(f"directions must have shape (k, 3), got {d.shape}")
-    if not np.all(np.isfinite(o)):
-        raise ValueError("origin must be finite")
-    bad = ~np.all(np.isfinite(d), axis=1)
-    if np.any(bad):
-        raise ValueError(f"directions must be finite: {int(bad.sum())} rays have NaN or inf "
-                         f"(first: ray {int(np.flatnonzero(bad)[0])})")
-    zero = ~np.any(d != 0.0, axis=1)
-    if np.any(zero):
-        raise ValueError(f"directions must be non-zero: {int(zero.sum())} rays have length 0 "
-                         f"(first: ray {int(np.flatnonzero(zero)[0])})")
-    return o, d
 
 
 class RayWalker:
@@ -257,23 +136,11 @@ class RayWalker:
         self.triangles = tri.astype(np.int64)
         self.vertex_count = len(rest)
         self.adjacency = triangle_adjacency(self.triangles)
-        leaf_tris, leaf_verts = _leaves(self.triangles, self.adjacency, rest)
-        block = MID * TOP
-        order = _kd_order(rest[leaf_verts].mean(axis=1), (block, MID, 1))
-        order = np.r_[order, np.repeat(order[-1], -len(order) % block)]  # repeats are harmless
-        self.leaf_triangles = leaf_tris[order]
-        self.leaf_vertices = np.ascontiguousarray(leaf_verts[order].T)  # (4, leaves)
-        self.mid_children = np.ascontiguousarray(np.arange(len(order)).reshape(-1, MID).T)
-        self.top_children = np.ascontiguousarray(
-            np.arange(len(order) // MID).reshape(-1, TOP).T)
+        self.tree = SphereTree(self.triangles, self.adjacency, rest)
         self._triangles_t = np.ascontiguousarray(self.triangles.T)
         # the crossing-count certificate needs every edge used once in each direction
-        self._oriented = _closed_and_oriented(self.triangles)
-        # triangles round each vertex (CSR)
-        by_vertex = np.argsort(self.triangles.ravel(), kind="stable")
-        self._star = by_vertex // 3
-        self._star_start = np.searchsorted(self.triangles.ravel()[by_vertex],
-                                           np.arange(self.vertex_count + 1))
+        self._oriented = closed_and_oriented(self.triangles)
+        self._star, self._star_start = vertex_stars(self.triangles, self.vertex_count)
 
     # --- per pose -------------------------------------------------------------------------------
 
@@ -294,8 +161,8 @@ class RayWalker:
         np.subtract(b, a, out=soa[3:6])
         np.subtract(c, a, out=soa[6:9])
         self._soa = soa
-        self._tri = _rows(soa.T)
-        self._rel = _rows(rel)
+        self._tri = rows(soa.T)
+        self._rel = rows(rel)
         if facing:
             self._facing(g, soa, rel_t)
 
@@ -353,60 +220,10 @@ class RayWalker:
 
     def _mt(self, d: Floats, tris: Ints) -> tuple[Floats, npt.NDArray[np.bool_], Floats, Floats]:
         """t, hit, u, v (n,) of rays d (n, 3) against triangles ``tris`` (n,): the kernel."""
-        g = _gather(self._tri, tris, 9)
+        g = gather(self._tri, tris, 9)
         det, u, v, t = ray_triangle(g[:, 0], g[:, 1], g[:, 2], d[:, 0], d[:, 1], d[:, 2],
                                     g[:, 3], g[:, 4], g[:, 5], g[:, 6], g[:, 7], g[:, 8])
         return t, inside_triangle(det, u, v, SLACK) & (t > 0.0), u, v
-
-    @staticmethod
-    def _norm2(x: Floats) -> Floats:
-        """|x|^2 over the last axis (of length 3), without a slow small-axis reduction."""
-        return x[..., 0] * x[..., 0] + x[..., 1] * x[..., 1] + x[..., 2] * x[..., 2]
-
-    def _spheres(self) -> list[tuple[Floats, Floats]]:
-        """Refitted (centres (n, 3), widened radii (n,)) of the leaves, mid and top nodes."""
-        pts = np.take(self._rel, self.leaf_vertices).view(np.float64).reshape(
-            *self.leaf_vertices.shape, 3)  # (4, leaves, 3)
-        centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
-        radius = np.sqrt(self._norm2(pts - centre).max(axis=0))
-        levels = []
-        for children in (None, self.mid_children, self.top_children):
-            if children is not None:
-                c, r = centre[children], radius[children]  # (width, n, 3), (width, n)
-                centre = c.mean(axis=0)
-                radius = (np.sqrt(self._norm2(c - centre)) + r).max(axis=0)
-            radius = radius * (1.0 + MARGIN_REL) + MARGIN_MM \
-                + MARGIN_REL * np.sqrt(self._norm2(centre))
-            levels.append((centre, radius))
-        return levels
-
-    @classmethod
-    def _cone(cls, centre: Floats, radius: Floats) -> Floats:
-        """(n, 4) rows (c, -h): a ray of unit direction u meets the sphere (c, r) only if
-        u . c >= h, h = sqrt(|c|^2 - r^2) (-inf when O is inside: always)."""
-        q = cls._norm2(centre) - radius * radius
-        h = np.where(q > 0.0, np.sqrt(np.maximum(q, 0.0)), -1e300)
-        return np.column_stack([centre, -h])
-
-    def _search(self, unit: Floats, bound: Floats) -> tuple[Ints, Ints]:
-        """(ray, triangle) pairs to test: every triangle in a leaf whose enclosing spheres the ray
-        meets, the top sphere within ``bound`` (distance from O) of the origin."""
-        (lc, lr), (mc, mr), (tc, tr) = self._spheres()
-        near = np.sqrt(self._norm2(tc)) - tr
-        top = self._cone(tc, tr)
-        meet = (unit @ top[:, :3].T >= -top[:, 3]) & (near <= bound[:, None])
-        ri, node = np.nonzero(meet)
-        for cones, children in ((self._cone(mc, mr), self.top_children),
-                                (self._cone(lc, lr), self.mid_children)):
-            width = len(children)
-            kids = children.T[node]  # (p, width)
-            g = np.take(_rows(cones), kids).view(np.float64).reshape(len(node), width, 4)
-            u = unit[ri]
-            dot = g[..., 0] * u[:, 0, None] + g[..., 1] * u[:, 1, None] \
-                + g[..., 2] * u[:, 2, None] + g[..., 3]
-            keep = dot >= 0.0
-            ri, node = np.broadcast_to(ri[:, None], keep.shape)[keep], kids[keep]
-        return np.repeat(ri, 2), self.leaf_triangles[node].ravel()
 
     def _walk(self, d: Floats, start: npt.ArrayLike) -> tuple[Ints, Floats, npt.NDArray[np.bool_]]:
         """Lockstep walk from ``start``: (triangle, t) of the first hit met, -1 / inf if none,
@@ -511,11 +328,11 @@ class RayWalker:
             return out
         ri, which = np.divmod(pair, len(near))
         tris = near[which]
-        tg = _gather(self._tri, tris, 9)
+        tg = gather(self._tri, tris, 9)
         dd = d[ri]
         det, bu, bv, t = ray_triangle(tg[:, 0], tg[:, 1], tg[:, 2], dd[:, 0], dd[:, 1], dd[:, 2],
                                       tg[:, 3], tg[:, 4], tg[:, 5], tg[:, 6], tg[:, 7], tg[:, 8])
-        graze = det * det <= GRAZE * GRAZE * self._norm2(dd) * self._n2[tris]
+        graze = det * det <= GRAZE * GRAZE * norm2(dd) * self._n2[tris]
         with np.errstate(invalid="ignore"):
             hit = inside_triangle(det, bu, bv, BACK_SLACK) & (t > -BACK_SLACK)
         out[ri[hit | graze]] = True
@@ -555,7 +372,7 @@ class RayWalker:
         found = walk_tri[rays] >= 0
         bound = np.where(found, walk_t[rays] * length[rays] * (1.0 + BOUND_REL) + MARGIN_MM,
                          np.inf)
-        local, tris = self._search(unit[rays], bound)
+        local, tris = self.tree.search(self._rel, unit[rays], bound)
         owner = rays[local]
         t, hit = self._mt(d[owner], tris)[:2]
         walked = rays[found]
@@ -577,11 +394,11 @@ class RayWalker:
         if start is None:
             triangle, t = exhaustive_first_hits(o, d, vertices, self.triangles)
             none = np.zeros(k, dtype=bool)
-            return FirstHits(triangle, t, _points(o, d, t), none, none.copy(), none.copy(),
+            return FirstHits(triangle, t, points(o, d, t), none, none.copy(), none.copy(),
                              back, self._volume)
         walk_tri, walk_t, near = self._walk(d, start)
         found = walk_tri >= 0
-        length = np.sqrt(self._norm2(d))
+        length = np.sqrt(norm2(d))
         unit = d / length[:, None]
         triangle = walk_tri.copy()
         best_t = walk_t.copy()
@@ -612,38 +429,5 @@ class RayWalker:
             first = np.r_[True, rays[1:] != rays[:-1]]
             triangle[rays[first]] = tris[first]
             best_t[rays[first]] = t[first]
-        return FirstHits(triangle, best_t, _points(o, d, best_t), ~found & ~shortcut,
+        return FirstHits(triangle, best_t, points(o, d, best_t), ~found & ~shortcut,
                          found & (triangle != walk_tri), shortcut, back, self._volume)
-
-
-def _points(o: Floats, d: Floats, t: Floats) -> Floats:
-    with np.errstate(invalid="ignore"):
-        p = o + t[:, None] * d
-    p[~np.isfinite(t)] = np.nan
-    return p
-
-
-def exhaustive_first_hits(origin: npt.ArrayLike, directions: npt.ArrayLike,
-                          vertices: npt.ArrayLike, triangles: npt.ArrayLike,
-                          chunk: int = 64) -> tuple[Ints, Floats]:
-    """The reference: (triangle (k,) int64, -1 for none; t (k,) float64, inf for none) of the
-    first hit of each ray O + t d with every triangle, by the smallest (t, index)."""
-    o, d = check_rays(origin, directions)
-    tri = np.asarray(triangles, dtype=np.int64)
-    corners = (np.asarray(vertices, dtype=np.float64) - o)[tri]
-    a = corners[:, 0]
-    e1, e2 = corners[:, 1] - a, corners[:, 2] - a
-    s = -a
-    triangle = np.full(len(d), -1, dtype=np.int64)
-    best = np.full(len(d), np.inf)
-    for lo in range(0, len(d), chunk):
-        dd = d[lo:lo + chunk, None, :]
-        det, u, v, t = ray_triangle(s[:, 0], s[:, 1], s[:, 2], dd[..., 0], dd[..., 1], dd[..., 2],
-                                    e1[:, 0], e1[:, 1], e1[:, 2], e2[:, 0], e2[:, 1], e2[:, 2])
-        t = np.where(inside_triangle(det, u, v, SLACK) & (t > 0.0), t, np.inf)
-        idx = np.argmin(t, axis=1)  # the first of equal minima: the smallest index
-        tt = t[np.arange(len(idx)), idx]
-        hit = np.isfinite(tt)
-        triangle[lo:lo + chunk] = np.where(hit, idx, -1)
-        best[lo:lo + chunk] = tt
-    return triangle, best
