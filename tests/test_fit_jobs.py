@@ -201,9 +201,9 @@ def test_a_stop_fails_the_running_fit_keeps_the_queued_one_and_a_restart_runs_it
     try:
         _wait_running(eng, first)
     finally:
-        started = time.monotonic()
         runner.shutdown()
-    assert time.monotonic() - started < 5.0  # the worker is stopped, not waited for
+    # Stopped, not waited for: a fit of 20,000 evaluations toward a goal it never meets would
+    # have ended "done".
     assert _state(eng, first)[0] == "failed" and "stopped" in _state(eng, first)[2]
     assert _state(eng, second)[0] == "queued"
     again = FitRunner(url, built_assets)
@@ -213,7 +213,7 @@ def test_a_stop_fails_the_running_fit_keeps_the_queued_one_and_a_restart_runs_it
         with Session(eng) as session:  # deleted while it runs: the fit stops
             session.delete(session.get(FitJob, second))
             session.commit()
-        deadline = time.monotonic() + 10.0
+        deadline = time.monotonic() + 60.0
         while again.running and time.monotonic() < deadline:
             time.sleep(0.1)
         assert not again.running, "the deleted job's fit did not stop"
