@@ -1,12 +1,11 @@
 """Dependencies shared by the routes, as ``Annotated`` aliases: ``AssetsDep`` (the built assets),
-``SpeechCacheDep`` (where utterances are cached), ``BuiltUrlDep`` (content-hashed URLs of built
-files), ``ComputeDep`` (the worker processes of the heavy routes and of speech).
+``BuiltUrlDep`` (content-hashed URLs of built files), ``ComputeDep`` (the worker processes of
+the heavy routes and of speech).
 
 The database session is ``glasshead.store.session.SessionDep``.
 """
 
 from collections.abc import Callable
-from pathlib import Path
 from typing import Annotated
 
 from fastapi import Depends, Request
@@ -14,7 +13,6 @@ from fastapi import Depends, Request
 from glasshead.api.static import hashed_url
 from glasshead.asset_store import AssetStore
 from glasshead.jobs.compute import ComputePool
-from glasshead.settings import get_settings
 
 
 def get_asset_store(request: Request) -> AssetStore:
@@ -23,14 +21,6 @@ def get_asset_store(request: Request) -> AssetStore:
 
 
 AssetsDep = Annotated[AssetStore, Depends(get_asset_store)]
-
-
-def get_speech_cache_dir() -> Path:
-    """The directory utterances are cached in (settings.speech_cache_dir)."""
-    return Path(get_settings().speech_cache_dir)
-
-
-SpeechCacheDep = Annotated[Path, Depends(get_speech_cache_dir)]
 
 
 def get_built_url(request: Request) -> Callable[[str], str]:
