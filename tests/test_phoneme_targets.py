@@ -1,7 +1,8 @@
-"""Phoneme targets (pipeline.phoneme_targets): built from the real rig and JD3 observations, read
-through the asset store and served by GET /phonemes. No mocks: the targets are the ones the
-build made from the built assets (``built_assets`` builds them when they are stale), read from a
-copy whose inputs are checked to give the same cache key."""
+"""Phoneme targets (pipeline.phoneme_targets, with target_fits, target_contact and
+target_realism): built from the real rig and JD3 observations, read through the asset store and
+served by GET /phonemes. No mocks: the targets are the ones the build made from the built assets
+(``built_assets`` builds them when they are stale), read from a copy whose inputs are checked to
+give the same cache key."""
 
 import json
 import shutil
@@ -23,16 +24,21 @@ from glasshead.phonemes import INVENTORY
 from glasshead.pipeline.outputs import current_output
 from glasshead.pipeline.phoneme_targets import (
     BUILDER,
-    HELD_IN_TARGETS,
-    HELD_OF_GOAL,
+    CODE,
     INPUT_FILES,
+    build_phoneme_targets,
+    input_key,
+)
+from glasshead.pipeline.target_contact import (
+    HELD_OF_GOAL,
     JAW_SLACK_OF_GOAL,
     PENETRATION_OF_GOAL,
+)
+from glasshead.pipeline.target_fits import (
+    HELD_IN_TARGETS,
     TARGET_CORONAL_RANGES,
     VOLUME_GOAL_PCT,
     Context,
-    build_phoneme_targets,
-    input_key,
 )
 
 
@@ -259,6 +265,13 @@ def test_the_second_build_is_skipped(built, data_dir):
     assert built["document"]["source"]["sha256"] == input_key(built["dir"], data_dir)
     # The time is reported (build report, docs/targets.md), not asserted: it depends on the load.
     assert built["document"]["build_seconds"] > 0
+
+
+def test_the_cache_key_reads_the_code_of_every_module_the_targets_are_made_with():
+    from glasshead.fitting import vtl_mapping
+    from glasshead.pipeline import target_contact, target_fits, target_realism
+
+    assert {target_fits, target_contact, target_realism, vtl_mapping} <= set(CODE)
 
 
 def test_a_changed_input_changes_the_cache_key_so_the_targets_are_built_again(built, data_dir,

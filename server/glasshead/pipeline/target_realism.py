@@ -1,0 +1,80 @@
+"""The realism rules of the phoneme targets' synthetic EPG (docs/targets.md, "Realism"): one
+rule per phoneme of the five the real EPG speaks for, and each EPG class's agreement with its
+phonemes' patterns, before and after the contact fits."""
+
+import numpy as np
+
+from glasshead.epg import classes as epg_classes
+from glasshead.epg.sequence import rows_to_strings
+
+
+#: The realism rules: (phonemes, rule name, test of a grid).
+def _sides_only(grid) -> bool:
+    grid = np.asarray(grid).astype(bool)
+    middle = grid[:, 2:6].sum()
+    return epg_classes.side_contact(grid) and middle <= 2
+
+
+def _little_contact(grid) -> bool:
+    return int(np.asarray(grid).sum()) <= 6
+
+
+RULES = (
+    (("T", "D", "N"), "complete closure across a front row with contact along both sides",
+     lambda g: epg_classes.front_closure(g) and epg_classes.side_contact(g)),
+    (("S", "Z"), "contact along the sides with a central groove open in the front rows",
+     epg_classes.central_groove),
+    (("K", "G"), "complete closure across a back row", epg_classes.back_closure),
+    (("IY",), "contact at the sides only (outer columns in most rows, at most 2 of the middle "
+              "four columns' electrodes)", _sides_only),
+    (("AA",), "little or no contact (at most 6 electrodes)", _little_contact),
+)
+
+
+def _grid(rows) -> np.ndarray:
+    return np.array([[int(c) for c in r] for r in rows], dtype=np.uint8)
+
+
+def realism(grids: dict, classes: dict, before: dict | None = None) -> dict:
+    """The five rules per phoneme, and each EPG class's agreement with its phonemes' patterns;
+    ``before``: the 2D fits' grids of the contact-fitted targets (by symbol), reported beside.
+    Each class also says how many of its own real frames pass its rule."""
+    before = before or {}
+    checks = []
+    for symbols, rule, test in RULES:
+        for symbol in symbols:
+            check = {"phoneme": symbol, "rule": rule, "pass": bool(test(grids[symbol])),
+                     "rows": rows_to_strings(grids[symbol])}
+            if symbol in before:
+                check["pass_before_contact_fit"] = bool(test(before[symbol]))
+            checks.append(check)
+    shares = {}
+    for name, frames in classes.items():
+        majority = frames.majority
+        test = next(t for symbols, _, t in RULES
+                    if set(symbols) & set(epg_classes.PHONEMES_OF[name]))
+        shares[name] = {
+            "frames": int(len(frames.frames)),
+            "majority": rows_to_strings(majority),
+            "real_frames_passing_rule": round(float(np.mean([test(f) for f in frames.frames])),
+                                              4),
+            "majority_passes_rule": bool(test(majority)),
+            "agreement": {s: round(epg_classes.agreement(grids[s], majority), 4)
+                          for s in epg_classes.PHONEMES_OF[name]},
+            "agreement_before_contact_fit": {
+                s: round(epg_classes.agreement(before[s], majority), 4)
+                for s in epg_classes.PHONEMES_OF[name] if s in before}}
+    return {"rules": checks, "passed": sum(c["pass"] for c in checks), "of": len(checks),
+            "passed_before_contact_fit": sum(c.get("pass_before_contact_fit", c["pass"])
+                                             for c in checks),
+            "agreement": shares}
+
+
+def before_grids(targets: list[dict]) -> dict:
+    """The 2D fits' grids of the contact-fitted targets' own (main) shapes, by symbol."""
+    out = {}
+    for t in targets:
+        contact = t["source"].get("contact")
+        if contact:
+            out[t["arpabet"]] = _grid(contact["before"]["rows"])
+    return out
