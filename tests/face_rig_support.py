@@ -17,7 +17,7 @@ from scipy.spatial import cKDTree
 
 from glasshead.geometry import face_rig
 from glasshead.geometry.jaw import jaw_pose
-from glasshead.geometry.tongue_rig import JAW_PARAMETER
+from glasshead.geometry.tongue_parameters import JAW_PARAMETER
 
 #: The jaw's largest opening, degrees (the tongue rig's jaw_opening range).
 JAW_MAX_DEG = JAW_PARAMETER[3]

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 import trimesh
 
-from glasshead.geometry.tongue_rig import HUB_MM, validate_definition
+from glasshead.geometry.tongue_parameters import HUB_MM
+from glasshead.geometry.tongue_rig import validate_definition
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline import tongue_rig as step
 from glasshead.settings import get_settings

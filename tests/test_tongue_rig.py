@@ -8,14 +8,13 @@ import numpy as np
 import pytest
 
 from glasshead.constants import TONGUE_CONTROL_FLOOR_MM
-from glasshead.geometry.tongue_rig import (
+from glasshead.geometry.tongue_parameters import (
     CORONAL_CONTROLS,
     POLE_CONTROLS,
     SAGITTAL_POINTS,
-    build_definition,
     parameter_table,
-    validate_definition,
 )
+from glasshead.geometry.tongue_rig import build_definition, validate_definition
 from glasshead.geometry.tongue_surface import TongueRig
 
 VECTORS = Path(__file__).parent / "vectors"

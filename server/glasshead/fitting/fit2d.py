@@ -36,7 +36,7 @@ from glasshead.constants import TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE
 from glasshead.fitting.objective2d import ROOT_CUT_DEG, MidSagittalSection, Objective2D
 from glasshead.fitting.optimizer import Progress, minimize_restarted, with_changes
 from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
-from glasshead.geometry.tongue_rig import SECTIONS
+from glasshead.geometry.tongue_parameters import SECTIONS
 from glasshead.geometry.tongue_surface import TongueRig
 
 SAGITTAL_GROUP = "tongue sagittal"

@@ -293,8 +293,8 @@ class TongueRig:
 
     def pages_in_order(self, values: npt.ArrayLike) -> bool:
         """True when the pages turn once round the hub in order, every radius is positive and
-        every stretch keeps the rays of its page in order (-1 < k < 1/4, see tongue_rig.STRETCH):
-        then the surface is closed and free of self-intersection."""
+        every stretch keeps the rays of its page in order (-1 < k < 1/4, see
+        ``tongue_parameters.STRETCH``): then the surface is closed and free of self-intersection."""
         _hub, _stations, direction, radii, stretch = self.page_radii(values)
         following = np.roll(direction, -1, axis=0)
         turn = np.arctan2(direction[:, 0] * following[:, 1] - direction[:, 1] * following[:, 0],

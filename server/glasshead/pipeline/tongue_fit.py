@@ -20,7 +20,7 @@ import trimesh
 from scipy.optimize import least_squares
 
 from glasshead.geometry.bspline import basis_matrix, periodic_knots
-from glasshead.geometry.tongue_rig import (
+from glasshead.geometry.tongue_parameters import (
     CORONAL_DEGREE,
     DEFAULT_SECTION_WEIGHTS,
     HUB_MM,

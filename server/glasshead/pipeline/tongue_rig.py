@@ -16,7 +16,7 @@ import numpy as np
 import trimesh
 
 from glasshead.constants import BADIN_TO_PROJECT_AXES, TONGUE_RIG_FILE, TONGUE_RIG_FORMAT_VERSION
-from glasshead.geometry import bspline
+from glasshead.geometry import bspline, tongue_parameters
 from glasshead.geometry import jaw as jaw_module
 from glasshead.geometry import tongue_rig as rig_template
 from glasshead.geometry.frame import badin_to_project, fix_winding
@@ -47,7 +47,7 @@ def _sha256(path):
 
 
 #: Modules whose code shapes the output; their text is part of the cache key.
-CODE = (tongue_fit, rig_template, jaw_module, bspline)
+CODE = (tongue_fit, rig_template, tongue_parameters, jaw_module, bspline)
 
 
 def input_key(data_dir):

@@ -20,7 +20,7 @@ import numpy as np
 from glasshead.constants import FACE_VERTEX_TOLERANCE_MM
 from glasshead.geometry import face_rig
 from glasshead.geometry.jaw import jaw_pose
-from glasshead.geometry.tongue_rig import JAW_PARAMETER
+from glasshead.geometry.tongue_parameters import JAW_PARAMETER
 from glasshead.vectors import sources
 from glasshead.vectors.common import case, document, rounded, tolerance
 
