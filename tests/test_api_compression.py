@@ -11,7 +11,7 @@ import zlib
 import pytest
 
 from glasshead.api.compression import MINIMUM_SIZE, GZipUnlessETagMiddleware, accepts_gzip
-from glasshead.pipeline.precompress import precompress
+from glasshead.precompress import precompress
 from glasshead.settings import get_settings
 
 #: The largest built file the head view loads, the one the issue's figures were measured on.

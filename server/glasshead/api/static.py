@@ -1,6 +1,6 @@
 """Static files: GLB assets with caching headers, and the built web app.
 
-A file with a fresh ``.gz`` sibling (written at build time by ``glasshead.pipeline.precompress``)
+A file with a fresh ``.gz`` sibling (written at build time by ``glasshead.precompress``)
 is sent as that sibling with ``Content-Encoding: gzip`` when the request's ``Accept-Encoding``
 allows it. Every file that has a sibling answers with ``Vary: Accept-Encoding``, and the two
 encodings have different ETags (the gzip one ends in ``-gzip``), so that no cache confuses them.
@@ -16,7 +16,7 @@ from fastapi import FastAPI, HTTPException, Request
 from fastapi.responses import FileResponse, HTMLResponse, Response
 
 from glasshead.api.compression import accepts_gzip
-from glasshead.pipeline.precompress import fresh_sibling
+from glasshead.precompress import fresh_sibling
 
 #: Content-hashed asset URLs never change, so browsers may keep them for a year.
 IMMUTABLE = "public, max-age=31536000, immutable"

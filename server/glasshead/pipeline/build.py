@@ -20,8 +20,8 @@ from pathlib import Path
 from glasshead.constants import MANIFEST_FILE, MANIFEST_FORMAT_VERSION
 from glasshead.pipeline import sources
 from glasshead.pipeline.outputs import read_json, write_json
-from glasshead.pipeline.precompress import precompress
 from glasshead.pipeline.report_paths import portable
+from glasshead.precompress import precompress
 
 MANIFEST = MANIFEST_FILE
 REPORT = "build-report.json"
@@ -181,7 +181,7 @@ def run(data_dir, assets_dir, force=False, log=print):
     digest = inputs_digest(data_dir)
     if not force and is_up_to_date(assets_dir, digest):
         _make_report_portable(assets_dir, data_dir)  # one written before reports were
-        precompress(assets_dir)  # the .gz siblings the server sends (pipeline/precompress.py)
+        precompress(assets_dir)  # the .gz siblings the server sends (glasshead/precompress.py)
         log(f"assets up to date in {assets_dir}")
         return {"up_to_date": True}
     ctx = BuildContext(data_dir=data_dir, assets_dir=assets_dir, log=log)

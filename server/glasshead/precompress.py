@@ -9,13 +9,12 @@ compressed again is served plain rather than out of date. Files that gzip cannot
 tables 2.92 -> 1.25 MB), the web bundle 0.93 -> 0.26 MB (three.js's chunk 760 -> 198 kB).
 
 Run at the end of every ``glasshead build`` (even one that finds the assets up to date) and after
-``vite build`` (web/vite.config.js does the same for the bundle); ``python -m
-glasshead.pipeline.precompress DIR...`` compresses any directory by hand.
+``vite build`` (web/vite.config.js does the same for the bundle). A module of its own, not of the
+pipeline, since the server reads its rules too (``fresh_sibling``).
 """
 
 import gzip
 import os
-import sys
 from pathlib import Path
 
 #: Suffixes of the files worth compressing: meshes, tables, JSON, the web app's text.
@@ -75,13 +74,3 @@ def precompress(directory, recursive: bool = True) -> dict:
         summary["gzip_bytes"] += gz.stat().st_size
     return summary
 
-
-def main(argv=None):
-    for directory in (argv if argv is not None else sys.argv[1:]):
-        s = precompress(directory)
-        print(f"{directory}: {s['files']} files, {s['written']} written, "
-              f"{s['bytes'] / 1e6:.2f} MB -> {s['gzip_bytes'] / 1e6:.2f} MB gzipped")
-
-
-if __name__ == "__main__":
-    main()
