@@ -9,30 +9,28 @@ any other, never put back).
 
 from glasshead.lessons.schema import LessonContent
 
-#: Views that show the tongue against the palate: skin mostly clear, the EPG panel on.
-_PALATE = {"skin_transparency": 0.8, "cutaway": False, "diagram": False, "cues": True,
-           "labels": True, "epg": True}
+#: Views that show the tongue against the palate: skin mostly clear, the EPG panel on. Each set
+#: names only what differs from the format's defaults (``schema.Views``), as every lesson here
+#: leaves out what the defaults give.
+_PALATE = {"skin_transparency": 0.8, "labels": True, "epg": True}
 #: Views for the velum and voicing: the mid-sagittal cutaway with cues.
-_CUTAWAY = {"skin_transparency": 1.0, "cutaway": True, "diagram": True, "cues": True,
-            "labels": True, "epg": False}
+_CUTAWAY = {"skin_transparency": 1.0, "cutaway": True, "diagram": True, "labels": True}
 #: Views for vowels: tongue and lips seen through the skin, no EPG.
-_VOWEL = {"skin_transparency": 0.7, "cutaway": True, "diagram": False, "cues": False,
-          "labels": True, "epg": False}
+_VOWEL = {"skin_transparency": 0.7, "cutaway": True, "cues": False, "labels": True}
 
 
 def _phoneme(symbol: str, views: dict) -> dict:
     return {"target": {"kind": "phoneme", "text": symbol}, "presentation": "static",
-            "audio": {"kind": "natural"}, "views": views, "speed": 1.0}
+            "views": views}
 
 
 def _word(text: str, views: dict, speed: float = 0.5) -> dict:
-    return {"target": {"kind": "word", "text": text}, "presentation": "dynamic",
-            "audio": {"kind": "natural"}, "views": views, "speed": speed}
+    return {"target": {"kind": "word", "text": text}, "views": views, "speed": speed}
 
 
 def _contrast(title: str, description: str, phonemes: list[str], words: list[str],
               views: dict) -> dict:
-    return {"format_version": 1, "title": title, "language": "en-US", "description": description,
+    return {"title": title, "description": description,
             "items": [_phoneme(p, views) for p in phonemes] + [_word(w, views) for w in words]}
 
 
@@ -48,7 +46,7 @@ STARTER_LESSONS: tuple[dict, ...] = (
     _contrast("Nasals and their oral pairs", "The same closures with the velum lowered: air "
               "through the nose for /m n ŋ/, not for /b d ɡ/.", ["m", "b", "n", "d", "ŋ", "ɡ"],
               ["me", "bee", "knee", "dee", "sing", "sig"], _CUTAWAY),
-    {"format_version": 1, "title": "The vowels", "language": "en-US",
+    {"title": "The vowels",
      "description": "From the front of the mouth to the back: how high the tongue is, and "
                     "where, and the lips.",
      "items": [_phoneme(p, _VOWEL) for p in ["i", "ɪ", "ɛ", "æ", "ʌ", "ɑ", "ɔ", "ʊ", "u"]]

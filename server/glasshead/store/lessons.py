@@ -13,6 +13,7 @@ from datetime import datetime
 from sqlalchemy import JSON, CheckConstraint, ForeignKey, Integer, String, UniqueConstraint
 from sqlalchemy.orm import Mapped, mapped_column
 
+from glasshead.lessons.schema import DESCRIPTION_MAX_CHARS, LANGUAGE_MAX_CHARS, TITLE_MAX_CHARS
 from glasshead.store.base import Base, Timestamped, UtcDateTime, Versioned, utc_now
 
 #: The avatars a child may pick (icons in the web app, named so that no reading is needed).
@@ -69,9 +70,10 @@ class Lesson(Versioned, Timestamped, Base):
     __tablename__ = "lessons"
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    title: Mapped[str] = mapped_column(String(200))
-    language: Mapped[str] = mapped_column(String(35))
-    description: Mapped[str] = mapped_column(String(2000), default="")
+    title: Mapped[str] = mapped_column(String(TITLE_MAX_CHARS))
+    language: Mapped[str] = mapped_column(String(LANGUAGE_MAX_CHARS))
+    #: Written whole from a validated lesson, which has its format's defaults filled in.
+    description: Mapped[str] = mapped_column(String(DESCRIPTION_MAX_CHARS))
     items: Mapped[list] = mapped_column(JSON)
     #: The author who made it; None for the starter lessons (and once the author is removed).
     owner_id: Mapped[int | None] = mapped_column(

@@ -34,6 +34,7 @@ from glasshead.api.records import (
 )
 from glasshead.lessons.schema import (
     MAX_ITEMS,
+    Description,
     Item,
     LanguageTag,
     LessonContent,
@@ -60,7 +61,7 @@ class LessonPatch(BaseModel):
             {"target": {"kind": "word", "text": "ship"}, "speed": 0.5}]}]})
     title: Text | None = None
     language: LanguageTag | None = None
-    description: str | None = Field(None, max_length=2000)
+    description: Description | None = None
     items: Annotated[list[Item], Field(min_length=1, max_length=MAX_ITEMS)] | None = None
 
 
