@@ -60,3 +60,30 @@ def test_each_vowel_of_the_vowel_lesson_is_in_its_word():
     assert len(words) == len(vowels) == 9
     for vowel, word in zip(vowels, words, strict=True):
         assert vowel.arpabet in phones(word), (vowel.ipa, word, phones(word))
+
+
+def test_the_starter_lessons_name_no_value_the_format_gives_by_default():
+    """The defaults live in the lesson schema only: a starter lesson that spelled one out would
+    keep it when the schema's default changed."""
+    from pydantic import BaseModel
+
+    from glasshead.lessons.schema import Item, LessonContent
+
+    def spelled_defaults(model: type[BaseModel], written: dict, where: str) -> list[str]:
+        found = []
+        for name, value in written.items():
+            field = model.model_fields[name]
+            nested = field.annotation if isinstance(field.annotation, type) else None
+            if isinstance(value, dict) and nested and issubclass(nested, BaseModel):
+                found += spelled_defaults(nested, value, f"{where}.{name}")
+            elif not field.is_required() and value == field.get_default(call_default_factory=True):
+                found.append(f"{where}.{name}")
+        return found
+
+    found = []
+    for lesson in STARTER_LESSONS:
+        found += spelled_defaults(LessonContent, {k: v for k, v in lesson.items() if k != "items"},
+                                  lesson["title"])
+        for k, item in enumerate(lesson["items"]):
+            found += spelled_defaults(Item, item, f"{lesson['title']} item {k}")
+    assert found == []
