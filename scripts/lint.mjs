@@ -1,5 +1,7 @@
-// Static checks: ruff (Python style and bugs), mypy (types of the kernels in geometry/ and epg/)
-// and eslint (JavaScript). Prints one line per check and exits non-zero when any fails.
+// Static checks: ruff (Python style and bugs), import-linter (the Python packages' layers and
+// forbidden imports, [tool.importlinter] in pyproject.toml), mypy (types of the kernels in
+// geometry/ and epg/) and eslint (JavaScript). Prints one line per check and exits non-zero when
+// any fails.
 //
 //   node scripts/lint.mjs
 import { spawnSync } from 'node:child_process';
@@ -9,6 +11,7 @@ import { REPO } from './lib.mjs';
 const venv = ( name ) => join( REPO, '.venv', 'bin', name );
 const CHECKS = [
 	{ name: 'ruff', command: venv( 'ruff' ), args: [ 'check', 'server', 'tests', 'bench' ] },
+	{ name: 'imports', command: venv( 'lint-imports' ), args: [] },
 	{ name: 'mypy', command: venv( 'mypy' ), args: [] },
 	{ name: 'eslint', command: join( REPO, 'node_modules', '.bin', 'eslint' ), args: [ 'web/src', 'e2e', 'bench', 'scripts', 'tests/js' ] },
 ];

@@ -1,12 +1,21 @@
-"""The layers hold: kernels import no pipeline, API or settings; routes import no other route and
-no pipeline; the API reads built files only through the asset store."""
+"""The layers hold: the import contracts of pyproject.toml ([tool.importlinter], which
+`lint-imports` checks with indirect imports too) on every module's direct imports, function-level
+ones included; routes import no other route and no pipeline; the API reads built files only
+through the asset store."""
 
 import ast
+import tomllib
 from pathlib import Path
 
 import pytest
 
-PACKAGE = Path(__file__).resolve().parents[1] / "server" / "glasshead"
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "server" / "glasshead"
+CONTRACTS = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["importlinter"][
+    "contracts"]
+FORBIDDEN = [c for c in CONTRACTS if c["type"] == "forbidden"]
+LAYERS = [[name.strip() for name in layer.split("|")]
+          for layer in next(c for c in CONTRACTS if c["type"] == "layers")["layers"]]
 
 
 def imported_modules(path):
@@ -29,11 +38,32 @@ def offending_imports(folder, forbidden):
     return found
 
 
-@pytest.mark.parametrize("folder", ["geometry", "epg"])
-def test_kernels_import_no_pipeline_api_or_settings(folder):
-    forbidden = ["glasshead.pipeline", "glasshead.api", "glasshead.settings",
-                 "glasshead.asset_store"]
-    assert offending_imports(folder, forbidden) == []
+def folder_of(module):
+    return module.removeprefix("glasshead.").replace(".", "/")
+
+
+@pytest.mark.parametrize("contract", FORBIDDEN, ids=[c["name"] for c in FORBIDDEN])
+def test_no_module_imports_what_its_contract_forbids(contract):
+    found = []
+    for source in contract["source_modules"]:
+        found += offending_imports(folder_of(source), contract["forbidden_modules"])
+    assert found == []
+
+
+def test_the_layers_name_every_package_once():
+    named = [name for layer in LAYERS for name in layer]
+    packages = sorted(f"glasshead.{path.parent.name}" for path in PACKAGE.glob("*/__init__.py"))
+    assert sorted(named) == packages
+
+
+@pytest.mark.parametrize("depth", range(len(LAYERS)))
+def test_a_package_imports_no_package_above_it_nor_one_beside_it(depth):
+    above = [name for layer in LAYERS[:depth] for name in layer]
+    found = []
+    for package in LAYERS[depth]:
+        beside = [name for name in LAYERS[depth] if name != package]
+        found += offending_imports(folder_of(package), above + beside)
+    assert found == []
 
 
 def test_routes_import_no_other_route_and_no_pipeline():
