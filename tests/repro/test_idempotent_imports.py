@@ -124,8 +124,8 @@ def test_a_key_that_is_empty_too_long_or_not_printable_ascii_is_a_422(client, ke
 
 def test_a_retried_fit_upload_with_the_same_key_queues_one_job(app_client, built_assets):
     app, client = app_client
-    submitted = []
-    app.state.fits.submit = submitted.append  # nothing runs: the queue is what is checked
+    woken = []
+    app.state.fits.wake = lambda: woken.append(True)  # nothing runs: the queue is what is checked
     shapes = json.loads((built_assets / "vtl-observations.json").read_text())["shapes"]
     outline = np.array(next(s for s in shapes if s["name"] == "a")["tongue_outline"])
     content = ("x_mm,y_mm\n" + "".join(f"{x:.4f},{y:.4f}\n" for x, y in outline)).encode()
@@ -141,8 +141,9 @@ def test_a_retried_fit_upload_with_the_same_key_queues_one_job(app_client, built
     assert again.json() == first.json()
     location = f"{API}/fits/{first.json()['id']}"
     assert again.headers["Location"] == first.headers["Location"] == location
-    assert submitted == [first.json()["id"]]
+    assert len(woken) == 1  # the retry stored nothing and woke no worker
     assert count(client, "fits") == 1
+    assert client.get(location).json()["state"] == "queued"
     different = upload(500)
     assert different.status_code == 422 and "fit-1" in different.json()["detail"]
     assert count(client, "fits") == 1
