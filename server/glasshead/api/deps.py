@@ -1,6 +1,6 @@
 """Dependencies shared by the routes, as ``Annotated`` aliases: ``AssetsDep`` (the built assets),
 ``BuiltUrlDep`` (content-hashed URLs of built files), ``ComputeDep`` (the worker processes of
-the heavy routes and of speech).
+the heavy routes and of speech), ``CacheDep`` (where utterances are kept).
 
 The database session is ``glasshead.store.session.SessionDep``.
 """
@@ -13,6 +13,8 @@ from fastapi import Depends, Request
 from glasshead.api.static import hashed_url
 from glasshead.asset_store import AssetStore
 from glasshead.jobs.compute import ComputePool
+from glasshead.settings import get_settings
+from glasshead.speech import utterance
 
 
 def get_asset_store(request: Request) -> AssetStore:
@@ -39,3 +41,24 @@ def get_compute_pool(request: Request) -> ComputePool:
 
 
 ComputeDep = Annotated[ComputePool, Depends(get_compute_pool)]
+
+
+def open_cache(location: dict) -> utterance.UtteranceCache:
+    """The utterance cache a ``location`` names: ``{"cache_dir": path}`` or
+    ``{"database_url": url}``."""
+    if location.get("database_url"):
+        from glasshead.store.utterance_cache import DatabaseCache
+
+        return DatabaseCache(location["database_url"])
+    return utterance.DirectoryCache(location["cache_dir"])
+
+
+def get_utterance_cache() -> utterance.UtteranceCache:
+    """The utterance cache of the settings (``utterance_cache``, ``speech_cache_dir``)."""
+    settings = get_settings()
+    if settings.utterance_cache_kind == "database":
+        return open_cache({"database_url": settings.database_url})
+    return open_cache({"cache_dir": str(settings.speech_cache_dir)})
+
+
+CacheDep = Annotated[utterance.UtteranceCache, Depends(get_utterance_cache)]

@@ -13,15 +13,14 @@ directory on this machine, or the database, where every server on it finds it).
 import re
 from typing import Annotated, Literal
 
-from fastapi import APIRouter, Depends, File, Form, HTTPException, Request, Response, UploadFile
+from fastapi import APIRouter, File, Form, HTTPException, Request, Response, UploadFile
 from fastapi.concurrency import run_in_threadpool
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from glasshead.api.deps import AssetsDep, ComputeDep
+from glasshead.api.deps import AssetsDep, CacheDep, ComputeDep, open_cache
 from glasshead.asset_store import AssetStore
 from glasshead.jobs.compute import ComputePool
-from glasshead.settings import get_settings
 from glasshead.speech import audio, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
 from glasshead.speech.pronounce import MAX_TEXT_CHARS
@@ -123,27 +122,6 @@ class Utterance(BaseModel):
     dominance: dict | None = Field(None, description="with dominance: true, {groups: {group: "
                                    "[[float] * n_frames per phone]}, parameters: {parameter: "
                                    "group}}")
-
-
-def open_cache(location: dict) -> utterance.UtteranceCache:
-    """The utterance cache a ``location`` names: ``{"cache_dir": path}`` or
-    ``{"database_url": url}``."""
-    if location.get("database_url"):
-        from glasshead.store.utterance_cache import DatabaseCache
-
-        return DatabaseCache(location["database_url"])
-    return utterance.DirectoryCache(location["cache_dir"])
-
-
-def get_utterance_cache() -> utterance.UtteranceCache:
-    """The utterance cache of the settings (``utterance_cache``, ``speech_cache_dir``)."""
-    settings = get_settings()
-    if settings.utterance_cache_kind == "database":
-        return open_cache({"database_url": settings.database_url})
-    return open_cache({"cache_dir": str(settings.speech_cache_dir)})
-
-
-CacheDep = Annotated[utterance.UtteranceCache, Depends(get_utterance_cache)]
 
 
 def speak(store: AssetStore, payload: dict) -> bytes:
