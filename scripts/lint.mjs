@@ -1,7 +1,7 @@
 // Static checks: ruff (Python style and bugs), import-linter (the Python packages' layers and
-// forbidden imports, [tool.importlinter] in pyproject.toml), mypy (types of the kernels in
-// geometry/ and epg/) and eslint (JavaScript). Prints one line per check and exits non-zero when
-// any fails.
+// forbidden imports, [tool.importlinter] in pyproject.toml), mypy (types of every Python package,
+// [tool.mypy]) and eslint (JavaScript). Prints one line per check and exits non-zero when any
+// fails.
 //
 //   node scripts/lint.mjs
 import { spawnSync } from 'node:child_process';

@@ -133,7 +133,7 @@ def create_user(session: Session, username: str, password: str, role: str,
 
 
 def count_admins(session: Session) -> int:
-    return session.scalar(select(func.count()).where(User.role == "admin"))
+    return session.scalar(select(func.count()).where(User.role == "admin")) or 0
 
 
 def sign_in(session: Session, username: str, password: str) -> IssuedToken | None:

@@ -212,6 +212,8 @@ def read_glb_mesh(data: bytes) -> tuple:
     import trimesh
 
     mesh = trimesh.load(io.BytesIO(data), file_type="glb", force="mesh", process=False)
+    if not isinstance(mesh, trimesh.Trimesh):
+        raise ValueError("the GLB holds no triangle mesh")
     vertices = np.asarray(mesh.vertices, dtype=np.float64)
     faces = np.asarray(mesh.faces, dtype=np.int64)
     if vertices.ndim != 2 or vertices.shape[1] != 3 or not len(faces):

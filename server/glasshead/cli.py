@@ -42,7 +42,7 @@ class ProgressBar:
         self.stream, self.width, self.interval_s = stream, width, interval_s
         self.last = 0.0
         self.drawn = False
-        self.latest = None
+        self.latest: tuple[int, float] | None = None
 
     def __call__(self, evaluations, best_error, fraction):
         self.latest = (evaluations, best_error)

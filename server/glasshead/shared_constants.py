@@ -60,7 +60,8 @@ def doc_comments() -> dict[str, str]:
         else:
             continue
         names = [n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)]
-        comment, k = [], node.lineno - 2
+        comment: list[str] = []
+        k = node.lineno - 2
         while k >= 0 and lines[k].lstrip().startswith("#:"):
             comment.insert(0, lines[k].lstrip()[2:].strip())
             k -= 1

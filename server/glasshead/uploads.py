@@ -217,6 +217,8 @@ def _ply_vertices(content: bytes) -> np.ndarray:
         parts = [np.asarray(g.vertices) for g in loaded.geometry.values()
                  if hasattr(g, "vertices")]
         return np.concatenate(parts).astype(np.float64) if parts else np.zeros((0, 3))
+    if not isinstance(loaded, (trimesh.Trimesh, trimesh.PointCloud)):
+        raise ObservationError("field file: the PLY holds neither a mesh nor a point cloud")
     return np.asarray(loaded.vertices, dtype=np.float64).reshape(-1, 3)
 
 
@@ -231,7 +233,8 @@ def read_epg(content: bytes, filename: str | None,
         sequences = formats.parse(content, fmt)
     except EpgFormatError as error:
         raise ObservationError(str(error)) from None
-    frames = np.concatenate([s.frames for s in sequences]) if sequences else np.zeros((0, 8, 8))
+    frames = np.concatenate([s.frames for s in sequences]) if sequences \
+        else np.zeros((0, 8, 8), dtype=np.uint8)
     if not len(frames):
         raise ObservationError("the recording has no frames")
     details = {"format": fmt, "recordings": len(sequences), "frames": int(len(frames))}

@@ -20,6 +20,7 @@ from fastapi import HTTPException, Request
 from sqlalchemy import delete, func, select
 from sqlalchemy.orm import Session
 
+from glasshead.api.error_responses import Responses
 from glasshead.store.base import utc_now
 from glasshead.store.users import SignInAttempt
 
@@ -30,7 +31,7 @@ USERNAME_LIMIT = 5
 #: Failures from one client address within WINDOW before its sign-ins are refused.
 ADDRESS_LIMIT = 30
 #: The 429 of an operation with attempt limits, for its ``responses``.
-TOO_MANY = {429: {
+TOO_MANY: Responses = {429: {
     "description": "too many failed attempts for this username or from this address in the last "
                    "15 minutes; Retry-After gives the seconds to wait",
     "headers": {"Retry-After": {"description": "seconds", "schema": {"type": "integer"}}}}}

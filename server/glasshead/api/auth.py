@@ -19,6 +19,7 @@ from fastapi import Depends, HTTPException
 from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
 
 from glasshead.accounts import valid_child_token, valid_token
+from glasshead.api.error_responses import Responses
 from glasshead.store.lessons import Child
 from glasshead.store.session import SessionDep
 from glasshead.store.users import ROLES, AuthToken, ChildToken, User
@@ -28,13 +29,14 @@ bearer = HTTPBearer(auto_error=False, scheme_name="bearerToken",
                     description="a token from POST /auth/sessions")
 
 #: The 401 of a route that needs a signed-in user, for its ``responses``.
-UNAUTHENTICATED = {401: {
+UNAUTHENTICATED: Responses = {401: {
     "description": "no valid bearer token: missing, unknown, expired or revoked (sign in again "
                    "with POST /auth/sessions)",
     "headers": {"WWW-Authenticate": {"description": "Bearer", "schema": {"type": "string"}}}}}
 #: The 403 of a route limited to some roles.
-FORBIDDEN = {403: {"description": "the signed-in user's role may not do this (detail names the "
-                                  "roles that may), or a write from another site"}}
+FORBIDDEN: Responses = {403: {
+    "description": "the signed-in user's role may not do this (detail names the roles that may), "
+                   "or a write from another site"}}
 
 NOT_SIGNED_IN = "not signed in: send Authorization: Bearer <token> from POST /auth/sessions; " \
                 "a token that has expired or was signed out is refused too"

@@ -23,6 +23,7 @@ not the 404 of a path that names nothing.
 """
 
 import importlib
+from typing import Any
 
 from fastapi import FastAPI, HTTPException, Request
 from fastapi.routing import APIRoute
@@ -30,6 +31,9 @@ from starlette.routing import Match
 
 #: The name of the shared error schema in ``components.schemas``.
 ERROR_SCHEMA_NAME = "Error"
+#: A route's ``responses``: by status code, what the OpenAPI document says of the answer.
+Responses = dict[int | str, dict[str, Any]]
+
 ERROR_SCHEMA = {
     "title": ERROR_SCHEMA_NAME,
     "type": "object",

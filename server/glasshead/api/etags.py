@@ -12,11 +12,13 @@ from fastapi import HTTPException, Response
 from sqlalchemy.orm import Session
 from sqlalchemy.orm.exc import StaleDataError
 
+from glasshead.api.error_responses import Responses
+
 PRECONDITION_FAILED = 412
 #: The 412 of a conditional write, for a route's ``responses``.
-PRECONDITION = {PRECONDITION_FAILED: {"description": "If-Match names a version the record is no "
-                                                     "longer at; the ETag header gives the "
-                                                     "current one"}}
+PRECONDITION: Responses = {PRECONDITION_FAILED: {
+    "description": "If-Match names a version the record is no longer at; the ETag header gives "
+                   "the current one"}}
 
 
 def etag(kind: str, record) -> str:

@@ -51,7 +51,7 @@ def page(session: Session, query: Select, order, offset: int, limit: int) -> tup
     whole query has."""
     total = session.scalar(select(func.count()).select_from(query.subquery()))
     ordered = query.order_by(*order) if isinstance(order, tuple) else query.order_by(order)
-    return list(session.scalars(ordered.offset(offset).limit(limit))), total
+    return list(session.scalars(ordered.offset(offset).limit(limit))), total or 0
 
 
 def apply_patch(record, patch: BaseModel) -> dict[str, Any]:

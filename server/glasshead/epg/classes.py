@@ -101,8 +101,8 @@ def agreement(pattern: Frames, reference: Frames) -> float:
 
 def front_closure(frame: Frames) -> bool:
     """A complete row of contact across one of the front rows (R1 to R4)."""
-    frame = np.asarray(frame).astype(bool) | ~ELECTRODES
-    return bool(frame[:FRONT_ROWS].all(axis=1).any())
+    touched = np.asarray(frame).astype(bool) | ~ELECTRODES
+    return bool(touched[:FRONT_ROWS].all(axis=1).any())
 
 
 def back_closure(frame: Frames) -> bool:

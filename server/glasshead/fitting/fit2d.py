@@ -155,7 +155,7 @@ class ShapeFit(OutlineFit):
     jaw: str = "vtl"
 
 
-def fit_outline(rig: TongueRig, outline, options: OutlineFit | None = None, *,
+def fit_outline(rig: TongueRig, outline, options: OutlineFit | None = None, /, *,
                 max_evals: int = MAX_EVALS, progress: Progress | None = None,
                 **changes) -> FitReport:
     """Fit ``options.free`` to one mid-sagittal outline (n, 2) from ``options.base``, within
@@ -190,7 +190,7 @@ def fit_outline(rig: TongueRig, outline, options: OutlineFit | None = None, *,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)})
 
 
-def fit_shape(rig: TongueRig, shape, options: ShapeFit | None = None, *,
+def fit_shape(rig: TongueRig, shape, options: ShapeFit | None = None, /, *,
               max_evals: int = MAX_EVALS, progress: Progress | None = None,
               **changes) -> FitReport:
     """Fit one VTL shape record (from vtl-observations.json) by its tongue outline: the outline
@@ -206,7 +206,7 @@ def fit_shape(rig: TongueRig, shape, options: ShapeFit | None = None, *,
                        max_evals=max_evals, progress=progress)
 
 
-def fit_all(rig: TongueRig, observations, options: ShapeFit | None = None, *,
+def fit_all(rig: TongueRig, observations, options: ShapeFit | None = None, /, *,
             names: Sequence[str] | None = None, max_evals: int = MAX_EVALS,
             **changes) -> list[FitReport]:
     """``fit_shape`` of every shape of an observations document (or those named), in its

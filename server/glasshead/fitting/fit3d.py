@@ -247,7 +247,9 @@ class Objective3D:
         value = float(np.mean(r * r))
         if self.volume_weight or self.volume_bound_weight:
             # the volume of the surface just posed: the walk's certificate summed it
-            change = self._percent_of_rest(self.error.hits.volume)
+            hits = self.error.hits
+            assert hits is not None  # residuals() just set them
+            change = self._percent_of_rest(hits.volume)
             value += self.volume_weight * change**2
             value += self.volume_bound_weight * max(0.0, abs(change)
                                                     - self.volume_bound_pct) ** 2
@@ -306,7 +308,7 @@ class ShapeFit3D(SurfaceFit):
     from_2d: bool = True
 
 
-def fit_surface(rig: TongueRig, observed, options: SurfaceFit | None = None, *,
+def fit_surface(rig: TongueRig, observed, options: SurfaceFit | None = None, /, *,
                 max_evals: int = MAX_EVALS, progress: Progress | None = None,
                 **changes) -> FitReport3D:
     """Fit the rig's surface to observed vertices (k, 3) float mm in the project frame, within
@@ -374,7 +376,7 @@ def shape_vertices(shape) -> np.ndarray:
     return np.asarray(shape["tongue_surface_vertices"], dtype=np.float64)
 
 
-def fit_shape3d(rig: TongueRig, shape, options: ShapeFit3D | None = None, *,
+def fit_shape3d(rig: TongueRig, shape, options: ShapeFit3D | None = None, /, *,
                 max_evals: int = MAX_EVALS, progress: Progress | None = None,
                 **changes) -> FitReport3D:
     """Fit one VTL shape record by its tongue sheet (see ``ShapeFit3D``), with the rib-grid
@@ -405,7 +407,7 @@ def fit_shape3d(rig: TongueRig, shape, options: ShapeFit3D | None = None, *,
     return report
 
 
-def fit_all3d(rig: TongueRig, observations, options: ShapeFit3D | None = None, *,
+def fit_all3d(rig: TongueRig, observations, options: ShapeFit3D | None = None, /, *,
               names: Sequence[str] | None = None, max_evals: int = MAX_EVALS,
               **changes) -> list[FitReport3D]:
     """``fit_shape3d`` of every shape of an observations document (or those named), in its

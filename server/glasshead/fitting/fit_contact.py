@@ -221,7 +221,7 @@ class ContactFit:
 
 
 def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, base,
-                      options: ContactFit | None = None, **changes) -> ContactObjective:
+                      options: ContactFit | None = None, /, **changes) -> ContactObjective:
     """The ``ContactObjective`` of ``fit_contact`` from ``base`` (P,) values, for an outline
     (n, 2) and a wanted EPG pattern (see there)."""
     options = with_changes(options or ContactFit(), changes)
@@ -242,7 +242,7 @@ def contact_objective(rig: TongueRig, outline, probes: Probes, wanted, base,
 
 
 def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, base,
-                options: ContactFit | None = None, *, max_evals: int = MAX_EVALS,
+                options: ContactFit | None = None, /, *, max_evals: int = MAX_EVALS,
                 **changes) -> ContactFitReport:
     """Fit the sagittal and grouped coronal parameters to an outline (n, 2) and a wanted EPG
     pattern (``EpgObjective``'s ``wanted``: per electrode or an (8, 8) grid) from ``base`` (P,)

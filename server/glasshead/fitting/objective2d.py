@@ -299,13 +299,12 @@ class Objective2D:
         values = self.values(x)
         posed = self.section.control_points(values)  # once, for the outline and the volume
         value = float(np.mean(self.rays.errors(self.section.outline(values, posed)) ** 2))
-        bound = self.volume_bound_pct is not None and self.volume_bound_weight > 0
-        if self.volume_weight or bound:
+        bound_pct = self.volume_bound_pct if self.volume_bound_weight > 0 else None
+        if self.volume_weight or bound_pct is not None:
             change = self.volume_change(x, exact=False, posed=posed)
             value += self.volume_weight * change**2
-            if bound:
-                value += self.volume_bound_weight * max(0.0, abs(change)
-                                                        - self.volume_bound_pct) ** 2
+            if bound_pct is not None:
+                value += self.volume_bound_weight * max(0.0, abs(change) - bound_pct) ** 2
         share = (x - self.neutral) / (self.upper - self.lower)
         # One weight for all sums as before: the contact fits of the phoneme targets follow
         # different paths on a change in the last bit of their objective.

@@ -198,7 +198,8 @@ class EpgObjective:
         meet &= within
         np.less_equal(along, (self.reach + radius)[:, None], out=within)
         meet &= within
-        return np.nonzero(meet)
+        triangles, probes = np.nonzero(meet)
+        return triangles, probes
 
     def _miss_distances(self, v: Floats, probes: np.ndarray) -> Floats:
         rel = v[None, :, :] - self.probes.origins[probes, None, :]

@@ -149,32 +149,33 @@ def minimize_restarted(objective: Callable[[np.ndarray], float], x0, lower, uppe
     is piecewise smooth, and BOBYQA then stops early on its ftol test. The result's
     evaluations and seconds count every run; ``progress`` gets the evaluations so far and the
     best objective over every run."""
-    done = {"n": 0, "best": math.inf}
+    done, best_so_far = 0, math.inf
 
     def counted(evaluations, best):
         # Each run counts its own evaluations and best; the caller is told the whole fit's.
-        done["best"] = min(done["best"], best)
+        nonlocal best_so_far
+        best_so_far = min(best_so_far, best)
         if progress is not None:
-            progress(done["n"] + evaluations, done["best"])
+            progress(done + evaluations, best_so_far)
 
     result = minimize(objective, x0, lower, upper, max_evals=max_evals, progress=counted,
                       **options)
-    done["n"] = result.evaluations
+    done = result.evaluations
     seconds = result.seconds
     for _ in range(restarts):
-        left = max_evals - done["n"]
+        left = max_evals - done
         if left < 4 * len(result.x):
             break
         again = minimize(objective, result.x, lower, upper, max_evals=left, progress=counted,
                          **options)
-        done["n"] += again.evaluations
+        done += again.evaluations
         seconds += again.seconds
         gained = result.error - again.error
         if again.error < result.error:
             result = again
         if gained <= restart_gain * abs(result.error):
             break
-    result.evaluations, result.seconds = done["n"], seconds
+    result.evaluations, result.seconds = done, seconds
     return result
 
 

@@ -124,6 +124,11 @@ class RayWalker:
     ``start`` (the previous hits, (k,) int64) or searching exhaustively when ``start`` is None.
     """
 
+    #: Per pose (``_facing``): an upper bound on the winding number around O, and the exact one
+    #: once computed (False: not an integer).
+    _w_max: int | None
+    _exact_winding: int | bool | None
+
     def __init__(self, triangles: npt.ArrayLike, rest_vertices: npt.ArrayLike):
         tri = np.asarray(triangles)
         rest = np.asarray(rest_vertices, dtype=np.float64)
@@ -201,8 +206,8 @@ class RayWalker:
         den = r[0] * r[1] * r[2] + (dots * r[[2, 0, 1]]).sum(axis=0)
         with np.errstate(divide="ignore", invalid="ignore"):
             x = facing / den
-        bound = np.where(den > 0.0, np.minimum(x, 0.5 * np.pi), np.pi)
-        bound = float(np.where(facing > 0.0, bound, 0.0).sum()) / (2.0 * np.pi)  # >= w(O)
+        each = np.where(den > 0.0, np.minimum(x, 0.5 * np.pi), np.pi)
+        bound = float(np.where(facing > 0.0, each, 0.0).sum()) / (2.0 * np.pi)  # >= w(O)
         self._w_max = int(np.floor(bound + WINDING_TOL))
         self._solid = (facing, den)
         if self._w_max > 1:
@@ -406,7 +411,7 @@ class RayWalker:
         if self._w_max is not None and self._w_max <= 1:
             # rays with no entry cross the surface exactly w(O) times, w(O) <= 1
             clear = ~self._back_rays(unit, d)
-            w = self._w_max
+            w: int | None = self._w_max
             if w == 1 and np.any(clear & ~found):
                 w = self._winding()
             if w is not None and w <= 0:

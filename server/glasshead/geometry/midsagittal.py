@@ -95,7 +95,7 @@ def two_point_similarity(src_a, src_b, dst_a, dst_b) -> tuple[float, np.ndarray,
     scale = np.linalg.norm(w) / np.linalg.norm(u)
     angle = np.arctan2(w[1], w[0]) - np.arctan2(u[1], u[0])
     rot = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
-    return scale, rot, dst_a - scale * rot @ src_a
+    return float(scale), rot, dst_a - scale * rot @ src_a
 
 
 def palate_clearance(tongue_xy, palate_xy) -> np.ndarray:

@@ -10,6 +10,7 @@ import hashlib
 import json
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import trimesh
@@ -59,7 +60,8 @@ class Timer:
 def build_anatomy(data_dir, stage_dir, log=print):
     """Build every anatomy mesh into ``stage_dir``; returns (manifest entries, report dict)."""
     timer = Timer(log)
-    entries, report = [], {}
+    entries: list[dict] = []
+    report: dict[str, Any] = {}
 
     def emit(name, vertices, faces, role, source, lod="full", scene=True, **extra):
         file = f"{name}.glb"
@@ -99,15 +101,17 @@ def build_anatomy(data_dir, stage_dir, log=print):
     point = mouth_point(badin["maxilla"][0])
     arch = (badin["maxilla"][0].min(axis=0), badin["maxilla"][0].max(axis=0))
     levels = timer.run("CBCT levels of detail", build_lods, placed, placed_faces, point, arch)
-    registration["mouth_facing"] = mouth_residual(*badin["maxilla"], placed, placed_faces, point,
-                                                  arch)
+    badin_vertices, badin_faces = badin["maxilla"]
+    registration["mouth_facing"] = mouth_residual(badin_vertices, badin_faces, placed,
+                                                  placed_faces, point, arch)
     choice = choose_scene_maxilla(registration, levels)
     log(f"    scene maxilla: {choice['mesh']} ({choice['level']})")
 
     for stem, (name, role) in sources.BADIN_MESHES.items():
         # When a CBCT level is chosen, the Badin maxilla stays available under another name.
         replaced = name == "maxilla" and choice["mesh"] != "badin"
-        emit("maxilla_badin" if replaced else name, *badin[name], role,
+        vertices, faces = badin[name]
+        emit("maxilla_badin" if replaced else name, vertices, faces, role,
              f"artisynth-badin/{stem}.obj", scene=not replaced)
     emit("maxilla_cbct_full", placed, placed_faces, "bone", "artisynth-dynjaw/maxilla.obj",
          lod="full", scene=False)

@@ -14,6 +14,7 @@ import json
 import shutil
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -32,7 +33,7 @@ PACKAGE_DIR = Path(__file__).resolve().parents[1]
 class BuildContext:
     data_dir: Path
     assets_dir: Path
-    log: callable = print
+    log: Callable[[str], None] = print
     reports: dict = field(default_factory=dict)
 
 

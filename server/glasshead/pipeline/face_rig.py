@@ -16,6 +16,7 @@ The jaw pose itself is not here: it is the tongue rig's (``geometry.jaw``), one 
 """
 
 import hashlib
+import inspect
 import json
 from pathlib import Path
 
@@ -138,8 +139,9 @@ def build_face_rig(data_dir, assets_dir=None):
     meshes = {name: getattr(src, name) for name in MESH_NAMES}
     weights, shared = face_rig_weights.mesh_jaw_weights(meshes, src.nodes, node_weights,
                                                         half_width, src.skin_nodes)
+    shell_vertices, shell_faces = src.head_shell
     weights["head_shell"] = face_rig_weights.shell_jaw_weights(
-        *src.head_shell, src.face_skin[0], weights["face_skin"])
+        shell_vertices, shell_faces, src.face_skin[0], weights["face_skin"])
     weight_stats["lip_corner_points_shared"] = shared
     teeth, teeth_stats = face_rig_teeth.incisor_surfaces(
         src.maxilla, src.mandible, [meshes[name][0] for name in MESH_NAMES if name != "head_shell"])
@@ -185,7 +187,7 @@ def input_key(data_dir, assets_dir):
     digest = hashlib.sha256(f"{BUILD_REVISION} {FACE_RIG_FORMAT_VERSION}".encode())
     base = Path(data_dir) / face_rig_sources.sources.BADIN
     files = [base / name for name in DATA_FILES] + [Path(__file__)]
-    files += [Path(module.__file__) for module in CODE]
+    files += [Path(inspect.getfile(module)) for module in CODE]
     for path in files:
         digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
     manifest = Path(assets_dir) / face_rig_sources.MANIFEST

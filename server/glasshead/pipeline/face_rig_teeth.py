@@ -128,7 +128,8 @@ def incisor_surfaces(maxilla, mandible, rest_meshes):
     surfaces, stats = {}, {}
     for row, bone, window in (("upper", maxilla, TEETH_UPPER_Y_MM),
                               ("lower", mandible, TEETH_LOWER_Y_MM)):
-        surface, row_stats = incisor_surface(*bone, window, edge_below=row == "upper")
+        vertices, faces = bone
+        surface, row_stats = incisor_surface(vertices, faces, window, edge_below=row == "upper")
         count, worst = make_room(surface, points)
         row_stats["rest_points_behind"] = count
         row_stats["rest_depth_mm"] = worst

@@ -78,7 +78,7 @@ def _distinct(nodes):
 
 def _element_faces(elems):
     """Map each face (sorted distinct node tuple) to the list of (element, local quad) using it."""
-    faces = {}
+    faces: dict[tuple, list[tuple[int, int]]] = {}
     for e, hexa in enumerate(elems):
         for q, quad in enumerate(HEX_QUADS):
             nodes = _distinct([int(hexa[i]) for i in quad])
@@ -134,7 +134,7 @@ def _triangulate(points, polygons):
 
 def _components(polygons):
     """Edge-connected component label of each polygon; (k,) int."""
-    edge_owner = {}
+    edge_owner: dict[tuple[int, int], int] = {}
     rows, cols = [], []
     for i, poly in enumerate(polygons):
         for a, b in zip(poly, poly[1:] + poly[:1], strict=True):
@@ -173,14 +173,14 @@ def extract_face_skin(node_ids, nodes_m, elems, centre):
     boundary = {key: users[0] for key, users in faces.items() if len(users) == 1}
 
     # Thickness columns: pairs of boundary cap quads joined through the tissue.
-    pairs = set()
+    found = set()
     for key, (e, q) in boundary.items():
         if q not in CAP_QUADS:
             continue
         end = _column_end(elems, faces, e, q)
         if end is not None:
-            pairs.add((min(key, end), max(key, end)))
-    pairs = sorted(pairs)
+            found.add((min(key, end), max(key, end)))
+    pairs = sorted(found)
     if not pairs:
         raise ValueError("the face mesh has no thickness columns; is face.elem a layered hex mesh?")
 

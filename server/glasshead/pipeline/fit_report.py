@@ -27,6 +27,7 @@ import hashlib
 import inspect
 import json
 import multiprocessing
+import sys
 import time
 from pathlib import Path
 from urllib.parse import quote
@@ -186,7 +187,7 @@ def input_key(assets_dir: Path) -> str:
     digest = hashlib.sha256()
     for name in INPUT_FILES:
         digest.update(name.encode() + b"\0" + (assets_dir / name).read_bytes() + b"\0")
-    for module in (*CODE, inspect.getmodule(input_key)):
+    for module in (*CODE, sys.modules[__name__]):
         digest.update(inspect.getsource(module).encode())
     digest.update(f"{FIT_REPORT_FORMAT_VERSION}/{BUILDER}".encode())
     return digest.hexdigest()

@@ -239,11 +239,10 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     n = len(rim)
     i = np.arange(n)
     j = (i + 1) % n
-    quads = [
+    quads = np.vstack([
         np.stack([k * n + i, k * n + j, (k + 1) * n + j, (k + 1) * n + i], axis=1)
         for k in range(RINGS - 1)
-    ]
-    quads = np.vstack(quads)
+    ])
     pole = len(vertices) - 1
     faces = np.vstack(
         [quads[:, [0, 1, 2]], quads[:, [0, 2, 3]],

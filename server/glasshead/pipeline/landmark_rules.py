@@ -156,7 +156,8 @@ def velum_surfaces(velum, junction, tongue_dorsum):
     """The velum's mid-sagittal loop split at its front end (nearest the hard/soft junction) and
     its tip (farthest from it): (oral (k, 3), nasal (m, 3), tip (3,)), each surface ordered from
     the front end to the tip. The oral surface is the one nearer ``tongue_dorsum`` (3,)."""
-    section = Section(*velum, origin=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0))
+    vertices, faces = velum
+    section = Section(vertices, faces, origin=(0.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0))
     if section.empty:
         raise ValueError("the velum does not cross the mid-sagittal plane")
     loop = section.polyline_through(section.nearest_segment(junction)).points

@@ -44,7 +44,7 @@ TONGUE_MESHES = ["tongue_rest"]
 
 #: The parts, in the order the layer lists them: (name, label, the point it is shown at, the
 #: scene meshes it names when pointed at).
-PARTS = (
+PARTS: tuple[tuple[str, str, str, list[str]], ...] = (
     ("lips", "lips", "lips", ["upper_lip", "lower_lip"]),
     ("teeth", "teeth", "teeth", ["maxilla", "mandible"]),
     ("alveolar_ridge", "alveolar ridge", "alveolar_ridge", ["maxilla"]),

@@ -59,6 +59,8 @@ def load_built_meshes(assets_dir, names, scene_only=False):
         if not file.is_file():
             raise ValueError(f"{file} (mesh {name!r} of {path}) is missing")
         mesh = trimesh.load(file, force="mesh", process=False)  # process=False keeps the order
+        if not isinstance(mesh, trimesh.Trimesh):
+            raise ValueError(f"{file} (mesh {name!r} of {path}) holds no triangle mesh")
         meshes[name] = (np.asarray(mesh.vertices, dtype=np.float64),
                         np.asarray(mesh.faces, dtype=np.int64), entries[name].get("sha256"))
     return meshes

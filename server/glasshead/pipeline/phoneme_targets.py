@@ -33,6 +33,7 @@ the others of ``CODE``) is the one the file records.
 import hashlib
 import inspect
 import multiprocessing
+import sys
 import time
 from pathlib import Path
 
@@ -146,7 +147,7 @@ def input_key(assets_dir: Path, data_dir: Path) -> str:
     for name in INPUT_FILES:
         digest.update(name.encode() + b"\0" + (assets_dir / name).read_bytes() + b"\0")
     digest.update((data_dir / ENGASSIM).read_bytes())
-    for module in (*CODE, inspect.getmodule(input_key)):
+    for module in (*CODE, sys.modules[__name__]):
         digest.update(inspect.getsource(module).encode())
     digest.update(f"{PHONEME_TARGETS_FORMAT_VERSION}/{BUILDER}".encode())
     return digest.hexdigest()
@@ -156,7 +157,7 @@ def _tongue_only(ctx: Context, params: dict) -> dict:
     return {name: value for name, value in params.items() if name in ctx.rig.parameters}
 
 
-def _finish(ctx: Context, params: dict) -> dict:
+def _finish(ctx: Context, params: dict) -> tuple[dict, np.ndarray]:
     """Volume and synthetic EPG of a parameter set."""
     tongue = _tongue_only(ctx, params)
     epg = ctx.epg(tongue)

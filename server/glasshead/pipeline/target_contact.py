@@ -75,7 +75,7 @@ PENETRATION_OF_GOAL = {"velar_stop": {"a": 0.5, "u": 0.5, "i": 0.15}}
 #: them alone, the highest point of /k/(i)'s dorsum came out level with /k/(u)'s or 0.6 mm in
 #: front of it, as the last bits of the build fell; wanted closed in R6 and R7 too, it lies
 #: about 2 mm in front (docs/targets.md).
-FRONTED_ROWS_OF_GOAL = {"velar_stop": {"i": (5, 6)}}
+FRONTED_ROWS_OF_GOAL: dict[str, dict[str, tuple[int, ...]]] = {"velar_stop": {"i": (5, 6)}}
 #: Degrees, by goal: the wanted contacts are also asked with the jaw this much more open
 #: (``fit_contact``'s ``jaw_slack_deg``). The velar body dominates its neighbours but the jaw
 #: does not (docs/coarticulation.md): in "and Kim" the jaw at /k/'s centre stood 0.76 deg more
@@ -115,7 +115,7 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
             weights = np.abs(2.0 * share - 1.0) * epg_classes.ELECTRODES
             wanted = epg_classes.majority_pattern(frames)
             context = _context(shape_name)
-            fronted = list(FRONTED_ROWS_OF_GOAL.get(name, {}).get(context, ()))
+            fronted = list(FRONTED_ROWS_OF_GOAL.get(name, {}).get(context or "", ()))
             if fronted:
                 wanted, weights = wanted.copy(), weights.copy()
                 wanted[fronted] = epg_classes.ELECTRODES[fronted]
@@ -123,7 +123,7 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
             return {"name": name, "wanted": wanted, "fronted_rows": fronted,
                     "weights": weights, "frames": int(len(frames)),
                     "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT),
-                    "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(context)}
+                    "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(context or "")}
     if shape_name in RULE_GOALS:
         wanted, weights = rule_pattern(shape_name)
         return {"name": RULE_GOALS[shape_name][0], "wanted": wanted, "weights": weights,

@@ -8,9 +8,11 @@ the output already records the same inputs (the SHA-256 of the sources and of th
 """
 
 import hashlib
+import inspect
 import json
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import trimesh
@@ -55,7 +57,7 @@ def input_key(data_dir):
     base = Path(data_dir) / BADIN_DIR
     code = hashlib.sha256()
     for module in CODE:
-        code.update(Path(module.__file__).read_bytes())
+        code.update(Path(inspect.getfile(module)).read_bytes())
     return {"tongue.obj": _sha256(base / "tongue.obj"), "jaw.obj": _sha256(base / "jaw.obj"),
             "code": code.hexdigest(), "fit_revision": FIT_REVISION,
             "format_version": TONGUE_RIG_FORMAT_VERSION}
@@ -70,7 +72,7 @@ def surface_distances(vertices_a, triangles_a, vertices_b, triangles_b,
     """
     a = trimesh.Trimesh(vertices_a, triangles_a, process=False)
     b = trimesh.Trimesh(vertices_b, triangles_b, process=False)
-    report = {}
+    report: dict[str, Any] = {}
     for key, source, target, offset in (("a_to_b", a, b, 0), ("b_to_a", b, a, 1)):
         points, _ = trimesh.sample.sample_surface(source, samples, seed=seed + offset)
         points = np.vstack([source.vertices, points])

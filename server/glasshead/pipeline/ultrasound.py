@@ -75,7 +75,7 @@ def read_contours(path):
     """Every contour of the tongue file, in recording order. UltrasoundDataError when a row
     lacks a column, a coordinate is not a number or a label is unknown."""
     path = Path(path)
-    groups = {}
+    groups: dict[tuple[str, str, str], dict] = {}
     with path.open(newline="", encoding="utf-8") as handle:
         for line, row in enumerate(csv.DictReader(handle), start=2):
             where = f"{path.name} line {line}"
@@ -122,8 +122,8 @@ def read_palate(path):
         points.append((_float(x, where), _float(y, where)))
     if len(points) < 5:
         raise UltrasoundDataError(f"{path.name}: only {len(points)} fan lines have a palate value")
-    points = np.array(points)
-    return points[np.argsort(-points[:, 0])]
+    trace = np.array(points)
+    return trace[np.argsort(-trace[:, 0])]
 
 
 def vault_section(maxilla_section):
@@ -134,7 +134,7 @@ def vault_section(maxilla_section):
     front, edge = points[:, 0].max(), points[:, 1].min()
     keep = points[(points[:, 0] < front - VAULT_FROM_FRONT_MM) & (points[:, 1] > edge + 2.0)]
     bins = np.floor(keep[:, 0] / 0.5).astype(np.int64)
-    lowest = {}
+    lowest: dict[int, np.ndarray] = {}
     for b, point in zip(bins, keep, strict=True):
         if b not in lowest or point[1] < lowest[b][1]:
             lowest[b] = point

@@ -14,6 +14,7 @@ It holds what ``velum_opening`` needs on both sides (``geometry.velum``, ``web/s
 import hashlib
 import json
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -109,7 +110,11 @@ def port_samples(raised, faces, width, level):
     count = max(1, int(round(width / SAMPLE_STEP_MM)))
     step = width / count
     zs = -width / 2 + step * (np.arange(count) + 0.5)
-    vertices, weights, normals, rows, heights = [], [], [], [], []
+    vertices: list = []
+    weights: list = []
+    normals: list = []
+    rows: list = []
+    heights: list = []
     y = level
     while True:
         hits = [first_hits_along_x(raised, faces, y, z) for z in zs]
@@ -153,7 +158,7 @@ def build_velum_rig(assets_dir):
     level = palatal_level(np.array(positions["raised"]).reshape(-1, 3))
     raised_stored = np.array(positions["raised"]).reshape(-1, 3)
     samples = port_samples(raised_stored, faces, width, level)
-    definition = {
+    definition: dict[str, Any] = {
         "format_version": VELUM_RIG_FORMAT_VERSION,
         "description": "The velum (soft palate) as one mesh in three measured poses blended by "
                        "velum_opening, and the samples of the nasal port (docs/velum.md).",

@@ -2,7 +2,7 @@
 
 from datetime import UTC, datetime
 
-from sqlalchemy import DateTime, Integer, MetaData, TypeDecorator, text
+from sqlalchemy import DateTime, Integer, MetaData, Table, TypeDecorator, text
 from sqlalchemy.orm import DeclarativeBase, Mapped, declared_attr, mapped_column
 
 #: Constraint names that Alembic can find again on every backend (SQLite batch migrations need
@@ -63,7 +63,8 @@ class Versioned:
 
     @declared_attr.directive
     def __mapper_args__(cls):  # noqa: N805 (a class-level directive)
-        return {"version_id_col": cls.__table__.c.version}
+        table: Table = cls.__table__  # type: ignore[attr-defined]  # set on the mapped subclass
+        return {"version_id_col": table.c.version}
 
     @declared_attr.directive
     def __table_args__(cls):  # noqa: N805

@@ -11,11 +11,15 @@ Children sign in too, with their class's join code, and get tokens of their own
 """
 
 from datetime import datetime
+from typing import TYPE_CHECKING
 
 from sqlalchemy import ForeignKey, Integer, String
 from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from glasshead.store.base import Base, Timestamped, UtcDateTime, Versioned, utc_now
+
+if TYPE_CHECKING:
+    from glasshead.store.lessons import Child
 
 #: The roles a user can have (docs/auth.md says what each may do).
 ROLES = ("author", "teacher", "clinician", "admin")
@@ -76,7 +80,7 @@ class ChildToken(Base):
     expires_at: Mapped[datetime] = mapped_column(UtcDateTime())
     revoked_at: Mapped[datetime | None] = mapped_column(UtcDateTime(), nullable=True)
 
-    child: Mapped["Child"] = relationship()  # noqa: F821 (store.lessons, on the same Base)
+    child: Mapped["Child"] = relationship()
 
 
 class SignInAttempt(Base):

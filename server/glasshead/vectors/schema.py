@@ -125,7 +125,7 @@ def problems(document):
     if "cases" in keys and not isinstance(cases, list):
         found.append("top level: cases must be an array")
     elif isinstance(cases, list):
-        seen = {}
+        seen: dict[str, int] = {}
         for index, case in enumerate(cases):
             found += _case_problems(index, case, seen)
     return found

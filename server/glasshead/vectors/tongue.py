@@ -62,7 +62,8 @@ def probe_indices(vertex_count, count=PROBES):
 def parameter_sets(rig, seed=SEED):
     """(description, {name: value}) for the neutral, one-at-a-time extreme and random cases."""
     names = rig.parameter_names
-    sets = [("neutral (every parameter at its neutral value)", {})]
+    sets: list[tuple[str, dict[str, float]]] = [
+        ("neutral (every parameter at its neutral value)", {})]
     for k, name in enumerate(names):
         for label, value in (("minimum", rig.minimum[k]), ("maximum", rig.maximum[k])):
             sets.append((f"{name} alone at its {label} {value:g}", {name: float(value)}))

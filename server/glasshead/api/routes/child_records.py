@@ -24,6 +24,7 @@ from sqlalchemy import delete, or_, select
 from sqlalchemy.orm import Session
 
 from glasshead.api.auth import FORBIDDEN, UNAUTHENTICATED, AdminUser, Person, require_role
+from glasshead.api.error_responses import Responses
 from glasshead.api.etags import PRECONDITION, check_if_match, etag
 from glasshead.api.lookups import RecordId
 from glasshead.api.ownership import child_of
@@ -49,7 +50,8 @@ FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
 RECORDING_IMPORT = "createRecordings"
 
 Follower = Annotated[User, Depends(require_role("teacher", "clinician", "admin"))]
-NOT_FOUND = {404: {"description": "no such child, or a child of a class that is not yours"}}
+NOT_FOUND: Responses = {
+    404: {"description": "no such child, or a child of a class that is not yours"}}
 
 
 class TokenTrace(BaseModel):

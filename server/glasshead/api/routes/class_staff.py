@@ -19,6 +19,7 @@ from sqlalchemy import select
 from sqlalchemy.exc import IntegrityError
 
 from glasshead.api.auth import require_role
+from glasshead.api.error_responses import Responses
 from glasshead.api.lookups import RecordId
 from glasshead.api.ownership import check_class_owner, class_of
 from glasshead.api.people import Role
@@ -32,7 +33,7 @@ router = APIRouter(tags=["classes"])
 Keeper = Annotated[User, Depends(require_role("teacher", "clinician", "admin"))]
 #: The roles a class may be shared with.
 STAFF_ROLES = ("teacher", "clinician")
-ALREADY_SHARED = {409: {"description": "the class is already shared with that user"}}
+ALREADY_SHARED: Responses = {409: {"description": "the class is already shared with that user"}}
 
 
 class StaffIn(BaseModel):

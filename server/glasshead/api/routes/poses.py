@@ -23,6 +23,7 @@ from sqlalchemy.orm import Session
 
 from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.deps import AssetsDep
+from glasshead.api.error_responses import Responses
 from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId, get_pose_record
 from glasshead.api.ownership import check_owner
@@ -35,7 +36,7 @@ router = APIRouter(tags=["poses"])
 
 KIND = "pose"
 #: The 409 of a write that would give a pose another pose's name.
-NAME_CONFLICT = {409: {"description": "a pose with that name already exists"}}
+NAME_CONFLICT: Responses = {409: {"description": "a pose with that name already exists"}}
 IfMatch = Annotated[str | None, Header(description="the ETag last read: the write goes ahead "
                                                   "only while the pose is still at it (412 "
                                                   "otherwise); leave out to overwrite")]

@@ -24,6 +24,7 @@ from glasshead.accounts import (
     revoke_all,
 )
 from glasshead.api.auth import FORBIDDEN, UNAUTHENTICATED, AdminUser
+from glasshead.api.error_responses import Responses
 from glasshead.api.etags import PRECONDITION, check_if_match, commit_versioned, set_etag
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.people import Role, UserOut
@@ -39,9 +40,10 @@ DisplayName = Annotated[str, StringConstraints(strip_whitespace=True, min_length
 IfMatch = Annotated[str | None, Header(description="the ETag last read: the write goes ahead "
                                                   "only while the user is still at it (412 "
                                                   "otherwise); leave out to overwrite")]
-ADMIN_ONLY = {**UNAUTHENTICATED, **FORBIDDEN}
+ADMIN_ONLY: Responses = {**UNAUTHENTICATED, **FORBIDDEN}
 #: The 409s: a username already taken, the last admin removed or demoted.
-CONFLICT = {409: {"description": "the username is taken, or the change would leave no admin"}}
+CONFLICT: Responses = {
+    409: {"description": "the username is taken, or the change would leave no admin"}}
 
 
 class UserIn(BaseModel):
