@@ -29,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.fitting.fit2d import jaw_opening_from_vtl, load_inputs
+from glasshead.fitting.first_hits import exhaustive_first_hits
+from glasshead.fitting.fit2d import load_inputs
 from glasshead.fitting.fit3d import (
     VTL_POINTS,
     VTL_RIBS,
@@ -43,7 +44,7 @@ from glasshead.fitting.fit3d import (
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.fitting.objective3d import RayError3D
 from glasshead.fitting.optimizer import METHODS
-from glasshead.fitting.ray_walk import exhaustive_first_hits
+from glasshead.fitting.vtl_mapping import jaw_opening_from_vtl
 
 REPO = Path(__file__).resolve().parents[1]
 SEED = 1998

@@ -24,8 +24,9 @@ import numpy as np
 import trimesh
 from trimesh.ray.ray_pyembree import RayMeshIntersector
 
+from glasshead.fitting.first_hits import exhaustive_first_hits
 from glasshead.fitting.objective3d import RayError3D
-from glasshead.fitting.ray_walk import RayWalker, exhaustive_first_hits
+from glasshead.fitting.ray_walk import RayWalker
 
 REPO = Path(__file__).resolve().parents[1]
 RAYS = 1000
