@@ -57,7 +57,7 @@ def test_vector_tables_are_up_to_date_with_the_builder():
     fresh = decode_collision_tables(build_vector_tables())
     header = {k: v for k, v in fresh.header.items() if k != "payload_crc32"}
     stored = {k: v for k, v in VECTOR_TABLES.header.items() if k != "payload_crc32"}
-    message = f"run python -m glasshead.vectors {TABLES_NAME}"
+    message = f"run glasshead vectors {TABLES_NAME}"
     assert_same_document(header, stored, rtol=FLOAT32_RTOL, path=f"{TABLES_NAME} header")
     for name, array in VECTOR_TABLES.arrays.items():
         got = fresh[name]
