@@ -48,8 +48,8 @@ def test_the_constants_vector_file_is_up_to_date_with_python():
     try:
         assert_same_document(fresh, STORED, rtol=RTOL)
     except AssertionError as exc:
-        raise AssertionError(f"tests/vectors/constants.json is stale ({exc}): run python -m "
-                             "glasshead.vectors constants.json") from None
+        raise AssertionError(f"tests/vectors/constants.json is stale ({exc}): run glasshead "
+                             "vectors constants.json") from None
 
 
 def test_javascript_exports_the_same_constants_with_the_same_values():
