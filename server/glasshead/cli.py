@@ -1,6 +1,7 @@
 """The `glasshead` command, the one entry point of the package: build the assets, fit the tongue
-to an observation, train the coarticulation constants, serve the app, add a user, and write the
-files made from code (the shared test vectors, the lesson format's JSON Schema)."""
+to an observation, train the coarticulation constants, serve the app, bring the database up to
+date, add a user, and write the files made from code (the shared test vectors, the lesson
+format's JSON Schema)."""
 
 import argparse
 import json
