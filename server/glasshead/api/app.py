@@ -76,7 +76,8 @@ def create_app() -> FastAPI:
         include_in_schema=False,
     )
     async def unknown_api_path(request: Request, rest: str):
-        raise unknown_path_error(app, request)
+        # request.app, not a closure: FastAPI's cache of routes' callables would keep the app.
+        raise unknown_path_error(request.app, request)
 
     @app.exception_handler(StarletteHTTPException)
     async def json_http_error(request: Request, exc: StarletteHTTPException):
