@@ -1,7 +1,7 @@
 """Fits: an author's observation (a contour, a surface or EPG frames) fitted into a new target.
 
 POST /fits takes a multipart upload (``file``, ``kind``, optional ``name``, ``method``,
-``max_evals`` and, for EPG, ``frame``), reads and checks it whole (``fitting.uploads``: 413 past
+``max_evals`` and, for EPG, ``frame``), reads and checks it whole (``glasshead.uploads``: 413 past
 the kind's size limit, 415 not the kind's format, 422 bad content, each naming the problem; no
 row is stored), stores a ``queued`` job and answers 202 with it and its Location. The fit runs
 in a worker process of whichever server (``jobs.fit_runner``) takes it from the queue in the
