@@ -14,8 +14,8 @@ lets the tongue take the next vowel; /h/ holds nothing. docs/coarticulation.md g
 with its reason.
 
 ``DEFAULTS`` are the hand-set values; ``speech/constants.json`` holds the values fitted to
-VocalTractLab's gestural trajectories (``training.coarticulation``), which ``load_constants`` returns
-when the file exists. The constants are plain JSON-able dicts so that they can be trained,
+VocalTractLab's gestural trajectories (``training.coarticulation``), which ``load_constants``
+returns when the file exists. The constants are plain JSON-able dicts so that they can be trained,
 stored and passed to ``coarticulate`` alike.
 """
 
