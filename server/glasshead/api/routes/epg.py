@@ -29,7 +29,10 @@ router = APIRouter(tags=["epg"])
 GridName = Literal["reading62", "dense96"]
 Coordinate = Annotated[float, Field(strict=True, allow_inf_nan=False)]
 Vertex = Annotated[list[Coordinate], Field(min_length=3, max_length=3)]
-Triangle = Annotated[list[Annotated[int, Field(ge=0)]], Field(min_length=3, max_length=3)]
+#: A triangle's vertex indices: below the most vertices accepted (a larger one could name no
+#: vertex, and past 64 bits would not even fit the index array).
+Triangle = Annotated[list[Annotated[int, Field(ge=0, lt=COLLISION_MAX_VERTICES)]],
+                     Field(min_length=3, max_length=3)]
 #: Most triangles accepted with ``vertices``.
 MAX_TRIANGLES = 2 * COLLISION_MAX_VERTICES
 
