@@ -43,6 +43,9 @@ IfMatch = Annotated[str | None, Header(description="the ETag last read: the writ
 
 PARAM_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_.]{0,63}$")
 MAX_PARAMS = 256
+#: The document states the rules _check_params holds a map to, so that a client (or a request
+#: generator) knows which names and how many are taken before it is refused.
+PARAMS_SCHEMA = {"propertyNames": {"pattern": PARAM_NAME.pattern}, "maxProperties": MAX_PARAMS}
 #: Who saves poses and targets.
 Maker = Annotated[User, Depends(require_role("author", "clinician", "admin"))]
 PoseName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1, max_length=120)]
@@ -69,7 +72,8 @@ class PoseIn(BaseModel):
                     "jaw_opening": 0.0}}]})
     name: PoseName
     description: str = Field("", max_length=2000)
-    params: dict[str, float] = Field(description="parameter name -> value, in the rig's units")
+    params: dict[str, float] = Field(description="parameter name -> value, in the rig's units",
+                                     json_schema_extra=PARAMS_SCHEMA)
 
     @field_validator("params")
     @classmethod
@@ -81,14 +85,16 @@ class PosePatch(BaseModel):
     model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
         {"description": "tip a little higher", "params": {"tip_height": 6.0,
                                                           "blade_height": 8.28}}]})
-    name: PoseName | None = None
-    description: str | None = Field(None, max_length=2000)
-    params: dict[str, float] | None = None
+    # Each field may be left out, never null: the document says so (no null among the types),
+    # and validation refuses a null with the field's name.
+    name: PoseName = Field(None)
+    description: str = Field(None, max_length=2000)
+    params: dict[str, float] = Field(None, json_schema_extra=PARAMS_SCHEMA)
 
     @field_validator("params")
     @classmethod
     def _params(cls, params):
-        return None if params is None else _check_params(params)
+        return _check_params(params)
 
 
 class PoseOut(BaseModel):
@@ -177,8 +183,6 @@ def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep, assets
     if patch.params is not None:
         check_known_params(assets, patch.params)
     for field, value in patch.model_dump(exclude_unset=True).items():
-        if value is None:
-            raise HTTPException(status_code=422, detail=f"field {field}: may not be null")
         setattr(record, field, value)
     _commit(session, record.name, record)
     set_etag(response, KIND, record)
