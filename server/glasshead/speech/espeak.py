@@ -163,6 +163,12 @@ class Espeak:
         if status != _EE_OK:
             raise RuntimeError(f"espeak-ng could not synthesise {text!r} (status {status})")
         samples = np.frombuffer(b"".join(chunks), dtype="<i2").copy()
+        # The run of digital silence espeak-ng ends with depends on what it spoke before (a
+        # word ending in /t/ added 40 ms to every later one): cut, so that a request sounds and
+        # lasts the same whatever the worker spoke before.
+        sounding = np.flatnonzero(samples)
+        if sounding.size:
+            samples = samples[: sounding[-1] + 1]
         phones = align_events(wanted, events, len(samples), self.sample_rate)
         return Synthesis(samples, self.sample_rate, phones)
 
