@@ -23,7 +23,7 @@ function testFiles( dir ) {
 
 const suites = [
 	{ name: 'lint', command: process.execPath, args: [ join( REPO, 'scripts', 'lint.mjs' ) ] },
-	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-p', 'no:cacheprovider' ] },
+	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-p', 'no:cacheprovider', '--durations=30' ] },
 	{ name: 'javascript', command: process.execPath, args: [ '--test', '--test-reporter=spec', ...testFiles( 'tests/js' ) ] },
 	{ name: 'end-to-end', command: process.execPath, args: [ '--test', '--test-concurrency=1', '--test-reporter=spec', ...testFiles( 'e2e' ) ] },
 	{ name: 'bench', command: process.execPath, args: [ join( REPO, 'bench', 'run.mjs' ), '--quick' ] },

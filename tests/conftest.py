@@ -15,6 +15,19 @@ from postgres_support import throwaway_postgres
 os.environ.setdefault("GLASSHEAD_ALLOWED_HOSTS", "testserver,localhost,127.0.0.1,::1")
 
 
+@pytest.fixture(scope="session", autouse=True)
+def compute_workers_shared_by_the_apps_of_the_session():
+    """The compute workers outlive each test's app and serve the next one's (a server makes
+    them once; spawning them again for each of hundreds of apps took about a minute of the
+    suite). They are ended when the session ends. A test of the pool itself makes its own."""
+    from glasshead.jobs import compute
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(compute.ComputePool, "shutdown", lambda self: None)
+        yield
+    compute.shutdown_pool()
+
+
 @pytest.fixture(scope="session")
 def data_dir() -> Path:
     """The reference data directory; a missing one fails the test with the path expected."""

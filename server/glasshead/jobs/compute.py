@@ -30,6 +30,7 @@ response already serialised as JSON, so the event loop only moves bytes.
 """
 
 import threading
+from collections import OrderedDict
 from collections.abc import Callable
 from typing import Any
 
@@ -51,8 +52,10 @@ Task = Callable[[AssetStore, Any], bytes]
 
 _pools: dict[int, WorkerPool] = {}
 _pools_lock = threading.Lock()
-#: In a worker process: one asset store per assets directory.
-_worker_stores: dict[str, AssetStore] = {}
+#: In a worker process: one asset store per assets directory, the most recently used kept (a
+#: server has one directory; a process that makes apps on many keeps its workers' memory bounded).
+_worker_stores: OrderedDict[str, AssetStore] = OrderedDict()
+WORKER_STORES_KEPT = 4
 
 
 def _pool(workers: int) -> WorkerPool:
@@ -69,6 +72,9 @@ def worker_store(assets_dir: str) -> AssetStore:
     store = _worker_stores.get(assets_dir)
     if store is None:
         store = _worker_stores[assets_dir] = AssetStore(assets_dir)
+        while len(_worker_stores) > WORKER_STORES_KEPT:
+            _worker_stores.popitem(last=False)
+    _worker_stores.move_to_end(assets_dir)
     return store
 
 
@@ -107,10 +113,7 @@ class ComputePool:
 
     def shutdown(self) -> None:
         """End the workers (a later task starts a new pool)."""
-        with _pools_lock:
-            pool = _pools.pop(self.workers, None)
-        if pool is not None:
-            pool.shutdown()
+        shutdown_pool(self.workers)
 
     async def run(self, task: Task, payload: Any, *, doing: str | None = None) -> bytes:
         """``task(store, payload)`` in a worker; 503 with Retry-After when the queue is full;
@@ -147,3 +150,11 @@ class ComputePool:
         """``run`` answered as an application/json response."""
         return Response(await self.run(task, payload, doing=doing),
                         media_type="application/json")
+
+
+def shutdown_pool(workers: int | None = None) -> None:
+    """End the shared pool of ``workers`` workers, or every one when None."""
+    with _pools_lock:
+        ended = [_pools.pop(n) for n in list(_pools) if workers in (None, n)]
+    for pool in ended:
+        pool.shutdown()
