@@ -17,6 +17,7 @@ from typing import Annotated
 
 from fastapi import APIRouter, Depends, Header, HTTPException, Query, Response, status
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
+from pydantic.json_schema import JsonDict, SkipJsonSchema
 from sqlalchemy import func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
@@ -45,7 +46,8 @@ PARAM_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_.]{0,63}$")
 MAX_PARAMS = 256
 #: The document states the rules _check_params holds a map to, so that a client (or a request
 #: generator) knows which names and how many are taken before it is refused.
-PARAMS_SCHEMA = {"propertyNames": {"pattern": PARAM_NAME.pattern}, "maxProperties": MAX_PARAMS}
+PARAMS_SCHEMA: JsonDict = {"propertyNames": {"pattern": PARAM_NAME.pattern},
+                           "maxProperties": MAX_PARAMS}
 #: Who saves poses and targets.
 Maker = Annotated[User, Depends(require_role("author", "clinician", "admin"))]
 PoseName = Annotated[str, StringConstraints(strip_whitespace=True, min_length=1, max_length=120)]
@@ -85,16 +87,17 @@ class PosePatch(BaseModel):
     model_config = ConfigDict(extra="forbid", json_schema_extra={"examples": [
         {"description": "tip a little higher", "params": {"tip_height": 6.0,
                                                           "blade_height": 8.28}}]})
-    # Each field may be left out, never null: the document says so (no null among the types),
-    # and validation refuses a null with the field's name.
-    name: PoseName = Field(None)
-    description: str = Field(None, max_length=2000)
-    params: dict[str, float] = Field(None, json_schema_extra=PARAMS_SCHEMA)
+    # Each field may be left out, never null: the document has no null among the types, and
+    # update_pose refuses a null by the field's name.
+    name: PoseName | SkipJsonSchema[None] = None
+    description: str | SkipJsonSchema[None] = Field(None, max_length=2000)
+    params: dict[str, float] | SkipJsonSchema[None] = Field(None,
+                                                            json_schema_extra=PARAMS_SCHEMA)
 
     @field_validator("params")
     @classmethod
     def _params(cls, params):
-        return _check_params(params)
+        return None if params is None else _check_params(params)
 
 
 class PoseOut(BaseModel):
@@ -183,6 +186,8 @@ def update_pose(pose_id: RecordId, patch: PosePatch, session: SessionDep, assets
     if patch.params is not None:
         check_known_params(assets, patch.params)
     for field, value in patch.model_dump(exclude_unset=True).items():
+        if value is None:
+            raise HTTPException(status_code=422, detail=f"field {field}: may not be null")
         setattr(record, field, value)
     _commit(session, record.name, record)
     set_etag(response, KIND, record)
