@@ -14,7 +14,7 @@ from sqlalchemy.orm import Session
 
 from glasshead import uploads
 from glasshead.asset_store import AssetStore
-from glasshead.fitting import fit3d, jobs
+from glasshead.fitting import authored, fit3d
 from glasshead.jobs import fit_job, fit_queue
 from glasshead.jobs.fit_runner import FitRunner
 from glasshead.store.db import engine_for, upgrade_to_head
@@ -95,7 +95,7 @@ def test_an_epg_frame_index_chooses_that_frame_and_one_past_the_end_is_refused(d
 def test_a_surface_fit_is_fit3ds_fit_and_its_target_holds_every_parameter(inputs, shape_a):
     vertices = np.asarray(shape_a["tongue_surface_vertices"])
     seen = []
-    result = jobs.fit_observation(inputs, "surface", vertices, max_evals=200,
+    result = authored.fit_observation(inputs, "surface", vertices, max_evals=200,
                                   progress=lambda *step: seen.append(step))
     direct = fit3d.fit_surface(inputs.rig, vertices, max_evals=200, section=inputs.section)
     assert result["report"]["rms_mm"] == pytest.approx(direct.rms_mm, abs=1e-9)
@@ -106,7 +106,7 @@ def test_a_surface_fit_is_fit3ds_fit_and_its_target_holds_every_parameter(inputs
 
 
 def test_the_rest_outline_runs_root_to_tip_over_the_dorsum(inputs):
-    outline = jobs.rest_outline(inputs.section, inputs.rig)
+    outline = authored.rest_outline(inputs.section, inputs.rig)
     assert outline[0, 0] < -40 and outline[-1, 0] > 15  # root behind, tip in front
     assert outline[:, 1].max() > 10 and np.all(np.isfinite(outline))
 

@@ -73,7 +73,7 @@ class ProgressBar:
 def fit(args):
     from glasshead import uploads
     from glasshead.asset_store import AssetStore, AssetUnavailableError
-    from glasshead.fitting import jobs
+    from glasshead.fitting import authored
     from glasshead.jobs.fit_job import fit_inputs, save_fit
 
     settings = get_settings()
@@ -92,10 +92,10 @@ def fit(args):
     except AssetUnavailableError as error:
         print(f"glasshead fit: {error}", file=sys.stderr)
         return 2
-    method = args.method or jobs.DEFAULT_METHOD[args.kind]
+    method = args.method or authored.DEFAULT_METHOD[args.kind]
     bar = ProgressBar(sys.stderr)
     try:
-        result = jobs.fit_observation(inputs, args.kind, observation.points, method=method,
+        result = authored.fit_observation(inputs, args.kind, observation.points, method=method,
                                       max_evals=args.max_evals, progress=bar, name=args.name or "")
     except ValueError as error:
         bar.close(finished=False)

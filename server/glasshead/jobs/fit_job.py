@@ -4,7 +4,7 @@ The server's runner (``jobs.fit_runner``) claims a queued row (``jobs.fit_queue.
 ``queued`` -> ``running``) and hands only its id to a worker; the worker (``run_job``) opens
 its own database session from the database URL, reads the built assets through its process's
 asset store (``jobs.compute.worker_store``: loaded once, again when a file's content changes),
-fits (``fitting.jobs.fit_observation``), writes ``progress`` at most every
+fits (``fitting.authored.fit_observation``), writes ``progress`` at most every
 ``PROGRESS_INTERVAL_S`` seconds and ends the row ``done`` (``params`` and ``report``) or
 ``failed`` (``message``). A row deleted while its fit runs stops the fit at the next progress
 write. Every write is conditional on the row still being ``running``, so a row another server
@@ -21,7 +21,7 @@ from sqlalchemy import update
 from sqlalchemy.orm import Session
 
 from glasshead.asset_store import AssetStore
-from glasshead.fitting.jobs import FitInputs, fit_observation
+from glasshead.fitting.authored import FitInputs, fit_observation
 from glasshead.jobs.compute import worker_store
 from glasshead.store.base import utc_now
 from glasshead.store.db import engine_for

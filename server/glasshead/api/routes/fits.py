@@ -42,7 +42,7 @@ from glasshead.api.auth import SignedInUser, require_role
 from glasshead.api.examples import EMUR_EXAMPLE
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import check_owner
-from glasshead.fitting.jobs import DEFAULT_METHOD
+from glasshead.fitting.authored import DEFAULT_METHOD
 from glasshead.jobs.fit_runner import FitRunner
 from glasshead.store.db import get_engine
 from glasshead.store.fit_jobs import FitJob
