@@ -38,6 +38,20 @@ def own_pid(_):
     return os.getpid()
 
 
+def wait_until_dead(pid: int, seconds: float = 30.0) -> None:
+    """Until the process is a zombie or gone."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        try:
+            with open(f"/proc/{pid}/stat") as stat:
+                if stat.read().rsplit(")", 1)[1].split()[0] in ("Z", "X"):
+                    return
+        except FileNotFoundError:
+            return
+        time.sleep(0.005)
+    raise AssertionError(f"process {pid} still runs {seconds} s after SIGKILL")
+
+
 @pytest.fixture
 def pool():
     pool = WorkerPool(2, name="test")
@@ -52,14 +66,23 @@ def test_a_worker_that_faults_costs_its_own_task_and_is_replaced(pool):
     assert died.value.signal_name == "SIGSEGV"
     assert "SIGSEGV" in str(died.value)
     assert slow.result(timeout=60) == 1.0  # the other worker's task went on
-    pids = {pool.submit(own_pid, None).result(timeout=60) for _ in range(4)}
-    assert os.getpid() not in pids
+    together = [pool.submit(pause, 0.5) for _ in range(2)]  # both slots busy at once
+    assert [task.result(timeout=60) for task in together] == [0.5, 0.5]
     assert pool.started == 3  # two workers and the one that replaced the dead one
+    assert os.getpid() not in {pool.submit(own_pid, None).result(timeout=60) for _ in range(2)}
+
+
+def test_tasks_one_after_another_are_served_by_one_worker_process(pool):
+    """A slot's process starts only when every started worker is busy: one process, not one
+    per slot, serves tasks that never overlap."""
+    pids = {pool.submit(own_pid, None).result(timeout=60) for _ in range(4)}
+    assert len(pids) == 1 and pool.started == 1
 
 
 def test_a_worker_killed_from_outside_while_idle_is_replaced_before_the_next_task(pool):
     first = pool.submit(own_pid, None).result(timeout=60)
     os.kill(first, signal.SIGKILL)
+    wait_until_dead(first)  # the kill lands (a task sent in the instant before costs itself)
     answers = [pool.submit(own_pid, None).result(timeout=60) for _ in range(3)]
     assert first not in answers
 

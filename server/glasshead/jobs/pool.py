@@ -26,7 +26,7 @@ import threading
 from collections.abc import Callable
 from concurrent.futures import CancelledError, Future, ThreadPoolExecutor
 from multiprocessing.connection import Connection
-from queue import SimpleQueue
+from queue import LifoQueue
 from typing import Any
 
 log = logging.getLogger("glasshead.jobs")
@@ -132,7 +132,9 @@ class WorkerPool:
         self._initializer = initializer
         self._initargs = initargs
         self._context = multiprocessing.get_context("spawn")
-        self._idle: SimpleQueue[_Worker | None] = SimpleQueue()
+        # Last in, first out: a task takes the worker that finished last, so a slot's process
+        # starts only when every started worker is busy (one at a time, one process).
+        self._idle: LifoQueue[_Worker | None] = LifoQueue()
         for _ in range(workers):
             self._idle.put(None)  # a slot whose process starts when first needed
         self._busy: dict[int, _Worker] = {}
