@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from glasshead.speech.espeak import align_events, get_engine
+from glasshead.speech.espeak import LAST_PHONE_MIN_S, align_events, get_engine, sounding_end
 
 #: How far the last phone's end may lie from the audio's end, s.
 COVER_TOLERANCE_S = 0.001
@@ -81,3 +81,21 @@ def test_what_was_spoken_before_does_not_change_how_long_a_word_lasts():
         assert synthesis.samples[-1] != 0  # ends where the sound ends
         lengths.append(synthesis.duration_s)
     assert max(lengths) - min(lengths) < 0.005, lengths
+
+
+def test_a_last_phone_espeak_gave_no_sound_keeps_its_time_and_runs_forward():
+    """Of 500 zeros, the last phone began after the last sound, and its closing pause event
+    12 ms later: cut at the sound, the phone ran backwards, and the utterance failed."""
+    rate = 22050
+    samples = np.zeros(rate, dtype=np.int16)
+    samples[:15_000] = 1000
+    events = [(0, "z"), (2_000, "i:"), (9_000, "r"), (15_100, "oU"), (15_250, "_:"),
+              (15_400, "_")]
+    end = sounding_end(samples, events, rate)
+    assert end == 15_100 + round(LAST_PHONE_MIN_S * rate)
+    phones = align_events(["Z", "IY", "R", "OW"], events, end, rate)
+    assert [p["symbol"] for p in phones] == ["Z", "IY", "R", "OW"]
+    assert all(p["end_s"] > p["start_s"] for p in phones), phones
+    assert phones[-1]["end_s"] == end / rate
+    samples[:] = 0
+    assert sounding_end(samples, events, rate) == rate  # silence alone is left as it is

@@ -38,6 +38,8 @@ WPM_RANGE = (80, 450)
 MAX_WORD_PHONES = 48
 #: A silence at either end of the audio shorter than this joins the neighbouring phone, s.
 EDGE_SILENCE_S = 0.02
+#: The least the last phone lasts (``sounding_end``), s.
+LAST_PHONE_MIN_S = 0.02
 
 # speak_lib.h
 _AUDIO_OUTPUT_SYNCHRONOUS = 2
@@ -163,14 +165,26 @@ class Espeak:
         if status != _EE_OK:
             raise RuntimeError(f"espeak-ng could not synthesise {text!r} (status {status})")
         samples = np.frombuffer(b"".join(chunks), dtype="<i2").copy()
-        # The run of digital silence espeak-ng ends with depends on what it spoke before (a
-        # word ending in /t/ added 40 ms to every later one): cut, so that a request sounds and
-        # lasts the same whatever the worker spoke before.
-        sounding = np.flatnonzero(samples)
-        if sounding.size:
-            samples = samples[: sounding[-1] + 1]
+        samples = samples[: sounding_end(samples, events, self.sample_rate)]
         phones = align_events(wanted, events, len(samples), self.sample_rate)
         return Synthesis(samples, self.sample_rate, phones)
+
+
+def sounding_end(samples: np.ndarray, events: list[tuple[int, str]], sample_rate: int) -> int:
+    """Where a synthesis ends: after its last sound. The run of digital silence espeak-ng ends
+    with depends on what it spoke before (a word ending in /t/ added 40 ms to every later one),
+    so it is cut (espeak-ng's closing pause event moves with it), and a request lasts the same
+    whatever the worker spoke before. The last phone keeps at least LAST_PHONE_MIN_S, even where
+    espeak-ng gave it no sound (the last of 500 digits)."""
+    sounding = np.flatnonzero(samples)
+    if not sounding.size:
+        return len(samples)
+    end = int(sounding[-1]) + 1
+    spoken = [k for k, (_, mnemonic) in enumerate(events)
+              if any(symbol != PAUSE for symbol, _ in espeak_to_arpabet(mnemonic.lstrip("',%=")))]
+    if spoken:
+        end = max(end, events[spoken[-1]][0] + round(LAST_PHONE_MIN_S * sample_rate))
+    return min(end, len(samples))
 
 
 def align_events(wanted: list[str], events: list[tuple[int, str]], n_samples: int,
@@ -184,7 +198,8 @@ def align_events(wanted: list[str], events: list[tuple[int, str]], n_samples: in
     """
     timed = []
     for k, (sample, mnemonic) in enumerate(events):
-        end = events[k + 1][0] if k + 1 < len(events) else n_samples
+        # An event may lie past the audio's end (a closing pause after the cut silence).
+        end = min(events[k + 1][0], n_samples) if k + 1 < len(events) else n_samples
         symbols = espeak_to_arpabet(mnemonic.lstrip("',%="))
         if end <= sample or not symbols:
             if timed and end > sample:  # an unmapped marker's time joins the phone before it
