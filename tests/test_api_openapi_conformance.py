@@ -126,7 +126,7 @@ class Scale:
 
 SUITE = Scale(examples=6, other_examples=2, scenarios=8,
               invalid_coverage=("anonymous", "admin", "child"))
-BENCH = Scale(examples=200, other_examples=20, scenarios=200, steps=16, narrow_text=False)
+BENCH = Scale(examples=200, other_examples=5, scenarios=50, steps=12, narrow_text=False)
 
 
 def is_tested_in_full(caller: str, operation_id: str) -> bool:
