@@ -89,7 +89,15 @@ def test_non_finite_parameter_values_are_refused(client):
     assert client.get(f"{API}/poses").json()["total"] == 0
 
 
-def test_patching_a_field_to_null_is_refused(client):
+@pytest.mark.parametrize("field", ["params", "name", "description"])
+def test_patching_a_field_to_null_is_refused(client, field):
     pose = client.post(f"{API}/poses", json=TIP_UP).json()
-    response = client.patch(f"{API}/poses/{pose['id']}", json={"params": None})
-    assert response.status_code == 422 and "params" in response.json()["detail"]
+    response = client.patch(f"{API}/poses/{pose['id']}", json={field: None})
+    assert response.status_code == 422 and field in response.json()["detail"]
+
+
+def test_a_patched_description_past_its_length_is_refused_by_name(client):
+    pose = client.post(f"{API}/poses", json=TIP_UP).json()
+    response = client.patch(f"{API}/poses/{pose['id']}", json={"description": "x" * 2001})
+    assert response.status_code == 422, response.text
+    assert "description" in response.json()["detail"] and "2000" in response.json()["detail"]

@@ -90,7 +90,8 @@ class PosePatch(BaseModel):
     # Each field may be left out, never null: the document has no null among the types, and
     # update_pose refuses a null by the field's name.
     name: PoseName | SkipJsonSchema[None] = None
-    description: str | SkipJsonSchema[None] = Field(None, max_length=2000)
+    # The length bound sits on the string: on the union it would be applied to a null too.
+    description: Annotated[str, StringConstraints(max_length=2000)] | SkipJsonSchema[None] = None
     params: dict[str, float] | SkipJsonSchema[None] = Field(None,
                                                             json_schema_extra=PARAMS_SCHEMA)
 
