@@ -10,8 +10,9 @@ down). Here the route parses and checks the request as usual, then hands a plain
 the request to ``ComputePool.run``; the function runs in a worker process and returns the
 response already serialised as JSON, so the event loop only moves bytes.
 
-- The workers are a ``jobs.pool.WorkerPool`` of ``settings.compute_workers`` spawned processes
-  (default: the CPU count), started at the first request, at a lower priority
+- The workers are a ``jobs.pool.WorkerPool`` of up to ``settings.compute_workers`` spawned
+  processes (default: the CPU count), each started only when every one started before is busy
+  (requests one after another are served by one), at a lower priority
   (``WORKER_NICENESS``) so that the event loop never waits for a CPU behind them. One pool
   serves every app of a process with the same worker count, so tests that make many apps do
   not spawn many pools.
