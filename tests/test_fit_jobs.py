@@ -96,7 +96,7 @@ def test_a_surface_fit_is_fit3ds_fit_and_its_target_holds_every_parameter(inputs
     vertices = np.asarray(shape_a["tongue_surface_vertices"])
     seen = []
     result = authored.fit_observation(inputs, "surface", vertices, max_evals=200,
-                                  progress=lambda *step: seen.append(step))
+                                      progress=lambda *step: seen.append(step))
     direct = fit3d.fit_surface(inputs.rig, vertices, max_evals=200, section=inputs.section)
     assert result["report"]["rms_mm"] == pytest.approx(direct.rms_mm, abs=1e-9)
     assert len(seen) == result["report"]["evaluations"] == 200

@@ -96,7 +96,8 @@ def fit(args):
     bar = ProgressBar(sys.stderr)
     try:
         result = authored.fit_observation(inputs, args.kind, observation.points, method=method,
-                                      max_evals=args.max_evals, progress=bar, name=args.name or "")
+                                          max_evals=args.max_evals, progress=bar,
+                                          name=args.name or "")
     except ValueError as error:
         bar.close(finished=False)
         print(f"glasshead fit: {path}: the fit failed: {error}", file=sys.stderr)

@@ -170,6 +170,11 @@ class Espeak:
         return Synthesis(samples, self.sample_rate, phones)
 
 
+def event_phones(mnemonic: str) -> list[tuple[str, int | None]]:
+    """The ARPAbet phones of a phoneme event's mnemonic, its stress and length marks dropped."""
+    return espeak_to_arpabet(mnemonic.lstrip("',%="))
+
+
 def sounding_end(samples: np.ndarray, events: list[tuple[int, str]], sample_rate: int) -> int:
     """Where a synthesis ends: after its last sound. The run of digital silence espeak-ng ends
     with depends on what it spoke before (a word ending in /t/ added 40 ms to every later one),
@@ -180,10 +185,10 @@ def sounding_end(samples: np.ndarray, events: list[tuple[int, str]], sample_rate
     if not sounding.size:
         return len(samples)
     end = int(sounding[-1]) + 1
-    spoken = [k for k, (_, mnemonic) in enumerate(events)
-              if any(symbol != PAUSE for symbol, _ in espeak_to_arpabet(mnemonic.lstrip("',%=")))]
+    spoken = [sample for sample, mnemonic in events
+              if any(symbol != PAUSE for symbol, _ in event_phones(mnemonic))]
     if spoken:
-        end = max(end, events[spoken[-1]][0] + round(LAST_PHONE_MIN_S * sample_rate))
+        end = max(end, spoken[-1] + round(LAST_PHONE_MIN_S * sample_rate))
     return min(end, len(samples))
 
 
@@ -200,7 +205,7 @@ def align_events(wanted: list[str], events: list[tuple[int, str]], n_samples: in
     for k, (sample, mnemonic) in enumerate(events):
         # An event may lie past the audio's end (a closing pause after the cut silence).
         end = min(events[k + 1][0], n_samples) if k + 1 < len(events) else n_samples
-        symbols = espeak_to_arpabet(mnemonic.lstrip("',%="))
+        symbols = event_phones(mnemonic)
         if end <= sample or not symbols:
             if timed and end > sample:  # an unmapped marker's time joins the phone before it
                 timed[-1][2] = end
