@@ -39,14 +39,15 @@ def own_pid(_):
 
 
 def wait_until_dead(pid: int, seconds: float = 30.0) -> None:
-    """Until the process is a zombie or gone."""
+    """Until the child can be reaped (left unreaped, for the pool to reap). The state "Z" in
+    /proc is not enough: the leader of a process with threads shows "Z" while its other
+    threads still exit, and until they have, the process reads as alive."""
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
         try:
-            with open(f"/proc/{pid}/stat") as stat:
-                if stat.read().rsplit(")", 1)[1].split()[0] in ("Z", "X"):
-                    return
-        except FileNotFoundError:
+            if os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None:
+                return
+        except ChildProcessError:  # already reaped
             return
         time.sleep(0.005)
     raise AssertionError(f"process {pid} still runs {seconds} s after SIGKILL")
