@@ -3,7 +3,16 @@
 import numpy as np
 import pytest
 
-from glasshead.speech.espeak import LAST_PHONE_MIN_S, align_events, get_engine, sounding_end
+from glasshead.speech import espeak
+from glasshead.speech.espeak import (
+    LAST_PHONE_MIN_S,
+    MAX_SYNTH_CHARS,
+    align_events,
+    event_phones,
+    get_engine,
+    sounding_end,
+    synthesis_batches,
+)
 
 #: How far the last phone's end may lie from the audio's end, s.
 COVER_TOLERANCE_S = 0.001
@@ -99,3 +108,49 @@ def test_a_last_phone_espeak_gave_no_sound_keeps_its_time_and_runs_forward():
     assert phones[-1]["end_s"] == end / rate
     samples[:] = 0
     assert sounding_end(samples, events, rate) == rate  # silence alone is left as it is
+
+
+ONE = [("W", None), ("AH", 1), ("N", None)]
+
+
+def test_a_long_request_is_spoken_as_asked_to_its_end(monkeypatch):
+    """espeak-ng split a clause of about 700 characters and read the rest as English text: of
+    500 "one"s, the 146th on came out as "double-u vee en" (3,287 phones for 1,500), and lining
+    those up took 20 s. Now every batch espeak-ng speaks is the phones asked for."""
+    spoken: list[list[str]] = []
+
+    def spy(wanted, events, n_samples, sample_rate):
+        spoken.append([s for _, m in events for s, _ in event_phones(m) if s != "sil"])
+        assert spoken[-1] == wanted, f"espeak-ng spoke {spoken[-1][:12]} for {wanted[:12]}"
+        return align_events(wanted, events, n_samples, sample_rate)
+
+    monkeypatch.setattr(espeak, "align_events", spy)
+    engine = get_engine()
+    hundred, three_hundred = engine.synthesize([ONE] * 100), engine.synthesize([ONE] * 300)
+    assert len(spoken) > 2  # the long one in batches
+    assert [p["symbol"] for p in three_hundred.phones if p["index"] is not None] == \
+        [s for s, _ in ONE] * 300
+    assert 2.8 < three_hundred.duration_s / hundred.duration_s < 3.2
+    phones = three_hundred.phones
+    assert phones[0]["start_s"] == 0.0
+    assert all(a["end_s"] == b["start_s"] and a["start_s"] < a["end_s"]
+               for a, b in zip(phones, phones[1:], strict=False))
+    assert abs(phones[-1]["end_s"] - three_hundred.duration_s) <= COVER_TOLERANCE_S
+    last_vowel = [p for p in phones if p["symbol"] == "AH"][-1]
+    assert _rms(three_hundred, last_vowel) > 1000.0  # sound to the end, not a gap
+
+
+def test_batches_stay_under_the_limit_and_start_at_a_pause_where_one_is_near():
+    texts = ["w'Vn"] * 200
+    pauses = [False] * 200
+    batches = synthesis_batches(texts, pauses)
+    assert batches[0][0] == 0 and batches[-1][1] == 200
+    assert all(a[1] == b[0] for a, b in zip(batches, batches[1:], strict=False))
+    assert all(len(" ".join(texts[lo:hi])) <= MAX_SYNTH_CHARS for lo, hi in batches)
+    assert len(batches) == 3  # 80 pieces of 5 characters per batch
+    pauses[60] = True  # in the second half of the first batch: it ends before the pause
+    assert synthesis_batches(texts, pauses)[0] == (0, 60)
+    pauses[60], pauses[20] = False, True  # in the first half: no cut there
+    assert synthesis_batches(texts, pauses)[0] == (0, 80)
+    assert synthesis_batches(["x" * 900, "ab"], [False, False]) == [(0, 1), (1, 2)]
+    assert synthesis_batches([], []) == []

@@ -36,6 +36,10 @@ WPM_RANGE = (80, 450)
 #: Longest word, in phones, handed to espeak-ng in one piece: its synthesis faults (a general
 #: protection fault) on a word of about 240 phones or more. Longer words are spoken in pieces.
 MAX_WORD_PHONES = 48
+#: Most characters of espeak-ng's phoneme text spoken in one synthesis. Past about 700 it
+#: splits the clause and reads the rest as English text: the 146th "one" of 500 came out as
+#: "double-u vee en". Longer requests are spoken in batches.
+MAX_SYNTH_CHARS = 400
 #: A silence at either end of the audio shorter than this joins the neighbouring phone, s.
 EDGE_SILENCE_S = 0.02
 #: The least the last phone lasts (``sounding_end``), s.
@@ -147,12 +151,40 @@ class Espeak:
                    ) -> Synthesis:
         """Speak ``words`` (each a list of (ARPAbet, stress) phones; a pause is [("sil", None)])
         at ``rate`` times the default speed. The phones come back aligned to the flat sequence
-        of the request, with silences espeak-ng left at either end added."""
-        wanted = [symbol for word in words for symbol, _ in word]
+        of the request, with silences espeak-ng left at either end added.
+
+        A long request is spoken in batches of at most MAX_SYNTH_CHARS of espeak-ng's text,
+        split before a pause where there is one, each aligned on its own (so the alignment
+        stays linear in the length) and joined with the silence after each batch but the last
+        cut off."""
         pieces = [word[i:i + MAX_WORD_PHONES] for word in words
                   for i in range(0, len(word), MAX_WORD_PHONES)]
-        text = "[[" + " ".join(arpabet_to_espeak(piece) for piece in pieces) + "]]"
         wpm = int(round(min(max(BASE_WPM * rate, WPM_RANGE[0]), WPM_RANGE[1])))
+        batches = synthesis_batches([arpabet_to_espeak(piece) for piece in pieces],
+                                    [all(s == PAUSE for s, _ in piece) for piece in pieces])
+        parts, phones, offset, first_index = [], [], 0, 0
+        for lo, hi in batches:
+            wanted = [symbol for piece in pieces[lo:hi] for symbol, _ in piece]
+            text = "[[" + " ".join(arpabet_to_espeak(piece) for piece in pieces[lo:hi]) + "]]"
+            samples, events = self._speak(text, wpm)
+            samples = samples[: sounding_end(samples, events, self.sample_rate)]
+            start = offset / self.sample_rate
+            batch = [{**phone, "start_s": start + phone["start_s"],
+                      "end_s": start + phone["end_s"],
+                      "index": None if phone["index"] is None else first_index + phone["index"]}
+                     for phone in align_events(wanted, events, len(samples), self.sample_rate)]
+            if batch:  # the batches abut exactly, whatever the sums round to
+                batch[0]["start_s"] = phones[-1]["end_s"] if phones else 0.0
+                batch[-1]["end_s"] = (offset + len(samples)) / self.sample_rate
+            phones.extend(batch)
+            parts.append(samples)
+            offset += len(samples)
+            first_index += len(wanted)
+        samples = np.concatenate(parts) if parts else np.zeros(0, dtype="<i2")
+        return Synthesis(samples, self.sample_rate, phones)
+
+    def _speak(self, text: str, wpm: int) -> tuple[np.ndarray, list[tuple[int, str]]]:
+        """One call of the library: the samples and the phoneme events of ``text``."""
         data = text.encode("utf-8")
         with _LOCK:
             self._chunks, self._events = [], []
@@ -164,10 +196,27 @@ class Espeak:
             self._chunks, self._events = [], []
         if status != _EE_OK:
             raise RuntimeError(f"espeak-ng could not synthesise {text!r} (status {status})")
-        samples = np.frombuffer(b"".join(chunks), dtype="<i2").copy()
-        samples = samples[: sounding_end(samples, events, self.sample_rate)]
-        phones = align_events(wanted, events, len(samples), self.sample_rate)
-        return Synthesis(samples, self.sample_rate, phones)
+        return np.frombuffer(b"".join(chunks), dtype="<i2").copy(), events
+
+
+def synthesis_batches(texts: list[str], pauses: list[bool],
+                      limit: int = MAX_SYNTH_CHARS) -> list[tuple[int, int]]:
+    """``texts`` (one per piece, joined by spaces) cut into runs [lo, hi) of at most ``limit``
+    characters (a single longer piece alone). A full run ends before its last pause, when that
+    pause lies in the run's second half, so that a batch starts with a pause, not mid-phrase."""
+    batches: list[tuple[int, int]] = []
+    lo, length = 0, 0  # length: of " ".join(texts[lo:k])
+    for k, text in enumerate(texts):
+        if k > lo and length + 1 + len(text) > limit:
+            inside = [j for j in range(lo + 1, k) if pauses[j]]
+            cut = inside[-1] if inside and inside[-1] - lo >= (k - lo) / 2 else k
+            batches.append((lo, cut))
+            lo = cut
+            length = len(" ".join(texts[lo:k]))
+        length += (1 if k > lo else 0) + len(text)
+    if texts:
+        batches.append((lo, len(texts)))
+    return batches
 
 
 def event_phones(mnemonic: str) -> list[tuple[str, int | None]]:

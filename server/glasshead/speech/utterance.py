@@ -33,7 +33,7 @@ from glasshead.speech.espeak_phones import PAUSE, VOWELS
 from glasshead.speech.pronounce import pronounce
 
 #: Bump when the response changes for the same request.
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 #: The tracks' frame rate, Hz.
 RATE_HZ = 100.0
 #: Phone times are compared with this tolerance, s (a TextGrid's boundaries are written rounded).
