@@ -13,7 +13,7 @@ import pytest
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.phonemes import INVENTORY
-from glasshead.speech import dominance
+from glasshead.speech import coarticulation, dominance
 from glasshead.speech.coarticulation import (
     GLIDE_SHARE,
     coarticulate,
@@ -224,6 +224,36 @@ def test_tracks_equal_the_dominance_weighted_average_computed_frame_by_frame(tar
     for name, track in slow.items():
         np.testing.assert_allclose(fast["tracks"][name], track, rtol=1e-9, atol=1e-9,
                                    err_msg=name)
+
+
+@pytest.mark.parametrize("which", CONSTANT_SETS)
+def test_a_long_utterance_blends_only_near_segments_and_gives_the_full_blend(targets, which,
+                                                                              monkeypatch):
+    """Far segments are left out of a frame's blend (linear time in the length): 90 s of
+    phones and a 6 s silence give the tracks of every segment blended, to 1e-9."""
+    constants = CONSTANT_SETS[which] or dominance.load_constants()
+    rng = np.random.default_rng(7)
+    symbols = [p.arpabet for p in INVENTORY]
+    phones, t = [], 0.0
+    for k in range(800):
+        length = 6.0 if k == 400 else float(rng.uniform(0.04, 0.2))
+        phones.append({"symbol": "sil" if k == 400 else str(rng.choice(symbols)),
+                       "stress": None, "start_s": t, "end_s": t + length})
+        t += length
+    blended: list[int] = []
+    blend = coarticulation.blend
+    monkeypatch.setattr(coarticulation, "blend",
+                        lambda values, *rest: blended.append(len(values)) or blend(values, *rest))
+    windowed = coarticulation.coarticulate_arrays(phones, targets, constants=constants)
+    monkeypatch.setattr(coarticulation, "blend", blend)
+    n_segments = len(segments(phones)[0])
+    assert len(blended) > 1 and max(blended) < n_segments / 2, (blended, n_segments)
+    parts, starts, ends, _ = segments(phones)
+    alpha, before, after = coarticulation.dominance_arrays(parts, constants)
+    e = coarticulation.decay(0.5 * (starts + ends), windowed["times"], before, after,
+                             float(constants["c"]))
+    full = blend(target_matrix(parts, targets, windowed["names"]), alpha, windowed["groups"], e)
+    np.testing.assert_allclose(windowed["tracks"], full, rtol=1e-9, atol=1e-9)
 
 
 def test_a_diphthong_glides_from_its_first_element_to_its_second(targets):

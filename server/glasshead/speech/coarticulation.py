@@ -47,6 +47,12 @@ REST_TARGET = "HH"
 #: the share VocalTractLab's segment rules give the second vowel gesture of /aɪ aʊ ɔɪ/.
 GLIDES = {"AY": "IH", "EY": "IH", "OY": "IH", "AW": "UH", "OW": "UH"}
 GLIDE_SHARE = 1.0 / 3.0
+#: Frames blended at a time (``windowed_tracks``).
+BLEND_CHUNK_FRAMES = 256
+#: A segment whose decay lies this far above a frame's least decayed one weighs at most
+#: exp(-50) (2e-22) of that one, times the largest alpha ratio (1,000): below what a double
+#: holds, so it is left out of the frame's blend and a long utterance costs linear time.
+NEGLIGIBLE_DECAY = 50.0
 
 
 def _phone_label(k: int, phone) -> str:
@@ -241,6 +247,34 @@ def blend(values: np.ndarray, alpha: np.ndarray, groups: np.ndarray, e: np.ndarr
     return tracks
 
 
+def windowed_tracks(values: np.ndarray, alpha: np.ndarray, groups: np.ndarray,
+                    centres: np.ndarray, times: np.ndarray, before: np.ndarray,
+                    after: np.ndarray, c: float) -> np.ndarray:
+    """``blend(values, alpha, groups, decay(centres, times, before, after, c))``, frames taken
+    BLEND_CHUNK_FRAMES at a time with only the segments that can weigh in them.
+
+    For a chunk of frames [t0, t1], U is the largest over its frames of the least decay among
+    the segments near it (those whose intervals hold its frames, and one either side); every
+    frame's least decayed segment decays at most U there. A segment whose least decay anywhere
+    in [t0, t1] exceeds U + NEGLIGIBLE_DECAY weighs nothing a double holds, and is left out."""
+    tracks = np.empty((values.shape[1], len(times)))
+    order = np.argsort(centres, kind="stable")
+    sorted_centres = centres[order]
+    for f0 in range(0, len(times), BLEND_CHUNK_FRAMES):
+        chunk = times[f0:f0 + BLEND_CHUNK_FRAMES]
+        t0, t1 = chunk[0], chunk[-1]
+        lo = max(int(np.searchsorted(sorted_centres, t0)) - 1, 0)
+        hi = min(int(np.searchsorted(sorted_centres, t1, side="right")) + 1, len(centres))
+        near = order[lo:hi]
+        bound = decay(centres[near], chunk, before[near], after[near], c).min(axis=0).max()
+        least = np.where(centres < t0, after * np.abs(t0 - centres) ** c,
+                         np.where(centres > t1, before * np.abs(centres - t1) ** c, 0.0))
+        kept = np.flatnonzero(least <= bound + NEGLIGIBLE_DECAY)
+        e = decay(centres[kept], chunk, before[kept], after[kept], c)
+        tracks[:, f0:f0 + len(chunk)] = blend(values[kept], alpha[kept], groups, e)
+    return tracks
+
+
 def _cue_values(symbols: list[str]) -> np.ndarray:
     """(n_phones, 3): voicing, nasal airflow and frication of each phone, 0 or 1 (/h/ is
     aspiration noise, counted as frication)."""
@@ -328,12 +362,14 @@ def coarticulate_arrays(phones: list[dict], targets: dict, *, rate_hz: float = 1
     alpha, before, after = dominance_arrays(parts, constants)
     groups = parameter_groups(names, targets)
 
-    e = decay(0.5 * (part_starts + part_ends), times, before, after, float(constants["c"]))
-    tracks = blend(values, alpha, groups, e)
+    centres = 0.5 * (part_starts + part_ends)
+    c = float(constants["c"])
+    tracks = windowed_tracks(values, alpha, groups, centres, times, before, after, c)
     out = {"rate_hz": float(rate_hz), "n_frames": n_frames, "duration_s": duration,
            "names": names, "groups": groups, "tracks": tracks, "times": times,
            "cues": cue_tracks(starts, ends, _cue_values(symbols), times)}
     if want_dominance:
+        e = decay(centres, times, before, after, c)
         d = alpha.T[:, :, None] * np.exp(-e)[None]  # (n_groups, n_segments, n_frames)
         if len(parts) != len(phones):
             combine = np.zeros((len(phones), len(parts)))
