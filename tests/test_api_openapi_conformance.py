@@ -39,9 +39,9 @@ without these cuts. The app runs on the built assets, a new SQLite database, one
 worker and no fit worker (fits are queued, not run; tests/test_api_fits.py runs them); of GET
 /fits/{fit_id}/events, whose stream stays open while its fit waits, the first event is read.
 
-Texts are narrowed here to MAX_TEXT_CHARS characters: a text of 500 digits takes one to two
-minutes of CPU to speak (the coarticulation grows with the square of the phones), too long for
-this suite; 60 digits, the text that once killed the server, is within the bound.
+Texts are narrowed here to MAX_TEXT_CHARS characters: a text of 500 digits takes about 3 s of
+CPU to speak, and random requests would spend much of this suite's time speaking; 60 digits,
+the text that once killed the server, is within the bound. BENCH sends them at full length.
 """
 
 import contextlib
