@@ -260,6 +260,11 @@ VTL_OBSERVATIONS_FILE = "vtl-observations.json"
 FIT_REPORT_FILE = "fit-report.json"
 #: Format version of the fit report; its readers refuse any other version.
 FIT_REPORT_FORMAT_VERSION = 1
+#: Vowel formant norms by speaker group, for the listening displays
+#: (glasshead.pipeline.vowel_norms).
+VOWEL_NORMS_FILE = "vowel-norms.json"
+#: Format version of the vowel norms; its readers refuse any other version.
+VOWEL_NORMS_FORMAT_VERSION = 1
 #: The fit report's overlay plots, one SVG per shape, under the assets directory.
 FIT_PLOTS_DIR = "fit-plots"
 #: The fit report as a page for a browser: a table of every shape with its plot.

@@ -136,6 +136,11 @@ def fit_report_step(ctx):
     return build_step(ctx)
 
 
+def vowel_norms_step(ctx):
+    from glasshead.pipeline.vowel_norms import build_step
+    return build_step(ctx)
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -154,6 +159,7 @@ STEPS = [
     ("vtl-observations", vtl_observations_step),
     ("phoneme-targets", phoneme_targets_step),
     ("fit-report", fit_report_step),
+    ("vowel-norms", vowel_norms_step),
 ]
 
 

@@ -17,6 +17,8 @@ from glasshead.geometry.meshio import MeshFormatError, read_obj
 BADIN = Path("anatomy") / "artisynth-badin"
 CBCT = Path("anatomy") / "artisynth-dynjaw"
 TRACT = Path("anatomy") / "artisynth-badin-tract"
+#: Peterson & Barney's (1952) vowel measurements: the norms of the listening displays.
+PETERSON_BARNEY = Path("speech") / "peterson-barney-1952" / "pb1952.csv"
 
 #: Badin OBJ file stem -> project mesh name and role.
 BADIN_MESHES = {
@@ -65,6 +67,7 @@ EXPECTED_FILES = [
     *(TRACT / f"{stem}.obj" for stem in TRACT_MESHES),
     *(CBCT / f"{stem}.obj" for stem in CBCT_NECK_MESHES),
     VERTEBRAE_TRANSFORM,
+    PETERSON_BARNEY,
 ]
 
 #: Plausible largest extent of one head part, per unit: metres for Badin, mm for the CBCT.
