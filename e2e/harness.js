@@ -37,6 +37,13 @@ const CHROMIUM_ARGS = [
 	'--no-first-run',
 ];
 
+/** Chromium's arguments for a microphone that plays the WAV at `path` (looped), its use allowed. */
+export function fakeMicrophoneArgs( path ) {
+
+	return [ '--use-fake-ui-for-media-stream', '--use-fake-device-for-media-stream', `--use-file-for-fake-audio-capture=${ path }`, '--autoplay-policy=no-user-gesture-required' ];
+
+}
+
 /** A TCP port that was free a moment ago on 127.0.0.1. */
 export function freePort() {
 
@@ -164,8 +171,11 @@ async function waitForHealth( baseUrl, timeoutMs, failure ) {
 
 }
 
-/** Launch Debian's Chromium headless; fails with an install hint when it is missing. */
-export async function launchBrowser() {
+/**
+ * Launch Debian's Chromium headless, with `args` besides the usual ones (a fake microphone);
+ * fails with an install hint when it is missing.
+ */
+export async function launchBrowser( { args = [] } = {} ) {
 
 	if ( ! existsSync( CHROMIUM ) ) {
 
@@ -173,7 +183,7 @@ export async function launchBrowser() {
 
 	}
 
-	return chromium.launch( { executablePath: CHROMIUM, headless: true, args: CHROMIUM_ARGS } );
+	return chromium.launch( { executablePath: CHROMIUM, headless: true, args: [ ...CHROMIUM_ARGS, ...args ] } );
 
 }
 

@@ -13,6 +13,7 @@ const VIEWS = [
 	{ path: '/workbench', label: 'Workbench' },
 	{ path: '/clinician', label: 'Clinician' },
 	{ path: '/speak', label: 'Speak' },
+	{ path: '/listen', label: 'Listen' },
 ];
 const SIZES = [ [ 1366, 768 ], [ 1920, 1080 ], [ 1024, 768 ], [ 768, 1024 ] ];
 /** Smallest touch target, CSS pixels. */

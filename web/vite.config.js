@@ -48,6 +48,9 @@ export default defineConfig( {
 		target: 'es2022',
 		// three.js alone is about 700 kB minified; it is one cacheable chunk, loaded with the head view.
 		chunkSizeWarningLimit: 900,
+		// Scripts referenced by URL (the microphone's AudioWorklet) stay files: the page's CSP
+		// runs scripts from this origin only, never from a data: URL.
+		assetsInlineLimit: ( file ) => ( /\.js$/.test( file ) ? false : undefined ),
 	},
 	server: {
 		proxy: {

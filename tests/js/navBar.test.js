@@ -67,10 +67,10 @@ function fakeStorage( { refuse = false } = {} ) {
 
 test( 'the bar lists every view in order, each as a #/ link, and marks only the view on screen', () => {
 
-	assert.deepEqual( NAV_VIEWS.map( ( view ) => view.path ), [ '/', '/workbench', '/clinician', '/speak' ] );
+	assert.deepEqual( NAV_VIEWS.map( ( view ) => view.path ), [ '/', '/workbench', '/clinician', '/speak', '/listen' ] );
 	const items = navItems( '/clinician' );
-	assert.deepEqual( items.map( ( item ) => item.href ), [ '#/', '#/workbench', '#/clinician', '#/speak' ] );
-	assert.deepEqual( items.map( ( item ) => item.label ), [ 'Head', 'Workbench', 'Clinician', 'Speak' ] );
+	assert.deepEqual( items.map( ( item ) => item.href ), [ '#/', '#/workbench', '#/clinician', '#/speak', '#/listen' ] );
+	assert.deepEqual( items.map( ( item ) => item.label ), [ 'Head', 'Workbench', 'Clinician', 'Speak', 'Listen' ] );
 	assert.deepEqual( items.filter( ( item ) => item.current ).map( ( item ) => item.path ), [ '/clinician' ] );
 
 } );
@@ -87,7 +87,7 @@ test( 'the bar follows the address: aria-current moves to the view the hash name
 	const nav = new NavBar( { win } ).start();
 	const current = () => nav.links.filter( ( link ) => link.getAttribute( 'aria-current' ) === 'page' ).map( ( link ) => link.textContent );
 	assert.equal( nav.element.getAttribute( 'aria-label' ), 'Views' );
-	assert.deepEqual( nav.links.map( ( link ) => link.href ), [ '#/', '#/workbench', '#/clinician', '#/speak' ] );
+	assert.deepEqual( nav.links.map( ( link ) => link.href ), [ '#/', '#/workbench', '#/clinician', '#/speak', '#/listen' ] );
 	assert.deepEqual( current(), [ 'Workbench' ] );
 	win.location.hash = '';
 	win.fire( 'hashchange' );
@@ -146,6 +146,6 @@ test( 'the editor, privacy and lesson runner links show only while an author, an
 	assert.deepEqual( shown(), [ false, false, false ] );
 	nav.mark( '/author' );
 	assert.deepEqual( nav.roleLinks.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ 'page', null, null ] );
-	assert.deepEqual( nav.links.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ null, null, null, null ] );
+	assert.deepEqual( nav.links.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ null, null, null, null, null ] );
 
 } );

@@ -23,6 +23,7 @@ export const NAV_VIEWS = Object.freeze( [
 	Object.freeze( { path: '/workbench', label: 'Workbench' } ),
 	Object.freeze( { path: '/clinician', label: 'Clinician' } ),
 	Object.freeze( { path: '/speak', label: 'Speak' } ),
+	Object.freeze( { path: '/listen', label: 'Listen' } ),
 ] );
 
 /**

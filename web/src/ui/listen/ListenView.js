@@ -1,0 +1,338 @@
+// The listening page (route `#/listen`): the learner's own voice, measured in the browser. Press
+// Start (the browser asks for the microphone then, never before) or open a recording; the
+// analysis kernels (core/listen) measure every 10 ms hop, and the page shows a vowel chart with
+// the norms of the learner's group, a /ʃ/–/s/ meter, and pitch and loudness traces. Audio never
+// leaves the device: nothing here sends it anywhere.
+//
+// window.glasshead.listening holds the latest measures: { source, group, target, active, hops,
+// latest, vowel, fricative, summary, problem, message }.
+
+import { createAnalyser } from '../../core/listen/analyse.js';
+import { parseWav } from '../../core/listen/wav.js';
+import { h } from '../shared/dom.js';
+import { View } from '../shared/View.js';
+import { ListenError, readRecording, startMicrophone } from './audioInput.js';
+import { SibilantMeter, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
+import { listenMessage, messagePicture } from './listenMessages.js';
+import { inputProblem, nearestVowel, sibilantBand, summariseAttempt } from './listenScales.js';
+import './listen.css';
+
+export const NORMS_URL = '/assets/build/vowel-norms.json';
+const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
+/** Hops kept for the displays (10 s). */
+const KEPT_HOPS = 1000;
+/** Voiced hops whose median formants make the live verdict (smooths a hop's jitter). */
+const VERDICT_HOPS = 5;
+/** Seconds of silence or of unvoiced sound before the page says so. */
+const PROBLEM_AFTER_S = 1.5;
+
+export class ListenView extends View {
+
+	constructor( options = {} ) {
+
+		super( options );
+		this.state = { loaded: false, source: null, group: 'child', target: '', active: false, problem: null, message: 'ready', summary: null };
+		this.hops = [];
+		this.hopCount = 0;
+		this.norms = null;
+		this.microphone = null;
+		this.quietSince = null;
+
+	}
+
+	mount( container ) {
+
+		this.groupButtons = new Map( GROUPS.map( ( [ group, label ] ) => [ group, h( 'button', {
+			type: 'button', className: 'toggle', 'aria-pressed': String( group === this.state.group ), onClick: () => this.setGroup( group ),
+		}, label ) ] ) );
+		this.targetSelect = h( 'select', { 'aria-label': 'Target vowel', onChange: () => this.setTarget( this.targetSelect.value ) } );
+		this.startButton = h( 'button', { type: 'button', className: 'ls-start', onClick: () => this.toggleMicrophone() }, 'Start' );
+		this.fileInput = h( 'input', { type: 'file', accept: 'audio/*,.wav', className: 'ls-file', 'aria-label': 'Open a recording', onChange: () => this.openFile( this.fileInput.files?.[ 0 ] ) } );
+		this.picture = h( 'div', { className: 'ls-message-picture' } );
+		this.messageText = h( 'p', { className: 'ls-message-text' } );
+		this.status = h( 'div', { className: 'ls-message', role: 'status' }, this.picture, this.messageText );
+		this.verdict = h( 'div', { className: 'ls-verdict', role: 'img', 'aria-label': 'No sound yet' } );
+		this.chart = new VowelChart();
+		this.meter = new SibilantMeter();
+		this.traces = new TraceStrip();
+		const controls = h( 'div', { className: 'ls-controls' },
+			h( 'h1', { className: 'title' }, 'Listen' ),
+			h( 'div', { className: 'ls-groups', role: 'group', 'aria-label': 'Who is speaking' }, ...this.groupButtons.values() ),
+			h( 'label', { className: 'ls-target' }, 'Target ', this.targetSelect ),
+			h( 'div', { className: 'ls-buttons' }, this.startButton, h( 'label', { className: 'ls-open' }, 'Open a recording…', this.fileInput ) ),
+			this.status, this.verdict );
+		const displays = h( 'div', { className: 'ls-displays' },
+			h( 'figure', { className: 'ls-chart' }, this.chart.element ),
+			h( 'figure', { className: 'ls-meter' }, this.meter.element ),
+			h( 'figure', { className: 'ls-traces' }, this.traces.element ) );
+		this.attach( container, h( 'div', { className: 'listen' }, controls, displays ) );
+		this.listen( this.root, 'dragover', ( event ) => event.preventDefault() );
+		this.listen( this.root, 'drop', ( event ) => {
+
+			event.preventDefault();
+			this.openFile( event.dataTransfer?.files?.[ 0 ] );
+
+		} );
+		this.observeResize( [ displays ], () => this.layout( displays ) );
+		this.debugFields( { loaded: () => this.state.loaded, listening: () => this.debugState() } );
+		this.say( 'ready' );
+		this.loadNorms();
+		return this;
+
+	}
+
+	async loadNorms() {
+
+		try {
+
+			this.norms = await this.api.get( NORMS_URL );
+
+		} catch ( error ) {
+
+			console.error( 'Glasshead: the vowel norms could not be loaded:', error );
+
+		}
+
+		this.state.loaded = true;
+		this.fillTargets();
+		this.redraw();
+
+	}
+
+	fillTargets() {
+
+		const vowels = this.norms?.groups?.[ this.state.group ] ?? {};
+		this.targetSelect.replaceChildren( h( 'option', { value: '' }, 'Any vowel' ),
+			...Object.entries( vowels ).map( ( [ code, entry ] ) => h( 'option', { value: code }, `/${ entry.ipa }/` ) ) );
+		this.targetSelect.value = vowels[ this.state.target ] ? this.state.target : '';
+
+	}
+
+	layout( displays ) {
+
+		const width = Math.max( 280, Math.floor( displays.clientWidth ) - 30 ); // its padding and the canvas's border
+		this.chart.resize( width, Math.round( Math.min( width * 0.75, 520 ) ) );
+		this.meter.resize( width );
+		this.traces.resize( width );
+		this.redraw();
+
+	}
+
+	setGroup( group ) {
+
+		this.state.group = group;
+		for ( const [ name, button ] of this.groupButtons ) button.setAttribute( 'aria-pressed', String( name === group ) );
+		this.fillTargets();
+		if ( this.state.source === 'file' && this.lastFile ) this.openFile( this.lastFile );
+		else this.redraw();
+
+	}
+
+	setTarget( code ) {
+
+		this.state.target = code;
+		this.redraw();
+
+	}
+
+	async toggleMicrophone() {
+
+		if ( this.microphone ) return this.stopMicrophone();
+		this.startButton.disabled = true;
+		try {
+
+			this.beginAttempt( 'microphone' );
+			this.microphone = await startMicrophone( { win: this.window, onBlock: ( block ) => this.take( block ) } );
+			this.analyser = createAnalyser( { sampleRate: this.microphone.sampleRate, group: this.state.group, band: sibilantBand( this.microphone.sampleRate ) } );
+			this.state.active = true;
+			this.startButton.textContent = 'Stop';
+			this.say( 'listening' );
+
+		} catch ( error ) {
+
+			this.say( error instanceof ListenError ? error.kind : 'unsupported' );
+			if ( ! ( error instanceof ListenError ) ) console.error( 'Glasshead: listening failed:', error );
+
+		} finally {
+
+			this.startButton.disabled = false;
+
+		}
+
+	}
+
+	stopMicrophone() {
+
+		this.microphone?.stop();
+		this.microphone = null;
+		this.state.active = false;
+		this.startButton.textContent = 'Start';
+		this.state.summary = summariseAttempt( this.hops );
+		if ( ! this.state.problem ) this.say( 'ready' );
+		this.redraw();
+
+	}
+
+	beginAttempt( source ) {
+
+		this.state.source = source;
+		this.state.problem = null;
+		this.state.summary = null;
+		this.hops = [];
+		this.hopCount = 0;
+		this.quietSince = null;
+
+	}
+
+	/** A block of microphone samples: checked for level, measured, drawn. */
+	take( block ) {
+
+		if ( ! this.analyser ) return;
+		const problem = inputProblem( block );
+		const added = this.analyser.push( block );
+		this.keep( added );
+		const now = this.hops.at( - 1 )?.t ?? 0;
+		const voicedLately = this.hops.some( ( hop ) => hop.voiced && now - hop.t < PROBLEM_AFTER_S );
+		if ( problem === 'clipping' ) this.flag( 'clipping' );
+		else if ( problem === 'silent' || ! voicedLately ) {
+
+			this.quietSince ??= now;
+			const kind = problem === 'silent' ? 'silent' : this.hops.some( ( hop ) => hop.centroid > 0 && now - hop.t < PROBLEM_AFTER_S ) ? null : 'whisper';
+			if ( kind && now - this.quietSince >= PROBLEM_AFTER_S ) this.flag( kind );
+
+		} else {
+
+			this.quietSince = null;
+			if ( this.state.problem ) this.flag( null );
+
+		}
+
+		this.redraw();
+
+	}
+
+	flag( problem ) {
+
+		if ( problem === this.state.problem ) return;
+		this.state.problem = problem;
+		this.say( problem ?? ( this.state.active ? 'listening' : 'ready' ) );
+
+	}
+
+	keep( hops ) {
+
+		this.hopCount += hops.length;
+		this.hops.push( ...hops );
+		if ( this.hops.length > KEPT_HOPS ) this.hops.splice( 0, this.hops.length - KEPT_HOPS );
+
+	}
+
+	async openFile( file ) {
+
+		if ( ! file ) return;
+		if ( this.microphone ) this.stopMicrophone();
+		this.lastFile = file;
+		this.beginAttempt( 'file' );
+		try {
+
+			const { sampleRate, samples } = await readRecording( file, { parseWav, win: this.window } );
+			this.analyser = createAnalyser( { sampleRate, group: this.state.group, band: sibilantBand( sampleRate ) } );
+			// In blocks, as the microphone would hand them: the same path, whatever the source.
+			const hops = [];
+			for ( let i = 0; i < samples.length; i += 4096 ) hops.push( ...this.analyser.push( samples.subarray( i, i + 4096 ) ) );
+			hops.push( ...this.analyser.flush() );
+			this.hops = [];
+			this.hopCount = 0;
+			this.keep( hops );
+			this.state.summary = summariseAttempt( hops );
+			this.say( inputProblem( samples ) ?? 'ready' );
+
+		} catch ( error ) {
+
+			this.say( error instanceof ListenError ? error.kind : 'not-audio' );
+
+		}
+
+		this.redraw();
+
+	}
+
+	say( kind ) {
+
+		const message = listenMessage( kind );
+		this.state.message = message.kind;
+		this.messageText.textContent = message.text;
+		this.picture.replaceChildren( messagePicture( message.picture, message.text ) );
+		this.status.dataset.kind = message.kind;
+
+	}
+
+	/** The verdict on what is shown: the summary of a finished attempt, else the latest voiced hops. */
+	currentVowel() {
+
+		const vowels = this.norms?.groups?.[ this.state.group ];
+		if ( ! vowels ) return null;
+		const summary = this.state.summary?.vowel;
+		let f1 = summary?.f1;
+		let f2 = summary?.f2;
+		if ( ! summary ) {
+
+			const recent = this.hops.filter( ( hop ) => hop.voiced && hop.formants?.[ 0 ] > 0 && hop.formants?.[ 1 ] > 0 ).slice( - VERDICT_HOPS );
+			if ( ! recent.length ) return null;
+			const mid = ( values ) => values.sort( ( a, b ) => a - b )[ values.length >> 1 ];
+			f1 = mid( recent.map( ( hop ) => hop.formants[ 0 ] ) );
+			f2 = mid( recent.map( ( hop ) => hop.formants[ 1 ] ) );
+
+		}
+
+		const target = this.state.target && vowels[ this.state.target ];
+		const verdict = target ? { vowel: this.state.target, ...nearestVowel( f1, f2, { [ this.state.target ]: target } ) } : nearestVowel( f1, f2, vowels );
+		return verdict && { ...verdict, vowel: target ? this.state.target : verdict.vowel, f1, f2 };
+
+	}
+
+	redraw() {
+
+		if ( this.frameRequested ) return;
+		this.frameRequested = true;
+		const draw = () => {
+
+			this.frameRequested = false;
+			if ( ! this.root ) return;
+			const vowel = this.currentVowel();
+			this.chart.setNorms( this.norms?.groups?.[ this.state.group ] ?? null, this.state.target || null );
+			this.chart.draw( this.hops, vowel );
+			const latestHiss = this.state.summary?.fricative?.centroid ?? [ ...this.hops ].reverse().find( ( hop ) => ! hop.voiced && hop.centroid > 0 )?.centroid ?? null;
+			this.meter.draw( latestHiss, this.state.group );
+			this.traces.draw( this.hops );
+			this.verdict.dataset.zone = vowel?.zone ?? '';
+			this.verdict.style.backgroundColor = ZONE_COLOURS[ vowel?.zone ] ?? '';
+			this.verdict.setAttribute( 'aria-label', vowel ? { in: 'In the target', near: 'Near the target', off: 'Try again' }[ vowel.zone ] : 'No sound yet' );
+
+		};
+
+		( this.window.requestAnimationFrame ?? setTimeout )( draw );
+
+	}
+
+	debugState() {
+
+		const vowel = this.currentVowel();
+		return {
+			source: this.state.source, group: this.state.group, target: this.state.target || null,
+			active: this.state.active, hops: this.hopCount, latest: this.hops.at( - 1 ) ?? null,
+			vowel, summary: this.state.summary, problem: this.state.problem, message: this.state.message,
+		};
+
+	}
+
+	dispose() {
+
+		this.microphone?.stop();
+		this.microphone = null;
+
+	}
+
+}
+
+export const mountListenView = ( container ) => new ListenView().mount( container );

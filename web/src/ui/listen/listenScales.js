@@ -1,0 +1,220 @@
+// The pure parts of the listening displays: where a vowel's formants sit on the chart, the norm
+// ellipses, which vowel a measurement is nearest and how near, where a fricative's centroid sits
+// between /ʃ/ and /s/, and what the input's level says (silent, clipping, a whisper). The
+// displays (VowelChart.js, SibilantMeter.js, TraceStrip.js) and the unit tests read these.
+
+/** The chart's ranges, Hz: F1 down the side, F2 across (high F2, front vowels, on the left). */
+export const CHART_F1_HZ = Object.freeze( [ 200, 1300 ] );
+export const CHART_F2_HZ = Object.freeze( [ 600, 4200 ] );
+
+/**
+ * Mahalanobis distances (in log formant space, against a vowel's norm of the learner's group)
+ * that count as in the target and as near it: 2.45 standard deviations hold 95 % of a group's
+ * tokens of a vowel (chi-square, 2 degrees of freedom), 3.5 hold 99.8 %.
+ */
+export const IN_TARGET = 2.45;
+export const NEAR_TARGET = 3.5;
+/** The other vowels' ellipses are drawn at one standard deviation, so that they stay apart. */
+export const NORM_OUTLINE = 1;
+
+/**
+ * The band the fricative's spectral moments are read in, Hz: the same on every device (a 16 kHz
+ * recording reaches 8 kHz, a microphone at 48 kHz far beyond), above the room's rumble.
+ */
+export const SIBILANT_BAND_HZ = Object.freeze( [ 1000, 8000 ] );
+
+/** SIBILANT_BAND_HZ within what a sample rate holds (an 8 kHz input reaches 4 kHz). */
+export function sibilantBand( sampleRate ) {
+
+	return [ SIBILANT_BAND_HZ[ 0 ], Math.min( SIBILANT_BAND_HZ[ 1 ], sampleRate / 2 ) ];
+
+}
+
+/**
+ * Fricative centroids (in SIBILANT_BAND_HZ) of /ʃ/ and /s/ by speaker group, Hz: the meter's
+ * two ends. /ʃ/'s front cavity is longer, so its energy sits lower; children's smaller mouths
+ * put both higher. Adults after Jongman et al. (2000); children's from speechocean762's 6 to 8
+ * year olds in this band (a sentence with /s/ and no /ʃ/ about 5,700 Hz, /ʃ/ words 4,200 to
+ * 4,900 Hz with their stops).
+ */
+export const SIBILANT_ENDS_HZ = Object.freeze( {
+	man: Object.freeze( { sh: 3300, s: 5500 } ),
+	woman: Object.freeze( { sh: 3600, s: 5800 } ),
+	child: Object.freeze( { sh: 4000, s: 6000 } ),
+} );
+
+/** Intensity (dB re full scale) below which the input is taken as silence. */
+export const SILENT_DB = - 55;
+/** A sample this close to full scale counts as clipped; this share of clipped samples is too loud. */
+export const CLIP_LEVEL = 0.99;
+export const CLIP_SHARE = 0.002;
+
+const logRange = ( [ lo, hi ] ) => Math.log( hi ) - Math.log( lo );
+
+/** The chart position { x, y } of (F1, F2) in a box { width, height, pad } (CSS pixels). */
+export function chartPoint( f1, f2, { width, height, pad = 24 } ) {
+
+	const u = ( Math.log( CHART_F2_HZ[ 1 ] ) - Math.log( f2 ) ) / logRange( CHART_F2_HZ );
+	const v = ( Math.log( f1 ) - Math.log( CHART_F1_HZ[ 0 ] ) ) / logRange( CHART_F1_HZ );
+	return { x: pad + u * ( width - 2 * pad ), y: pad + v * ( height - 2 * pad ) };
+
+}
+
+/**
+ * The outline of a norm's ellipse at `scale` standard deviations: `count` points [F1, F2] (Hz)
+ * around the mean of log (F1, F2) with covariance `cov` (vowel-norms.json's `log_f1_f2`).
+ */
+export function ellipse( { mean, cov }, scale = IN_TARGET, count = 48 ) {
+
+	// The covariance's square root by its eigenvectors (a 2 x 2 symmetric matrix).
+	const [ [ a, b ], [ , d ] ] = cov;
+	const half = ( a + d ) / 2;
+	const root = Math.sqrt( Math.max( 0, half * half - ( a * d - b * b ) ) );
+	const l1 = half + root;
+	const l2 = Math.max( 0, half - root );
+	const angle = Math.abs( b ) > 1e-15 ? Math.atan2( l1 - a, b ) : ( a >= d ? 0 : Math.PI / 2 );
+	const [ c, s ] = [ Math.cos( angle ), Math.sin( angle ) ];
+	const points = [];
+	for ( let k = 0; k < count; k ++ ) {
+
+		const t = ( 2 * Math.PI * k ) / count;
+		const p = scale * Math.sqrt( l1 ) * Math.cos( t );
+		const q = scale * Math.sqrt( l2 ) * Math.sin( t );
+		points.push( [ Math.exp( mean[ 0 ] + c * p - s * q ), Math.exp( mean[ 1 ] + s * p + c * q ) ] );
+
+	}
+
+	return points;
+
+}
+
+/** The Mahalanobis distance of (F1, F2) from a norm { mean, cov } of log (F1, F2). */
+export function normDistance( f1, f2, { mean, cov } ) {
+
+	const x = Math.log( f1 ) - mean[ 0 ];
+	const y = Math.log( f2 ) - mean[ 1 ];
+	const [ [ a, b ], [ , d ] ] = cov;
+	const det = a * d - b * b;
+	return Math.sqrt( Math.max( 0, ( d * x * x - 2 * b * x * y + a * y * y ) / det ) );
+
+}
+
+/**
+ * The vowel of `vowels` ({ code: entry } of one group in vowel-norms.json) nearest (F1, F2):
+ * { vowel, distance, zone } with zone 'in', 'near' or 'off'; null without a measurement.
+ */
+export function nearestVowel( f1, f2, vowels ) {
+
+	if ( ! ( f1 > 0 && f2 > 0 ) ) return null;
+	let best = null;
+	for ( const [ vowel, entry ] of Object.entries( vowels ) ) {
+
+		const distance = normDistance( f1, f2, entry.log_f1_f2 );
+		if ( ! best || distance < best.distance ) best = { vowel, distance };
+
+	}
+
+	return best && { ...best, zone: zoneOf( best.distance ) };
+
+}
+
+/** 'in', 'near' or 'off' for a Mahalanobis distance. */
+export function zoneOf( distance ) {
+
+	return distance <= IN_TARGET ? 'in' : distance <= NEAR_TARGET ? 'near' : 'off';
+
+}
+
+/** Where `centroid` (Hz) sits on the meter of `group`: 0 at /ʃ/'s end, 1 at /s/'s, clamped. */
+export function sibilantPosition( centroid, group = 'woman' ) {
+
+	const ends = SIBILANT_ENDS_HZ[ group ] ?? SIBILANT_ENDS_HZ.woman;
+	return Math.min( 1, Math.max( 0, ( centroid - ends.sh ) / ( ends.s - ends.sh ) ) );
+
+}
+
+/**
+ * What a block of input says about the microphone: 'clipping' when too many samples reach full
+ * scale, 'silent' when its intensity stays below SILENT_DB, else null. `samples`: Float32Array.
+ */
+export function inputProblem( samples ) {
+
+	if ( ! samples.length ) return 'silent';
+	let clipped = 0;
+	let energy = 0;
+	for ( let i = 0; i < samples.length; i ++ ) {
+
+		const x = samples[ i ];
+		if ( Math.abs( x ) >= CLIP_LEVEL ) clipped ++;
+		energy += x * x;
+
+	}
+
+	if ( clipped / samples.length > CLIP_SHARE ) return 'clipping';
+	const db = 10 * Math.log10( energy / samples.length + 1e-20 );
+	return db < SILENT_DB ? 'silent' : null;
+
+}
+
+const median = ( values ) => {
+
+	const sorted = [ ...values ].sort( ( a, b ) => a - b );
+	const mid = sorted.length >> 1;
+	return sorted.length % 2 ? sorted[ mid ] : ( sorted[ mid - 1 ] + sorted[ mid ] ) / 2;
+
+};
+
+/** A voiced hop this far below the loudest of its run is a consonant's voicing, not the vowel's, dB. */
+export const NUCLEUS_BELOW_PEAK_DB = 10;
+
+/** Loudness above which an unvoiced hop counts as a fricative rather than the room, dB below the loudest hop. */
+export const FRICATIVE_BELOW_PEAK_DB = 25;
+
+/**
+ * What an attempt (its hops, in time order) measured: the vowel as the median F0 and F1 to F3
+ * over the middle half of the loud part (within NUCLEUS_BELOW_PEAK_DB of its peak) of its
+ * longest voiced run: where a vowel holds steady, away from the consonants' transitions, and the fricative as the median centroid of its unvoiced hops
+ * within FRICATIVE_BELOW_PEAK_DB of its loudest. { vowel: { f0, f1, f2, f3, f3_minus_f2,
+ * duration_s } | null, fricative: { centroid, duration_s } | null }.
+ */
+export function summariseAttempt( hops ) {
+
+	let best = [ 0, 0 ];
+	let start = - 1;
+	hops.forEach( ( hop, k ) => {
+
+		const voiced = hop.voiced && hop.formants?.[ 0 ] > 0 && hop.formants?.[ 1 ] > 0;
+		if ( voiced && start < 0 ) start = k;
+		if ( ( ! voiced || k === hops.length - 1 ) && start >= 0 ) {
+
+			const end = voiced ? k + 1 : k;
+			if ( end - start > best[ 1 ] - best[ 0 ] ) best = [ start, end ];
+			start = - 1;
+
+		}
+
+	} );
+	// The vowel's nucleus: the loud part of the run, not the voicing of a closure after it.
+	const voicedRun = hops.slice( best[ 0 ], best[ 1 ] );
+	const loudest = Math.max( ...voicedRun.map( ( h ) => h.intensity_db ?? - Infinity ) );
+	const loud = voicedRun.map( ( h ) => h.intensity_db >= loudest - NUCLEUS_BELOW_PEAK_DB );
+	const run = voicedRun.slice( loud.indexOf( true ), loud.lastIndexOf( true ) + 1 );
+	const middle = run.slice( Math.floor( run.length / 4 ), Math.max( Math.ceil( run.length * 3 / 4 ), Math.floor( run.length / 4 ) + 1 ) );
+	const pick = ( read ) => {
+
+		const values = middle.map( read ).filter( ( v ) => v > 0 );
+		return values.length ? median( values ) : null;
+
+	};
+
+	const vowel = run.length < 3 ? null : {
+		f0: pick( ( h ) => h.f0 ), f1: pick( ( h ) => h.formants[ 0 ] ), f2: pick( ( h ) => h.formants[ 1 ] ),
+		f3: pick( ( h ) => h.formants[ 2 ] ), f3_minus_f2: pick( ( h ) => h.f3_minus_f2 ),
+		duration_s: run.length && run.at( - 1 ).t - run[ 0 ].t,
+	};
+	const peak = Math.max( ...hops.map( ( h ) => ( Number.isFinite( h.intensity_db ) ? h.intensity_db : - Infinity ) ) );
+	const hiss = hops.filter( ( h ) => ! h.voiced && h.centroid > 0 && h.intensity_db >= peak - FRICATIVE_BELOW_PEAK_DB );
+	const fricative = hiss.length < 3 ? null : { centroid: median( hiss.map( ( h ) => h.centroid ) ), duration_s: hiss.length * ( hops[ 1 ]?.t - hops[ 0 ]?.t || 0.01 ) };
+	return { vowel, fricative };
+
+}
