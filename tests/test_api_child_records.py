@@ -60,6 +60,11 @@ def add_recording(engine, client, admin, child_id: int) -> int:
     return recording_id
 
 
+#: What the listening page measured on a go (docs/listening.md): kept with the record.
+MEASURED = {"f0": 251.5, "f1": 410.0, "f2": 3050.0, "centroid": None, "verdict": "in",
+            "target_vowel": "iy"}
+
+
 def make_setting(client, admin):
     """Two children in a class, one in another class, a lesson, assignments, practice and a
     child's sign-in; answers (class, ada, bo, lesson)."""
@@ -83,7 +88,8 @@ def make_setting(client, admin):
                                        (bo, 0, "2026-03-01T10:00:00Z", 2)):
         post(client, "practice", {"child_id": child["id"], "lesson_id": lesson["id"],
                                   "item_index": index, "practised_at": when, "replays": 2,
-                                  **({"rating": rating, "rated_by": "adult"} if rating else {})},
+                                  **({"rating": rating, "rated_by": "adult",
+                                      "measures": MEASURED} if rating else {})},
              admin)
     signed = client.post(f"{API}/auth/child-sessions", json={
         "join_code": school_class["join_code"], "child_id": ada["id"]})
@@ -137,12 +143,15 @@ def test_the_practice_csv_lists_every_go_oldest_first_with_its_target_and_rating
     assert answer.headers["content-type"].startswith("text/csv")
     assert f'child-{ada["id"]}-practice.csv' in answer.headers["content-disposition"]
     rows = list(csv.reader(io.StringIO(answer.text)))
+    measured = ["f0", "f1", "f2", "f3", "f3_minus_f2", "centroid", "duration_s", "verdict",
+                "target_vowel"]
     assert rows[0] == ["practice_id", "child_id", "child", "lesson_id", "lesson", "item_index",
                        "target_kind", "target", "practised_at", "replays", "rating",
-                       "rated_by"]
+                       "rated_by", *(f"measured_{m}" for m in measured)]
     assert [row[5:] for row in rows[1:]] == [
-        ["0", "phoneme", "s", "2026-03-01T09:00:00Z", "2", "", ""],
-        ["1", "word", "ship", "2026-03-02T09:30:00Z", "2", "3", "adult"]]
+        ["0", "phoneme", "s", "2026-03-01T09:00:00Z", "2", "", "", *[""] * len(measured)],
+        ["1", "word", "ship", "2026-03-02T09:30:00Z", "2", "3", "adult",
+         "251.5", "410.0", "3050.0", "", "", "", "", "in", "iy"]]
     assert {row[2] for row in rows[1:]} == {"Ada"} and rows[1][4] == lesson["title"]
     bo_rows = list(csv.reader(io.StringIO(
         client.get(f"{API}/children/{bo['id']}/practice.csv", headers=admin).text)))

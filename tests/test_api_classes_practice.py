@@ -139,6 +139,11 @@ def test_practice_is_recorded_rated_later_by_an_adult_and_listed_newest_first(cl
     ({"rated_by": "parrot", "rating": 1}, "body.rated_by"),
     ({"practised_at": "2026-11-02T09:00:00"}, "body.practised_at"),
     ({"replays": -1}, "body.replays"),
+    ({"measures": {"f0": 20}}, "body.measures.f0"),
+    ({"measures": {"f2": "high"}}, "body.measures.f2"),
+    ({"measures": {"verdict": "great"}}, "body.measures.verdict"),
+    ({"measures": {"audio": "UklGRg=="}}, "body.measures.audio"),
+    ({"measures": {"target_vowel": "IY!"}}, "body.measures.target_vowel"),
 ])
 def test_invalid_practice_is_a_422_that_names_the_field(client, setting, change, field):
     _, ada, _, lesson = setting
@@ -146,6 +151,22 @@ def test_invalid_practice_is_a_422_that_names_the_field(client, setting, change,
         "child_id": ada["id"], "lesson_id": lesson["id"], "item_index": 0, **change})
     assert response.status_code == 422 and field in response.json()["detail"]
     assert client.get(f"{API}/practice").json()["total"] == 0
+
+
+def test_a_go_keeps_what_the_voice_measured_and_only_what_was_measured(client, setting):
+    _, ada, _, lesson = setting
+    measures = {"f0": 251.5, "f1": 410.0, "f2": 3050.0, "f3": None, "duration_s": 0.26,
+                "verdict": "near", "target_vowel": "iy"}
+    made = post(client, "practice", {"child_id": ada["id"], "lesson_id": lesson["id"],
+                                     "item_index": 0, "rating": 2, "rated_by": "child",
+                                     "measures": measures})
+    kept = client.get(f"{API}/practice/{made['id']}").json()["measures"]
+    assert {k: v for k, v in kept.items() if v is not None} == \
+        {"f0": 251.5, "f1": 410.0, "f2": 3050.0, "duration_s": 0.26, "verdict": "near",
+         "target_vowel": "iy"}
+    plain = post(client, "practice", {"child_id": ada["id"], "lesson_id": lesson["id"],
+                                      "item_index": 1})
+    assert plain["measures"] is None
 
 
 def test_ids_of_deleted_children_and_practice_are_never_reused(client, setting):

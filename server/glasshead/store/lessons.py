@@ -116,3 +116,6 @@ class PracticeRecord(Versioned, Timestamped, Base):
     rating: Mapped[int | None] = mapped_column(Integer)
     #: "child" or "adult", or None with no rating.
     rated_by: Mapped[str | None] = mapped_column(String(10))
+    #: What the learner's voice measured on this go ({f0, f1, f2, f3, f3_minus_f2, centroid,
+    #: duration_s, verdict, target_vowel}), or None when nothing listened. Never the audio.
+    measures: Mapped[dict | None] = mapped_column(JSON)

@@ -41,9 +41,13 @@ router = APIRouter(tags=["child records"])
 
 #: The version of the export's layout, carried in it.
 EXPORT_VERSION = 1
+#: The attempt's measures, each a column of the practice CSV (empty when not measured).
+MEASURE_COLUMNS = ("f0", "f1", "f2", "f3", "f3_minus_f2", "centroid", "duration_s", "verdict",
+                   "target_vowel")
 #: The columns of the practice CSV, in order.
 CSV_COLUMNS = ("practice_id", "child_id", "child", "lesson_id", "lesson", "item_index",
-               "target_kind", "target", "practised_at", "replays", "rating", "rated_by")
+               "target_kind", "target", "practised_at", "replays", "rating", "rated_by",
+               *(f"measured_{name}" for name in MEASURE_COLUMNS))
 #: Characters that make a spreadsheet read a cell as a formula (OWASP, "CSV injection").
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
 #: The operation whose kept answers can list a child's recordings (routes/recordings.py).
@@ -114,7 +118,8 @@ def practice_rows(session: Session, child: Child) -> list[list[str]]:
             record.id, child.id, child.display_name, record.lesson_id,
             lesson.title if lesson else "", record.item_index, kind, text,
             record.practised_at.isoformat().replace("+00:00", "Z"), record.replays,
-            record.rating, record.rated_by)])
+            record.rating, record.rated_by,
+            *((record.measures or {}).get(name) for name in MEASURE_COLUMNS))])
     return rows
 
 

@@ -2,9 +2,10 @@
 
 An assignment names its lesson and exactly one of a class or a child (422 otherwise). A practice
 record is one go at one item of a lesson: the child, the lesson and the item's position in it,
-the time, how many times the child replayed it, and a rating (1 not yet, 2 nearly, 3 got it)
-with who gave it (the child or an adult). A record names an item the lesson has (422 naming
-``item_index`` otherwise). Writes take If-Match (412 when stale).
+the time, how many times the child replayed it, a rating (1 not yet, 2 nearly, 3 got it)
+with who gave it (the child or an adult), and what the learner's voice measured
+(``api/practice_measures.py``; numbers, never the audio). A record names an item the lesson
+has (422 naming ``item_index`` otherwise). Writes take If-Match (412 when stale).
 
 Assignments and practice records are those of a class's owner (the teacher or clinician who
 made it) and of admins: another's is a 404, and a body naming another's class or child is a
@@ -33,6 +34,7 @@ from glasshead.api.ownership import (
     visible_assignments,
     visible_practice,
 )
+from glasshead.api.practice_measures import AttemptMeasures
 from glasshead.api.records import (
     BodyId,
     IdFilter,
@@ -103,6 +105,8 @@ class PracticeIn(BaseModel):
     replays: Replays = 0
     rating: Rating | None = None
     rated_by: RatedBy | None = None
+    measures: AttemptMeasures | None = Field(None, description="what the learner's voice "
+                                                               "measured; never the audio")
 
     @model_validator(mode="after")
     def _rating_and_rater(self):
@@ -137,6 +141,7 @@ class PracticeOut(BaseModel):
     replays: int
     rating: int | None
     rated_by: str | None
+    measures: AttemptMeasures | None
     created_at: datetime
     updated_at: datetime
 
@@ -236,8 +241,10 @@ def create_practice_record(body: PracticeIn, session: SessionDep, person: Keeper
                            response: Response) -> PracticeRecord:
     """A go at an item: by a child for themselves, or by the keeper of the child's class."""
     _check_practice(session, person, body)
-    record = PracticeRecord(**body.model_dump(exclude={"practised_at"}),
-                            practised_at=body.practised_at or utc_now())
+    record = PracticeRecord(**body.model_dump(exclude={"practised_at", "measures"}),
+                            practised_at=body.practised_at or utc_now(),
+                            measures=body.measures.model_dump(exclude_none=True)
+                            if body.measures else None)
     session.add(record)
     session.commit()
     set_etag(response, PRACTICE, record)
