@@ -2,8 +2,10 @@
 // Chromium's fake microphone (--use-file-for-fake-audio-capture: the file plays, looped, as the
 // microphone's input): a Hillenbrand child's "heed" lands in the /i/ target and "hod" in /ɑ/, a
 // speechocean762 child's /s/ words move the meter to the /s/ side; a file that is not audio and
-// a refused microphone are said in words. Screenshots listen-* at a projector's and an upright
-// tablet's size are for a person to look at.
+// a refused microphone are said in words; and in the child's practice, "Say it" on the target
+// /i/ shows at once that the try was in the target and keeps its measures in the practice
+// record. Screenshots listen-* at a projector's and an upright tablet's size are for a person to
+// look at.
 
 import assert from 'node:assert/strict';
 import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
@@ -11,6 +13,7 @@ import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { sibilantPosition } from '../web/src/ui/listen/listenScales.js';
+import { apiSession, authHeaders } from './accounts.js';
 import { fakeMicrophoneArgs, launchBrowser, openPage, readDebug, REPO, saveScreenshot, startServer } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
@@ -117,6 +120,51 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		assert.ok( position > 0.5, `centroid ${ fricative.centroid } Hz: the meter at ${ position } of the way from /ʃ/ to /s/` );
 		await saveScreenshot( page, 'listen-s-1920' );
 		assert.deepEqual( page.problems, [] );
+
+	} );
+
+	test( 'in the child\'s practice, "Say it" shows the try in the target and keeps its measures', async () => {
+
+		const api = async ( session, method, path, body ) => {
+
+			const response = await fetch( `${ server.baseUrl }/api/v1/${ path }`, { method, headers: authHeaders( session, { 'Content-Type': 'application/json' } ), body: body && JSON.stringify( body ) } );
+			assert.ok( response.ok, `${ method } ${ path }: ${ response.status } ${ await response.clone().text() }` );
+			return response.json();
+
+		};
+		const teacher = await apiSession( server, 'teacher' );
+		const author = await apiSession( server, 'author' );
+		const schoolClass = await api( teacher, 'POST', 'classes', { name: 'Class 4' } );
+		const child = await api( teacher, 'POST', 'children', { class_id: schoolClass.id, display_name: 'Ida', avatar: 'fox' } );
+		const lesson = await api( author, 'POST', 'lessons', { title: 'The vowel in heed', items: [ { target: { kind: 'phoneme', text: 'i' }, presentation: 'static' } ] } );
+		await api( teacher, 'POST', 'assignments', { lesson_id: lesson.id, class_id: schoolClass.id } );
+
+		const browser = await launchBrowser( { args: fakeMicrophoneArgs( HEED ) } );
+		browsers.push( browser );
+		const context = await browser.newContext( { viewport: { width: 1024, height: 768 }, deviceScaleFactor: 1 } );
+		await context.grantPermissions( [ 'microphone' ], { origin: server.baseUrl } );
+		const page = await context.newPage();
+		const problems = [];
+		page.on( 'pageerror', ( error ) => problems.push( error.message ) );
+		await page.goto( `${ server.baseUrl }/#/practice` );
+		await page.getByRole( 'textbox', { name: 'Class code' } ).fill( schoolClass.join_code );
+		await page.getByRole( 'button', { name: 'Go' } ).click();
+		await page.getByRole( 'button', { name: 'Ida', exact: true } ).click(); // one lesson: it starts at once
+		await page.waitForFunction( () => window.glasshead.practice?.ready === true, null, { timeout: 300_000, polling: 200 } );
+		await page.getByRole( 'button', { name: 'Say it' } ).click();
+		await page.waitForFunction( () => window.glasshead.practice.attempt !== null, null, { timeout: 60_000, polling: 100 } );
+		const { attempt } = ( await readDebug( page ) ).practice;
+		assert.equal( attempt.zone, 'in', JSON.stringify( attempt ) );
+		assert.equal( await page.locator( '.cp-verdict' ).getAttribute( 'aria-label' ), 'In the target' );
+		await saveScreenshot( page, 'listen-practice-1024x768' );
+		await page.getByRole( 'button', { name: 'Got it' } ).click();
+		await page.waitForFunction( () => window.glasshead.practice.screen === 'done', null, { timeout: 60_000 } );
+		const records = ( await api( teacher, 'GET', `practice?child_id=${ child.id }` ) ).records;
+		assert.equal( records.length, 1 );
+		const { measures } = records[ 0 ];
+		assert.deepEqual( [ measures.verdict, measures.target_vowel, records[ 0 ].rating ], [ 'in', 'iy', 3 ] );
+		assert.ok( measures.f1 > 250 && measures.f1 < 600 && measures.f2 > 2500 && measures.f0 > 150, JSON.stringify( measures ) );
+		assert.deepEqual( problems, [] );
 
 	} );
 

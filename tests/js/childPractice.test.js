@@ -36,6 +36,8 @@ test( 'a round goes through the items one at a time, counting each target\'s rep
 	round.replayed();
 	round.replayed();
 	assert.deepEqual( round.record( 3 ), { child_id: 12, lesson_id: 4, item_index: 0, replays: 2, rating: 3, rated_by: 'child' } );
+	assert.deepEqual( round.record( 2, { centroid: 5600, verdict: 'in' } ).measures, { centroid: 5600, verdict: 'in' }, 'what the voice measured goes with it' );
+	assert.equal( 'measures' in round.record( 2, {} ), false, 'nothing measured, no measures' );
 	assert.equal( round.next( { id: 100 } ).target.text, 'ship' );
 	assert.deepEqual( round.record(), { child_id: 12, lesson_id: 4, item_index: 1, replays: 0 }, 'no rating without a face chosen; replays start again' );
 	assert.equal( round.next( { id: 101 } ), null );

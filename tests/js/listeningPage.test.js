@@ -6,19 +6,20 @@ import assert from 'node:assert/strict';
 
 import {
 	chartPoint, ellipse, IN_TARGET, inputProblem, nearestVowel, normDistance, sibilantPosition,
-	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf,
+	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures,
 } from '../../web/src/ui/listen/listenScales.js';
 import { listenMessage, MESSAGES, pictureShapes } from '../../web/src/ui/listen/listenMessages.js';
 import { microphoneErrorKind } from '../../web/src/ui/listen/audioInput.js';
+import { attemptDone, MAX_ATTEMPT_S, QUIET_END_S } from '../../web/src/ui/practice/PracticeListener.js';
 
 const norm = ( f1, f2, sd1 = 0.1, sd2 = 0.08, rho = 0.3 ) => ( {
 	mean: [ Math.log( f1 ), Math.log( f2 ) ],
 	cov: [ [ sd1 * sd1, rho * sd1 * sd2 ], [ rho * sd1 * sd2, sd2 * sd2 ] ],
 } );
 const VOWELS = {
-	iy: { ipa: 'i', log_f1_f2: norm( 300, 2800 ) },
-	aa: { ipa: 'ɑ', log_f1_f2: norm( 850, 1250 ) },
-	uw: { ipa: 'u', log_f1_f2: norm( 350, 1000 ) },
+	iy: { ipa: 'i', arpabet: 'IY', log_f1_f2: norm( 300, 2800 ) },
+	aa: { ipa: 'ɑ', arpabet: 'AA', log_f1_f2: norm( 850, 1250 ) },
+	uw: { ipa: 'u', arpabet: 'UW', log_f1_f2: norm( 350, 1000 ) },
 };
 
 test( 'the chart puts front vowels left, open vowels low, inside its box', () => {
@@ -123,5 +124,54 @@ test( 'every kind of bad input has words and a picture; an unknown kind reads as
 	assert.equal( microphoneErrorKind( 'NotAllowedError' ), 'refused' );
 	assert.equal( microphoneErrorKind( 'NotFoundError' ), 'no-microphone' );
 	assert.equal( microphoneErrorKind( 'NotReadableError' ), 'busy' );
+
+} );
+
+test( 'a lesson item is measured against a vowel of the norms or /s/ and /ʃ/, else not judged', () => {
+
+	assert.deepEqual( measurableTarget( { kind: 'phoneme', text: 'i' }, VOWELS ), { kind: 'vowel', code: 'iy' } );
+	assert.deepEqual( measurableTarget( { kind: 'phoneme', text: 'AA' }, VOWELS ), { kind: 'vowel', code: 'aa' } );
+	assert.deepEqual( measurableTarget( { kind: 'phoneme', text: 'ʃ' }, VOWELS ), { kind: 'sibilant', sound: 'sh' } );
+	assert.deepEqual( measurableTarget( { kind: 'phoneme', text: 's' }, VOWELS ), { kind: 'sibilant', sound: 's' } );
+	assert.equal( measurableTarget( { kind: 'phoneme', text: 't' }, VOWELS ), null );
+	assert.equal( measurableTarget( { kind: 'word', text: 'sea' }, VOWELS ), null );
+
+} );
+
+test( 'a try is judged against its target: the vowel by its norm, the hiss by the meter', () => {
+
+	const vowel = ( f1, f2 ) => ( { vowel: { f0: 250, f1, f2, f3: 3300, duration_s: 0.25 }, fricative: null } );
+	assert.equal( attemptZone( vowel( 300, 2800 ), { kind: 'vowel', code: 'iy' }, VOWELS ), 'in' );
+	assert.equal( attemptZone( vowel( 850, 1250 ), { kind: 'vowel', code: 'iy' }, VOWELS ), 'off' );
+	assert.equal( attemptZone( { vowel: null, fricative: null }, { kind: 'vowel', code: 'iy' }, VOWELS ), null );
+	const hiss = ( centroid ) => ( { vowel: null, fricative: { centroid, duration_s: 0.2 } } );
+	const { sh, s } = SIBILANT_ENDS_HZ.child;
+	assert.equal( attemptZone( hiss( s ), { kind: 'sibilant', sound: 's' } ), 'in' );
+	assert.equal( attemptZone( hiss( s ), { kind: 'sibilant', sound: 'sh' } ), 'off' );
+	assert.equal( attemptZone( hiss( sh ), { kind: 'sibilant', sound: 'sh' } ), 'in' );
+	assert.equal( attemptZone( hiss( ( sh + s ) / 2 ), { kind: 'sibilant', sound: 's' } ), 'near' );
+	assert.equal( attemptZone( vowel( 300, 2800 ), null ), null );
+
+} );
+
+test( 'the record keeps the try\'s numbers, rounded, and its verdict, and nothing unmeasured', () => {
+
+	const summary = { vowel: { f0: 251.26, f1: 410.04, f2: 3050.55, f3: null, f3_minus_f2: null, duration_s: 0.2612 }, fricative: null };
+	assert.deepEqual( attemptMeasures( summary, 'in', { kind: 'vowel', code: 'iy' } ),
+		{ f0: 251.3, f1: 410, f2: 3050.6, duration_s: 0.261, verdict: 'in', target_vowel: 'iy' } );
+	assert.deepEqual( attemptMeasures( { vowel: null, fricative: { centroid: 5612.44, duration_s: 0.2 } }, null, null ),
+		{ centroid: 5612.4, duration_s: 0.2 } );
+
+} );
+
+test( 'a spoken try ends once the child has spoken and fallen quiet, or at its longest', () => {
+
+	const hops = ( levels ) => levels.map( ( db, k ) => ( { t: k / 100, intensity_db: db } ) );
+	const quietHops = Math.round( QUIET_END_S * 100 );
+	assert.equal( attemptDone( [] ), false );
+	assert.equal( attemptDone( hops( Array( 50 ).fill( 30 ) ) ), false, 'nothing said yet' );
+	assert.equal( attemptDone( hops( [ ...Array( 10 ).fill( 30 ), ...Array( 20 ).fill( 70 ) ] ) ), false, 'still speaking' );
+	assert.equal( attemptDone( hops( [ ...Array( 10 ).fill( 30 ), ...Array( 20 ).fill( 70 ), ...Array( quietHops + 1 ).fill( 30 ) ] ) ), true );
+	assert.equal( attemptDone( hops( Array( MAX_ATTEMPT_S * 100 + 1 ).fill( 30 ) ) ), true, 'the longest try' );
 
 } );

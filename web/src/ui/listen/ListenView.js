@@ -14,10 +14,9 @@ import { View } from '../shared/View.js';
 import { ListenError, readRecording, startMicrophone } from './audioInput.js';
 import { SibilantMeter, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
 import { listenMessage, messagePicture } from './listenMessages.js';
-import { inputProblem, nearestVowel, sibilantBand, summariseAttempt } from './listenScales.js';
+import { inputProblem, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
-export const NORMS_URL = '/assets/build/vowel-norms.json';
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
 /** Hops kept for the displays (10 s). */
 const KEPT_HOPS = 1000;

@@ -54,14 +54,14 @@ export function pictureShapes( name ) {
 
 }
 
-/** An <svg> of picture `name`, named `label` for screen readers. */
-export function messagePicture( name, label, doc = globalThis.document ) {
+/** An <svg> of picture `name`, named `label` for screen readers, of class `className`. */
+export function messagePicture( name, label, { className = 'ls-picture', doc = globalThis.document } = {} ) {
 
 	const svg = doc.createElementNS( SVG, 'svg' );
 	svg.setAttribute( 'viewBox', '0 0 100 100' );
 	svg.setAttribute( 'role', 'img' );
 	svg.setAttribute( 'aria-label', label );
-	svg.setAttribute( 'class', 'ls-picture' );
+	svg.setAttribute( 'class', className );
 	for ( const [ tag, attributes ] of pictureShapes( name ) ) {
 
 		const shape = doc.createElementNS( SVG, tag );

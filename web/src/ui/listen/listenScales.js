@@ -3,6 +3,9 @@
 // between /ʃ/ and /s/, and what the input's level says (silent, clipping, a whisper). The
 // displays (VowelChart.js, SibilantMeter.js, TraceStrip.js) and the unit tests read these.
 
+/** The built vowel norms (glasshead.pipeline.vowel_norms), from the site's root. */
+export const NORMS_URL = '/assets/build/vowel-norms.json';
+
 /** The chart's ranges, Hz: F1 down the side, F2 across (high F2, front vowels, on the left). */
 export const CHART_F1_HZ = Object.freeze( [ 200, 1300 ] );
 export const CHART_F2_HZ = Object.freeze( [ 600, 4200 ] );
@@ -216,5 +219,74 @@ export function summariseAttempt( hops ) {
 	const hiss = hops.filter( ( h ) => ! h.voiced && h.centroid > 0 && h.intensity_db >= peak - FRICATIVE_BELOW_PEAK_DB );
 	const fricative = hiss.length < 3 ? null : { centroid: median( hiss.map( ( h ) => h.centroid ) ), duration_s: hiss.length * ( hops[ 1 ]?.t - hops[ 0 ]?.t || 0.01 ) };
 	return { vowel, fricative };
+
+}
+
+/** Where the fricative's centroid must sit on the meter to be in (or near) an /s/ or /ʃ/ target. */
+export const SIBILANT_IN = 0.6;
+export const SIBILANT_NEAR = 0.45;
+
+/**
+ * What a lesson item's target can be measured against: { kind: 'vowel', code } for a vowel of
+ * the group's norms (by IPA or ARPAbet symbol), { kind: 'sibilant', sound: 's' | 'sh' } for /s/
+ * or /ʃ/, null for anything else (words and phrases, other consonants).
+ */
+export function measurableTarget( target, vowels = {} ) {
+
+	if ( target?.kind !== 'phoneme' ) return null;
+	const text = String( target.text );
+	if ( text === 's' || text.toUpperCase() === 'S' ) return { kind: 'sibilant', sound: 's' };
+	if ( text === 'ʃ' || text.toUpperCase() === 'SH' ) return { kind: 'sibilant', sound: 'sh' };
+	for ( const [ code, entry ] of Object.entries( vowels ) ) {
+
+		if ( entry.ipa === text || entry.arpabet === text.toUpperCase() ) return { kind: 'vowel', code };
+
+	}
+
+	return null;
+
+}
+
+/**
+ * The verdict on an attempt's summary (summariseAttempt) against a measurable target:
+ * 'in', 'near' or 'off', or null when the attempt gave nothing to judge (no vowel, no hiss).
+ */
+export function attemptZone( summary, target, vowels = {}, group = 'child' ) {
+
+	if ( target?.kind === 'vowel' ) {
+
+		const vowel = summary?.vowel;
+		const norm = vowels[ target.code ];
+		if ( ! vowel?.f1 || ! vowel?.f2 || ! norm ) return null;
+		return zoneOf( normDistance( vowel.f1, vowel.f2, norm.log_f1_f2 ) );
+
+	}
+
+	if ( target?.kind === 'sibilant' ) {
+
+		const centroid = summary?.fricative?.centroid;
+		if ( ! ( centroid > 0 ) ) return null;
+		const position = sibilantPosition( centroid, group );
+		const towards = target.sound === 's' ? position : 1 - position;
+		return towards >= SIBILANT_IN ? 'in' : towards >= SIBILANT_NEAR ? 'near' : 'off';
+
+	}
+
+	return null;
+
+}
+
+/** The practice record's `measures` of an attempt: its numbers, rounded, and the verdict. */
+export function attemptMeasures( summary, zone, target ) {
+
+	const round = ( v, places = 1 ) => ( Number.isFinite( v ) && v > 0 ? Number( v.toFixed( places ) ) : null );
+	const vowel = summary?.vowel ?? {};
+	const measures = {
+		f0: round( vowel.f0 ), f1: round( vowel.f1 ), f2: round( vowel.f2 ), f3: round( vowel.f3 ),
+		f3_minus_f2: round( vowel.f3_minus_f2 ), centroid: round( summary?.fricative?.centroid ),
+		duration_s: round( vowel.duration_s ?? summary?.fricative?.duration_s, 3 ), verdict: zone ?? null,
+		target_vowel: target?.kind === 'vowel' ? target.code : null,
+	};
+	return Object.fromEntries( Object.entries( measures ).filter( ( [ , v ] ) => v !== null ) );
 
 }

@@ -3,8 +3,10 @@
 // picture and name from the class's roster (POST /auth/class-roster, POST /auth/child-sessions),
 // then a lesson assigned to them (GET /lessons gives only theirs), then one target at a time: the
 // head says it (the speech player, set up by the item as in the lesson runner), a big button
-// hears it again, "I tried it" asks how it went with three faces (or an arrow to go on without),
-// and the try is recorded (POST /practice, with the replays counted) before the next target.
+// hears it again, "Say it" listens to the child (the microphone asked for then) and shows at once,
+// with a face and a colour, how close a vowel or /s/–/ʃ/ target was, "I tried it" asks how it
+// went with three faces (or an arrow to go on without), and the try is recorded (POST /practice,
+// with the replays counted and what the voice measured, never the audio) before the next target.
 // Every button is 64 px and more, with a picture and an accessible name.
 
 import { clearSession, currentSession, saveSession } from '../../session.js';
@@ -15,7 +17,15 @@ import { targetLabel } from '../lessons/LessonRunnerItems.js';
 import { ItemPresenter } from '../lessons/LessonRunnerViews.js';
 import { SpeechView } from '../speak/SpeechView.js';
 import { View } from '../shared/View.js';
+import { ListenError } from '../listen/audioInput.js';
+import { listenMessage, messagePicture } from '../listen/listenMessages.js';
+import { attemptMeasures, attemptZone, measurableTarget, NORMS_URL } from '../listen/listenScales.js';
+import { PracticeListener } from './PracticeListener.js';
 import './childPractice.css';
+
+/** The face the verdict on a spoken try shows (no words): in the target, near it, try again. */
+const VERDICT_FACES = Object.freeze( { in: 'happy', near: 'meh', off: 'sad' } );
+const VERDICT_LABELS = Object.freeze( { in: 'In the target', near: 'Nearly', off: 'Try again' } );
 
 /** A big button: a picture, and words under it when given (the name is always there for a screen reader). */
 function bigButton( icon, label, onClick, { words = null, className = 'cp-button' } = {} ) {
@@ -56,6 +66,7 @@ export class ChildPractice extends View {
 			roster: this.roster?.children.map( ( c ) => c.display_name ) ?? null, lessons: this.lessons?.map( ( l ) => l.id ) ?? null,
 			lesson: round?.lesson.id ?? null, item: round ? round.index : null, items: round?.lesson.items.length ?? 0,
 			replays: round?.replays ?? 0, recorded: round?.records.map( ( r ) => r.id ) ?? [], ready: this.ready ?? false,
+			listening: this.listener?.listening ?? false, attempt: this.attempt ? { zone: this.attempt.zone, measures: this.attempt.measures } : null,
 		};
 
 	}
@@ -239,13 +250,17 @@ export class ChildPractice extends View {
 		this.target = h( 'p', { className: 'cp-target', 'aria-live': 'polite' } );
 		this.dots = h( 'div', { className: 'cp-dots', 'aria-hidden': 'true' }, ...this.round.lesson.items.map( () => h( 'span', { className: 'cp-dot' } ) ) );
 		this.headBox = h( 'div', { className: 'cp-head' } );
+		this.sayButton = h( 'button', { type: 'button', className: 'cp-button cp-say', 'aria-label': 'Say it', 'aria-pressed': 'false', onClick: () => this.sayIt() },
+			messagePicture( 'microphone', 'Say it', { className: 'cp-picture' } ) );
+		this.verdict = h( 'div', { className: 'cp-verdict', role: 'img', hidden: '' } );
 		this.actions = h( 'div', { className: 'cp-actions', role: 'group', 'aria-label': 'Practice' },
 			bigButton( 'replay', 'Hear it again', () => this.replay(), { className: 'cp-button cp-replay' } ),
+			this.sayButton,
 			bigButton( 'tried', 'I tried it', () => this.tried(), { words: 'I tried it', className: 'cp-button cp-tried' } ) );
 		this.faces = h( 'div', { className: 'cp-actions cp-faces', role: 'group', 'aria-label': 'How did it go?', hidden: '' },
 			...RATINGS.map( ( r ) => bigButton( r.face, r.label, () => this.record( r.rating ), { className: 'cp-button cp-face' } ) ),
 			bigButton( 'next', 'Next', () => this.record( null ), { className: 'cp-button cp-face' } ) );
-		this.setScreen( 'practice', h( 'div', { className: 'cp-stage' }, this.headBox, this.target, this.dots ), this.actions, this.faces );
+		this.setScreen( 'practice', h( 'div', { className: 'cp-stage' }, this.headBox, this.target, this.dots ), this.verdict, this.actions, this.faces );
 		this.speech = new SpeechView( { api: this.api, sayOnLoad: false } ).mount( this.headBox );
 		this.presenter = new ItemPresenter( this.speech, { obstacles: () => [ this.target ] } );
 		this.presentItem();
@@ -267,6 +282,8 @@ export class ChildPractice extends View {
 		} );
 		this.actions.hidden = false;
 		this.faces.hidden = true;
+		this.attempt = null;
+		this.verdict.hidden = true;
 		const shown = await this.presenter.present( item );
 		if ( ! shown || this.round !== round || round.item !== item ) return;
 		this.ready = true;
@@ -284,8 +301,48 @@ export class ChildPractice extends View {
 
 	tried() {
 
+		this.listener?.stop();
 		this.actions.hidden = true;
 		this.faces.hidden = false;
+
+	}
+
+	/**
+	 * Listen to the child saying the target (the microphone asked for now, on their press), and
+	 * show at once, with a face and a colour, how close it was; then the faces to rate it.
+	 */
+	async sayIt() {
+
+		if ( this.listener?.listening ) return this.listener.stop();
+		const round = this.round;
+		const item = round.item;
+		this.norms ??= await this.api.get( NORMS_URL ).catch( () => null );
+		const target = measurableTarget( item.target, this.norms?.groups?.child ?? {} );
+		this.listener = new PracticeListener( { win: this.window, group: 'child' } );
+		this.sayButton.setAttribute( 'aria-pressed', 'true' );
+		this.showError( '' );
+		let summary;
+		try {
+
+			summary = await this.listener.listen();
+
+		} catch ( error ) {
+
+			this.sayButton.setAttribute( 'aria-pressed', 'false' );
+			return this.showError( listenMessage( error instanceof ListenError ? error.kind : 'unsupported' ).text );
+
+		}
+
+		this.sayButton.setAttribute( 'aria-pressed', 'false' );
+		if ( this.round !== round || round.item !== item ) return;
+		const zone = attemptZone( summary, target, this.norms?.groups?.child ?? {}, 'child' );
+		this.attempt = { zone, measures: attemptMeasures( summary, zone, target ) };
+		if ( ! summary.vowel && ! summary.fricative ) return this.showError( listenMessage( 'silent' ).text );
+		this.verdict.replaceChildren( ...( zone ? [ picture( VERDICT_FACES[ zone ], { label: VERDICT_LABELS[ zone ] } ) ] : [] ) );
+		this.verdict.dataset.zone = zone ?? '';
+		this.verdict.setAttribute( 'aria-label', zone ? VERDICT_LABELS[ zone ] : 'Heard' );
+		this.verdict.hidden = ! zone;
+		this.tried();
 
 	}
 
@@ -297,7 +354,7 @@ export class ChildPractice extends View {
 		let saved;
 		try {
 
-			saved = await this.api.post( 'practice', round.record( rating ) );
+			saved = await this.api.post( 'practice', round.record( rating, this.attempt?.measures ) );
 
 		} catch ( error ) {
 
@@ -328,6 +385,7 @@ export class ChildPractice extends View {
 
 	closeHead() {
 
+		this.listener?.stop();
 		this.speech?.unmount();
 		this.speech = null;
 		this.presenter = null;

@@ -59,13 +59,15 @@ export class PracticeRound {
 	}
 
 	/**
-	 * The POST /practice body of the try at the current item: its replays, and the child's rating
-	 * (RATINGS: 1 not yet, 2 nearly, 3 got it) when the child chose a face.
+	 * The POST /practice body of the try at the current item: its replays, the child's rating
+	 * (RATINGS: 1 not yet, 2 nearly, 3 got it) when the child chose a face, and what the child's
+	 * voice measured (listenScales.attemptMeasures) when the page listened.
 	 */
-	record( rating = null ) {
+	record( rating = null, measures = null ) {
 
 		const body = { child_id: this.child.id, lesson_id: this.lesson.id, item_index: this.index, replays: this.replays };
 		if ( rating !== null ) Object.assign( body, { rating, rated_by: 'child' } );
+		if ( measures && Object.keys( measures ).length ) body.measures = measures;
 		return body;
 
 	}

@@ -1,0 +1,86 @@
+// One spoken attempt in the child's practice: the microphone is opened when the child presses
+// "Say it" (never before), the voice is measured as it comes (core/listen), and the attempt
+// ends by itself once the child has spoken and fallen quiet, or after MAX_ATTEMPT_S, or when
+// the button is pressed again. The audio stays in the page: only the summary leaves this module.
+
+import { createAnalyser } from '../../core/listen/analyse.js';
+import { startMicrophone } from '../listen/audioInput.js';
+import { sibilantBand, summariseAttempt } from '../listen/listenScales.js';
+
+/** The longest attempt, s. */
+export const MAX_ATTEMPT_S = 5;
+/** Quiet after sound that ends an attempt, s. */
+export const QUIET_END_S = 0.7;
+/** Loudness over the attempt's quietest that counts as sound, dB. */
+const SOUND_ABOVE_FLOOR_DB = 15;
+
+/**
+ * Whether an attempt's hops (so far) are done: sound came, then QUIET_END_S of quiet; or the
+ * attempt has run MAX_ATTEMPT_S. The pure part the unit tests read.
+ */
+export function attemptDone( hops ) {
+
+	if ( ! hops.length ) return false;
+	const last = hops.at( - 1 ).t;
+	if ( last - hops[ 0 ].t >= MAX_ATTEMPT_S ) return true;
+	const levels = hops.map( ( hop ) => hop.intensity_db ?? - Infinity );
+	const floor = Math.min( ...levels.filter( Number.isFinite ) );
+	const loud = hops.filter( ( hop, k ) => levels[ k ] >= floor + SOUND_ABOVE_FLOOR_DB );
+	return loud.length >= 5 && last - loud.at( - 1 ).t >= QUIET_END_S;
+
+}
+
+export class PracticeListener {
+
+	/** @param {{ win?: Window, group?: string, onHop?: ( hops: object[] ) => void }} options */
+	constructor( { win = globalThis.window, group = 'child', onHop = () => {} } = {} ) {
+
+		this.window = win;
+		this.group = group;
+		this.onHop = onHop;
+		this.microphone = null;
+		this.finished = null;
+
+	}
+
+	get listening() {
+
+		return this.microphone !== null;
+
+	}
+
+	/**
+	 * Listen to one attempt; resolves with its summary ({ vowel, fricative }, summariseAttempt)
+	 * when it ends. Rejects with a ListenError when the microphone cannot be had.
+	 */
+	async listen() {
+
+		const hops = [];
+		let resolveDone;
+		this.finished = new Promise( ( resolve ) => ( resolveDone = resolve ) );
+		let analyser = null;
+		this.microphone = await startMicrophone( { win: this.window, onBlock: ( block ) => {
+
+			if ( ! analyser ) return;
+			hops.push( ...analyser.push( block ) );
+			this.onHop( hops );
+			if ( attemptDone( hops ) ) this.stop();
+
+		} } );
+		analyser = createAnalyser( { sampleRate: this.microphone.sampleRate, group: this.group, band: sibilantBand( this.microphone.sampleRate ) } );
+		this.end = () => resolveDone( summariseAttempt( hops ) );
+		return this.finished;
+
+	}
+
+	/** End the attempt now (the button pressed again, the page left). */
+	stop() {
+
+		if ( ! this.microphone ) return;
+		this.microphone.stop();
+		this.microphone = null;
+		this.end?.();
+
+	}
+
+}
