@@ -87,6 +87,11 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		assert.equal( state.vowel.vowel, 'iy' );
 		assert.equal( state.vowel.zone, 'in', `F1 ${ vowel.f1 } Hz, F2 ${ vowel.f2 } Hz: ${ state.vowel.distance } sd from /i/` );
 		await page.waitForFunction( () => document.querySelector( '.ls-verdict' ).getAttribute( 'aria-label' ) === 'In the target' );
+		// The spectrum's F3 line: an /i/'s F3 lies above the /r/ target until the line is moved past it.
+		assert.ok( state.f3 > state.f3Target, `F3 ${ state.f3 } Hz, target ${ state.f3Target } Hz` );
+		assert.equal( state.f3UnderTarget, false );
+		await page.getByRole( 'slider', { name: 'F3 target, Hz' } ).fill( '4000' );
+		assert.equal( ( await listening( page ) ).f3UnderTarget, true );
 		await saveScreenshot( page, 'listen-heed-1920' );
 		await page.setViewportSize( { width: 768, height: 1024 } );
 		await page.waitForTimeout( 300 );

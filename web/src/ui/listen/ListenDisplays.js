@@ -44,7 +44,7 @@ export class VowelChart {
 
 	}
 
-	/** Draw the chart with the voiced hops `hops` ({ formants }), newest last, and the newest's `verdict`. */
+	/** Draw the chart with the voiced hops `hops` ({ formants }), newest last, and the `verdict` ({ f1, f2, zone }) as the big dot. */
 	draw( hops = [], verdict = null ) {
 
 		const ctx = this.canvas.clear();
@@ -76,20 +76,25 @@ export class VowelChart {
 		voiced.forEach( ( hop, k ) => {
 
 			const p = chartPoint( hop.formants[ 0 ], hop.formants[ 1 ], box );
-			const last = k === voiced.length - 1;
 			ctx.beginPath();
-			ctx.arc( p.x, p.y, last ? 11 : 4, 0, 2 * Math.PI );
-			ctx.fillStyle = last ? ( ZONE_COLOURS[ verdict?.zone ] ?? INK ) : `rgba(31, 35, 40, ${ 0.1 + 0.5 * k / voiced.length })`;
+			ctx.arc( p.x, p.y, 4, 0, 2 * Math.PI );
+			ctx.fillStyle = `rgba(31, 35, 40, ${ 0.1 + 0.5 * k / voiced.length })`;
 			ctx.fill();
-			if ( last ) {
-
-				ctx.lineWidth = 3;
-				ctx.strokeStyle = '#ffffff';
-				ctx.stroke();
-
-			}
 
 		} );
+		// The big dot is what the verdict judged: the attempt's summary, or the latest hops' median.
+		if ( verdict?.f1 > 0 && verdict?.f2 > 0 ) {
+
+			const p = chartPoint( verdict.f1, verdict.f2, box );
+			ctx.beginPath();
+			ctx.arc( p.x, p.y, 11, 0, 2 * Math.PI );
+			ctx.fillStyle = ZONE_COLOURS[ verdict.zone ] ?? INK;
+			ctx.fill();
+			ctx.lineWidth = 3;
+			ctx.strokeStyle = '#ffffff';
+			ctx.stroke();
+
+		}
 
 	}
 
@@ -230,6 +235,69 @@ export class TraceStrip {
 
 		line( ( hop ) => ( Number.isFinite( hop.intensity_db ) ? height - ( ( hop.intensity_db - FULL_SCALE_DB + TRACE_RANGE_DB ) / TRACE_RANGE_DB ) * height : null ), '#9aa0a6', 2 );
 		line( ( hop ) => ( hop.f0 > 0 ? height - ( Math.log( hop.f0 / 60 ) / Math.log( 600 / 60 ) ) * height : null ), '#2f7fd1', 4 );
+
+	}
+
+}
+
+/**
+ * The LPC spectrum of the newest hop (dB over 0 to the group's formant ceiling) with its
+ * formants marked and a movable F3 target, as staRt shows /r/: F3 falls below the line when the
+ * /r/ is rhotic. The target line is drawn green while the hop's F3 is under it.
+ */
+export class SpectrumPanel {
+
+	constructor( { width = 420, height = 150 } = {} ) {
+
+		this.canvas = new HiDpiCanvas( { width, height, ariaLabel: 'Spectrum of the voice, with the F3 target line', className: 'ls-canvas' } );
+		this.element = this.canvas.element;
+
+	}
+
+	resize( width ) {
+
+		this.canvas.resize( width );
+
+	}
+
+	/** Draw `spectrum` (dB, evenly spaced from 0 to `maxHz`), `formants` (Hz) and the `f3Target` (Hz). */
+	draw( spectrum, maxHz, formants, f3Target ) {
+
+		const ctx = this.canvas.clear();
+		if ( ! ctx ) return;
+		const { width, height } = this.canvas;
+		const x = ( hz ) => ( hz / maxHz ) * width;
+		const f3 = formants?.[ 2 ];
+		const under = f3 > 0 && f3 <= f3Target;
+		if ( spectrum?.length ) {
+
+			const top = Math.max( ...spectrum );
+			const y = ( db ) => 8 + ( ( top - db ) / 60 ) * ( height - 16 );
+			ctx.beginPath();
+			spectrum.forEach( ( db, k ) => ( k ? ctx.lineTo( ( k / ( spectrum.length - 1 ) ) * width, y( db ) ) : ctx.moveTo( 0, y( db ) ) ) );
+			ctx.strokeStyle = '#2f7fd1';
+			ctx.lineWidth = 2;
+			ctx.stroke();
+
+		}
+
+		( formants ?? [] ).forEach( ( hz, k ) => {
+
+			if ( ! ( hz > 0 ) || hz > maxHz ) return;
+			ctx.fillStyle = k === 2 ? INK : MUTED;
+			ctx.font = `${ k === 2 ? 'bold ' : '' }13px system-ui, sans-serif`;
+			ctx.textAlign = 'center';
+			ctx.fillText( `F${ k + 1 }`, x( hz ), height - 4 );
+
+		} );
+		ctx.strokeStyle = under ? ZONE_COLOURS.in : ZONE_COLOURS.off;
+		ctx.lineWidth = 4;
+		ctx.setLineDash( [ 8, 6 ] );
+		ctx.beginPath();
+		ctx.moveTo( x( f3Target ), 0 );
+		ctx.lineTo( x( f3Target ), height );
+		ctx.stroke();
+		ctx.setLineDash( [] );
 
 	}
 

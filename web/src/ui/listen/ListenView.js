@@ -8,13 +8,14 @@
 // latest, vowel, fricative, summary, problem, message }.
 
 import { createAnalyser } from '../../core/listen/analyse.js';
+import { GROUPS as ANALYSIS_GROUPS } from '../../core/listen/params.js';
 import { parseWav } from '../../core/listen/wav.js';
 import { h } from '../shared/dom.js';
 import { View } from '../shared/View.js';
 import { ListenError, readRecording, startMicrophone } from './audioInput.js';
-import { SibilantMeter, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
+import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
 import { listenMessage, messagePicture } from './listenMessages.js';
-import { inputProblem, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
+import { F3_TARGET_HZ, inputProblem, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
@@ -36,6 +37,10 @@ export class ListenView extends View {
 		this.norms = null;
 		this.microphone = null;
 		this.quietSince = null;
+		/** The newest (or, of a file, the loudest voiced) hop's LPC spectrum and its formants. */
+		this.spectrumDb = new Float32Array( 256 );
+		this.spectrumFormants = null;
+		this.f3Target = F3_TARGET_HZ[ this.state.group ];
 
 	}
 
@@ -54,6 +59,9 @@ export class ListenView extends View {
 		this.chart = new VowelChart();
 		this.meter = new SibilantMeter();
 		this.traces = new TraceStrip();
+		this.spectrum = new SpectrumPanel();
+		this.f3Slider = h( 'input', { type: 'range', min: '1200', max: '4000', step: '50', value: String( this.f3Target ), 'aria-label': 'F3 target, Hz', onInput: () => this.setF3Target( Number( this.f3Slider.value ) ) } );
+		this.f3Value = h( 'span', { className: 'ls-f3-value' }, `${ this.f3Target } Hz` );
 		const controls = h( 'div', { className: 'ls-controls' },
 			h( 'h1', { className: 'title' }, 'Listen' ),
 			h( 'div', { className: 'ls-groups', role: 'group', 'aria-label': 'Who is speaking' }, ...this.groupButtons.values() ),
@@ -63,7 +71,9 @@ export class ListenView extends View {
 		const displays = h( 'div', { className: 'ls-displays' },
 			h( 'figure', { className: 'ls-chart' }, this.chart.element ),
 			h( 'figure', { className: 'ls-meter' }, this.meter.element ),
-			h( 'figure', { className: 'ls-traces' }, this.traces.element ) );
+			h( 'figure', { className: 'ls-traces' }, this.traces.element ),
+			h( 'figure', { className: 'ls-spectrum' }, this.spectrum.element,
+				h( 'label', { className: 'ls-f3' }, 'F3 target for /r/ ', this.f3Slider, this.f3Value ) ) );
 		this.attach( container, h( 'div', { className: 'listen' }, controls, displays ) );
 		this.listen( this.root, 'dragover', ( event ) => event.preventDefault() );
 		this.listen( this.root, 'drop', ( event ) => {
@@ -113,6 +123,7 @@ export class ListenView extends View {
 		this.chart.resize( width, Math.round( Math.min( width * 0.75, 520 ) ) );
 		this.meter.resize( width );
 		this.traces.resize( width );
+		this.spectrum.resize( width );
 		this.redraw();
 
 	}
@@ -122,8 +133,18 @@ export class ListenView extends View {
 		this.state.group = group;
 		for ( const [ name, button ] of this.groupButtons ) button.setAttribute( 'aria-pressed', String( name === group ) );
 		this.fillTargets();
+		this.setF3Target( F3_TARGET_HZ[ group ] );
 		if ( this.state.source === 'file' && this.lastFile ) this.openFile( this.lastFile );
 		else this.redraw();
+
+	}
+
+	setF3Target( hz ) {
+
+		this.f3Target = hz;
+		this.f3Slider.value = String( hz );
+		this.f3Value.textContent = `${ hz } Hz`;
+		this.redraw();
 
 	}
 
@@ -180,6 +201,7 @@ export class ListenView extends View {
 		this.hops = [];
 		this.hopCount = 0;
 		this.quietSince = null;
+		this.spectrumFormants = null;
 
 	}
 
@@ -190,6 +212,13 @@ export class ListenView extends View {
 		const problem = inputProblem( block );
 		const added = this.analyser.push( block );
 		this.keep( added );
+		const voiced = added.findLast( ( hop ) => hop.voiced && hop.formants?.[ 2 ] > 0 );
+		if ( voiced ) {
+
+			this.analyser.lpcSpectrum( this.spectrumDb );
+			this.spectrumFormants = voiced.formants;
+
+		}
 		const now = this.hops.at( - 1 )?.t ?? 0;
 		const voicedLately = this.hops.some( ( hop ) => hop.voiced && now - hop.t < PROBLEM_AFTER_S );
 		if ( problem === 'clipping' ) this.flag( 'clipping' );
@@ -238,7 +267,21 @@ export class ListenView extends View {
 			this.analyser = createAnalyser( { sampleRate, group: this.state.group, band: sibilantBand( sampleRate ) } );
 			// In blocks, as the microphone would hand them: the same path, whatever the source.
 			const hops = [];
-			for ( let i = 0; i < samples.length; i += 4096 ) hops.push( ...this.analyser.push( samples.subarray( i, i + 4096 ) ) );
+			let loudest = - Infinity;
+			for ( let i = 0; i < samples.length; i += 1024 ) {
+
+				const added = this.analyser.push( samples.subarray( i, i + 1024 ) );
+				hops.push( ...added );
+				const voiced = added.findLast( ( hop ) => hop.voiced && hop.formants?.[ 2 ] > 0 );
+				if ( voiced?.intensity_db > loudest ) {
+
+					loudest = voiced.intensity_db;
+					this.analyser.lpcSpectrum( this.spectrumDb );
+					this.spectrumFormants = voiced.formants;
+
+				}
+
+			}
 			hops.push( ...this.analyser.flush() );
 			this.hops = [];
 			this.hopCount = 0;
@@ -304,6 +347,7 @@ export class ListenView extends View {
 			const latestHiss = this.state.summary?.fricative?.centroid ?? [ ...this.hops ].reverse().find( ( hop ) => ! hop.voiced && hop.centroid > 0 )?.centroid ?? null;
 			this.meter.draw( latestHiss, this.state.group );
 			this.traces.draw( this.hops );
+			this.spectrum.draw( this.spectrumFormants ? this.spectrumDb : null, this.ceiling(), this.shownFormants(), this.f3Target );
 			this.verdict.dataset.zone = vowel?.zone ?? '';
 			this.verdict.style.backgroundColor = ZONE_COLOURS[ vowel?.zone ] ?? '';
 			this.verdict.setAttribute( 'aria-label', vowel ? { in: 'In the target', near: 'Near the target', off: 'Try again' }[ vowel.zone ] : 'No sound yet' );
@@ -314,10 +358,27 @@ export class ListenView extends View {
 
 	}
 
+	/** The formants the F3 line is read against: the attempt's summary once it ends, else the newest voiced hop's. */
+	shownFormants() {
+
+		const vowel = this.state.summary?.vowel;
+		return vowel ? [ vowel.f1, vowel.f2, vowel.f3, null ] : this.spectrumFormants;
+
+	}
+
+	/** The formant ceiling of the group, Hz: the spectrum's range. */
+	ceiling() {
+
+		return ANALYSIS_GROUPS[ this.state.group ]?.formantCeiling ?? 5500;
+
+	}
+
 	debugState() {
 
 		const vowel = this.currentVowel();
+		const f3 = this.shownFormants()?.[ 2 ] ?? null;
 		return {
+			f3Target: this.f3Target, f3, f3UnderTarget: f3 !== null && f3 <= this.f3Target,
 			source: this.state.source, group: this.state.group, target: this.state.target || null,
 			active: this.state.active, hops: this.hopCount, latest: this.hops.at( - 1 ) ?? null,
 			vowel, summary: this.state.summary, problem: this.state.problem, message: this.state.message,

@@ -46,6 +46,14 @@ export const SIBILANT_ENDS_HZ = Object.freeze( {
 	child: Object.freeze( { sh: 4000, s: 6000 } ),
 } );
 
+/**
+ * Where the F3 target line starts for /r/, by group, Hz (the learner's clinician moves it): an
+ * /r/ brings F3 down towards F2, to about 1,600 to 1,800 Hz for men, 1,900 to 2,100 for women
+ * and 2,200 to 2,500 for children (Hagiwara 1995; Flipsen et al. 2001), against about 2,500,
+ * 2,900 and 3,300 in their other vowels.
+ */
+export const F3_TARGET_HZ = Object.freeze( { man: 1900, woman: 2200, child: 2600 } );
+
 /** Intensity (dB re full scale) below which the input is taken as silence. */
 export const SILENT_DB = - 55;
 /** A sample this close to full scale counts as clipped; this share of clipped samples is too loud. */
