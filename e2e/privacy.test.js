@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import { describe, test } from 'node:test';
 import { apiSession, authHeaders, createAccounts, signIn } from './accounts.js';
-import { openPage, saveScreenshot, serverAndBrowser } from './harness.js';
+import { openPage, readDebug, saveScreenshot, serverAndBrowser } from './harness.js';
 
 describe( 'a child’s data', { timeout: 900_000 }, () => {
 
@@ -36,6 +36,8 @@ describe( 'a child’s data', { timeout: 900_000 }, () => {
 		const [ first, last ] = setting.targets;
 		assert.ok( rows[ 0 ].includes( last ), `newest first: the last item's ${ last } in "${ rows[ 0 ] }"` );
 		assert.ok( rows[ 1 ].includes( first ), `the item's target is read from its lesson: ${ first } in "${ rows[ 1 ] }"` );
+		assert.ok( rows[ 1 ].includes( 'in the target: centroid 5612 Hz' ), `what the voice measured: "${ rows[ 1 ] }"` );
+		assert.equal( ( await readDebug( page ) ).clinicianChild.measured, 1, 'the spoken go is plotted' );
 		const [ download ] = await Promise.all( [ page.waitForEvent( 'download' ), card.getByRole( 'button', { name: 'Export practice (CSV)' } ).click() ] );
 		assert.equal( download.suggestedFilename(), `child-${ setting.ada.id }-practice.csv` );
 		const csv = ( await readFile( await download.path(), 'utf8' ) ).trim().split( /\r?\n/ );
@@ -108,7 +110,9 @@ async function makeSetting( server ) {
 	await send( 'POST', 'assignments', { lesson_id: lesson.id, child_id: ada.id } );
 	for ( const [ child, index, when ] of [ [ ada, 0, '2026-03-01T09:00:00Z' ], [ ada, lesson.n_items - 1, '2026-03-02T09:00:00Z' ], [ bo, 0, '2026-03-01T10:00:00Z' ] ] ) {
 
-		await send( 'POST', 'practice', { child_id: child.id, lesson_id: lesson.id, item_index: index, practised_at: when, replays: 1 } );
+		// Ada's first go was said into the microphone: what it measured goes with it.
+		const measures = child === ada && index === 0 ? { centroid: 5612.4, duration_s: 0.2, verdict: 'in' } : undefined;
+		await send( 'POST', 'practice', { child_id: child.id, lesson_id: lesson.id, item_index: index, practised_at: when, replays: 1, measures } );
 
 	}
 

@@ -1,6 +1,6 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { childChoices, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinician/clinicianChildRows.js';
+import { childChoices, measuredSeries, measureWords, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinician/clinicianChildRows.js';
 import { downloadFile } from '../../web/src/ui/shared/download.js';
 import { createApi } from '../../web/src/api.js';
 
@@ -19,14 +19,14 @@ test( 'practice rows name the lesson, the item from 1 and its target, and say th
 
 	const lessons = new Map( [ [ 3, { title: 'sip, ship', items: [ { target: { kind: 'phoneme', text: 's' } }, { target: { kind: 'word', text: 'ship' } } ] } ] ] );
 	const records = [
-		{ lesson_id: 3, item_index: 1, practised_at: '2026-03-02T09:30:12Z', replays: 2, rating: 3, rated_by: 'adult' },
+		{ lesson_id: 3, item_index: 1, practised_at: '2026-03-02T09:30:12Z', replays: 2, rating: 3, rated_by: 'adult', measures: { centroid: 4012.4, verdict: 'off' } },
 		{ lesson_id: 3, item_index: 0, practised_at: '2026-03-01T09:00:00.5+00:00', replays: 0, rating: null, rated_by: null },
 		{ lesson_id: 8, item_index: 0, practised_at: '2026-03-01T08:00:00Z', replays: 1, rating: 1, rated_by: 'child' },
 	];
 	assert.deepEqual( practiceRows( records, lessons ), [
-		{ when: '2026-03-02 09:30', lesson: 'sip, ship', item: 2, target: 'ship', replays: 2, rating: '3, got it (adult)' },
-		{ when: '2026-03-01 09:00', lesson: 'sip, ship', item: 1, target: '/s/', replays: 0, rating: '' },
-		{ when: '2026-03-01 08:00', lesson: 'lesson 8', item: 1, target: '', replays: 1, rating: '1, not yet (child)' },
+		{ when: '2026-03-02 09:30', lesson: 'sip, ship', item: 2, target: 'ship', replays: 2, rating: '3, got it (adult)', heard: 'off: centroid 4012 Hz' },
+		{ when: '2026-03-01 09:00', lesson: 'sip, ship', item: 1, target: '/s/', replays: 0, rating: '', heard: '' },
+		{ when: '2026-03-01 08:00', lesson: 'lesson 8', item: 1, target: '', replays: 1, rating: '1, not yet (child)', heard: '' },
 	] );
 	assert.equal( ratingWords( 2, null ), '2, nearly' );
 	assert.equal( recordingExportPath( 12, 'emur-json' ), 'epg/recordings/12/export?format=emur-json' );
@@ -57,5 +57,22 @@ test( 'a download sends the token, saves under the server’s file name, and a r
 	const refused = await downloadFile( 'children/4/practice.csv', 'x.csv', options ).catch( ( error ) => error );
 	assert.equal( refused.status, 404 );
 	assert.match( refused.message, /no child with id 4/ );
+
+} );
+
+test( 'the measured goes are plotted oldest first, vowels by F1 and F2 and hisses by their centroid', () => {
+
+	const records = [
+		{ id: 3, practised_at: '2026-03-03T09:00:00Z', measures: { f1: 410, f2: 3050, verdict: 'in', target_vowel: 'iy' } },
+		{ id: 1, practised_at: '2026-03-01T09:00:00Z', measures: { f1: 600, f2: 2500, verdict: 'off' } },
+		{ id: 2, practised_at: '2026-03-02T09:00:00Z', measures: { centroid: 5600 } },
+		{ id: 4, practised_at: '2026-03-04T09:00:00Z', measures: null },
+	];
+	assert.deepEqual( measuredSeries( records ), {
+		vowel: [ { when: '2026-03-01T09:00:00Z', f1: 600, f2: 2500, verdict: 'off' }, { when: '2026-03-03T09:00:00Z', f1: 410, f2: 3050, verdict: 'in' } ],
+		fricative: [ { when: '2026-03-02T09:00:00Z', centroid: 5600, verdict: null } ],
+	} );
+	assert.equal( measureWords( { f1: 410.4, f2: 3050.5, verdict: 'in' } ), 'in the target: F1 410, F2 3051 Hz' );
+	assert.equal( measureWords( null ), '' );
 
 } );

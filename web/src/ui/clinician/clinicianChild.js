@@ -3,12 +3,14 @@
 // (GET /practice?child_id=, newest first, with the item's target from the lesson) and their EPG
 // recordings (GET /epg/recordings?child_id=), open a recording beside the target, and export the
 // practice as CSV (GET /children/{id}/practice.csv) and a recording in the formats the server
-// exports (GET /epg/recordings/{id}/export). The pure parts (the choices, the rows) are in
-// clinicianChildRows.js.
+// exports (GET /epg/recordings/{id}/export). The goes the child said into the microphone are
+// plotted over the sessions (AttemptPlot.js), and the table says what each one measured. The
+// pure parts (the choices, the rows, the series) are in clinicianChildRows.js.
 
 import { api as pageApi } from '../../api.js';
 import { h } from '../shared/dom.js';
-import { childChoices, EXPORT_FORMATS, practiceRows, recordingExportPath } from './clinicianChildRows.js';
+import { childChoices, EXPORT_FORMATS, measuredSeries, practiceRows, recordingExportPath } from './clinicianChildRows.js';
+import { AttemptPlot } from './AttemptPlot.js';
 import { downloadFile } from '../shared/download.js';
 import './clinicianChild.css';
 
@@ -24,17 +26,19 @@ export class ChildHistory {
 		this.onOpen = onOpen;
 		this.download = download;
 		this.lessons = new Map();
-		this.state = { loaded: false, child: null, practice: 0, recordings: [], error: null };
+		this.state = { loaded: false, child: null, practice: 0, measured: 0, recordings: [], error: null };
 		this.select = h( 'select', { 'aria-label': 'Child', className: 'cc-select', onChange: () => this.choose( this.select.value ) } );
 		this.csvButton = h( 'button', { type: 'button', disabled: '', onClick: () => this.exportCsv() }, 'Export practice (CSV)' );
 		this.status = h( 'p', { className: 'status', role: 'status', 'aria-live': 'polite' }, 'Loading your caseload…' );
 		this.table = h( 'table', { className: 'cv-table cc-practice', 'aria-label': 'Practice history' } );
 		this.recordings = h( 'ul', { className: 'cc-recordings', 'aria-label': 'Recordings of the child' } );
+		this.attempts = new AttemptPlot();
 		this.element = h( 'figure', { className: 'cv-card cc-child', 'aria-label': 'A child’s history' },
 			h( 'figcaption', {}, 'A child’s history' ),
 			h( 'div', { className: 'cc-bar' }, h( 'label', {}, 'Child ', this.select ), this.csvButton ),
 			this.status,
 			h( 'h3', { className: 'cc-heading' }, 'Practice' ), this.table,
+			h( 'h3', { className: 'cc-heading' }, 'Spoken goes' ), this.attempts.element,
 			h( 'h3', { className: 'cc-heading' }, 'Recordings' ), this.recordings );
 
 	}
@@ -85,6 +89,7 @@ export class ChildHistory {
 			await this.loadLessons( practice.records );
 			if ( this.state.child !== id ) return; // another child was chosen meanwhile
 			this.showPractice( practiceRows( practice.records, this.lessons ), practice.total );
+			this.state.measured = this.attempts.draw( measuredSeries( practice.records ) );
 			this.showRecordings( recordings.recordings );
 			this.say( '' );
 
@@ -107,9 +112,9 @@ export class ChildHistory {
 	showPractice( rows, total ) {
 
 		this.state.practice = total;
-		const head = h( 'tr', {}, ...[ 'When (UTC)', 'Lesson', 'Item', 'Target', 'Replays', 'Rating' ].map( ( t ) => h( 'th', { scope: 'col' }, t ) ) );
-		const body = rows.map( ( row ) => h( 'tr', {}, ...[ row.when, row.lesson, String( row.item ), row.target, String( row.replays ), row.rating ].map( ( t ) => h( 'td', {}, t ) ) ) );
-		this.table.replaceChildren( h( 'thead', {}, head ), h( 'tbody', {}, ...( body.length ? body : [ h( 'tr', {}, h( 'td', { colspan: '6' }, 'No practice yet.' ) ) ] ) ) );
+		const head = h( 'tr', {}, ...[ 'When (UTC)', 'Lesson', 'Item', 'Target', 'Replays', 'Rating', 'Heard' ].map( ( t ) => h( 'th', { scope: 'col' }, t ) ) );
+		const body = rows.map( ( row ) => h( 'tr', {}, ...[ row.when, row.lesson, String( row.item ), row.target, String( row.replays ), row.rating, row.heard ].map( ( t ) => h( 'td', {}, t ) ) ) );
+		this.table.replaceChildren( h( 'thead', {}, head ), h( 'tbody', {}, ...( body.length ? body : [ h( 'tr', {}, h( 'td', { colspan: '7' }, 'No practice yet.' ) ) ] ) ) );
 
 	}
 

@@ -30,7 +30,7 @@ export function ratingWords( rating, ratedBy ) {
 
 /**
  * The history table's rows from practice records and the lessons they name (Map id -> lesson,
- * with items): [{ when, lesson, item, target, replays, rating }], in the records' order.
+ * with items): [{ when, lesson, item, target, replays, rating, heard }], in the records' order.
  */
 export function practiceRows( records, lessons ) {
 
@@ -45,6 +45,7 @@ export function practiceRows( records, lessons ) {
 			target: target ? ( target.kind === 'phoneme' ? `/${ target.text }/` : target.text ) : '',
 			replays: record.replays,
 			rating: ratingWords( record.rating, record.rated_by ),
+			heard: measureWords( record.measures ),
 		};
 
 	} );
@@ -55,5 +56,33 @@ export function practiceRows( records, lessons ) {
 export function recordingExportPath( id, format ) {
 
 	return `epg/recordings/${ id }/export?format=${ encodeURIComponent( format ) }`;
+
+}
+
+const VERDICTS = Object.freeze( { in: 'in the target', near: 'near', off: 'off' } );
+
+/** What the voice measured on a go, in words: 'in the target: F1 410, F2 3050 Hz', '' for nothing. */
+export function measureWords( measures ) {
+
+	if ( ! measures ) return '';
+	const parts = [];
+	if ( measures.f1 && measures.f2 ) parts.push( `F1 ${ Math.round( measures.f1 ) }, F2 ${ Math.round( measures.f2 ) } Hz` );
+	if ( measures.centroid ) parts.push( `centroid ${ Math.round( measures.centroid ) } Hz` );
+	const verdict = VERDICTS[ measures.verdict ];
+	return [ verdict, parts.join( '; ' ) ].filter( Boolean ).join( ': ' );
+
+}
+
+/**
+ * The measured goes as series for the attempts plot, oldest first: vowels ({ when, f1, f2,
+ * verdict }) and fricatives ({ when, centroid, verdict }); goes without measures are left out.
+ */
+export function measuredSeries( records ) {
+
+	const measured = records.filter( ( r ) => r.measures ).sort( ( a, b ) => a.practised_at.localeCompare( b.practised_at ) || a.id - b.id );
+	return {
+		vowel: measured.filter( ( r ) => r.measures.f1 && r.measures.f2 ).map( ( r ) => ( { when: r.practised_at, f1: r.measures.f1, f2: r.measures.f2, verdict: r.measures.verdict ?? null } ) ),
+		fricative: measured.filter( ( r ) => r.measures.centroid && ! r.measures.f1 ).map( ( r ) => ( { when: r.practised_at, centroid: r.measures.centroid, verdict: r.measures.verdict ?? null } ) ),
+	};
 
 }
