@@ -12,7 +12,8 @@ import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { after, before, describe, test } from 'node:test';
-import { sibilantPosition } from '../web/src/ui/listen/listenScales.js';
+import { F3_TARGET_HZ, sibilantPosition } from '../web/src/ui/listen/listenScales.js';
+import { listenHref } from '../web/src/ui/lessons/LessonRunnerItems.js';
 import { apiSession, authHeaders } from './accounts.js';
 import { fakeMicrophoneArgs, launchBrowser, openPage, readDebug, REPO, saveScreenshot, startServer } from './harness.js';
 
@@ -192,6 +193,12 @@ describe( 'listening', { timeout: 600_000 }, () => {
 			assert.match( await page.getByRole( 'status' ).textContent(), /microphone|browser/ );
 			assert.equal( ( await listening( page ) ).active, false );
 			await saveScreenshot( page, 'listen-refused-tablet' );
+			// The lesson runner's Live chart link chooses the group and the target vowel.
+			const linked = await openPage( browsers.at( - 1 ), { width: 1920, height: 1080 } );
+			await linked.goto( `${ server.baseUrl }/${ listenHref( { target: { kind: 'phoneme', text: 'ɑ' } } ).replace( 'child', 'man' ) }` );
+			await linked.waitForFunction( () => window.glasshead?.loaded === true, null, { timeout: 60_000 } );
+			const state = await listening( linked );
+			assert.deepEqual( [ state.group, state.target, state.f3Target ], [ 'man', 'aa', F3_TARGET_HZ.man ] );
 
 		} finally {
 

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
 import {
-	DEFAULT_VIEWS, itemRequest, itemSettings, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, SLOW_SPEED, stepItem, targetLabel,
+	DEFAULT_VIEWS, itemRequest, itemSettings, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, SLOW_SPEED, stepItem, targetLabel, listenHref,
 } from '../../web/src/ui/lessons/LessonRunnerItems.js';
 import { practiceRows } from '../../web/src/ui/lessons/LessonRunnerPanel.js';
 
@@ -97,5 +97,13 @@ test( 'the practice table lists only the class\'s children, newest first, with t
 	const rows = practiceRows( records, children, items );
 	assert.deepEqual( rows.map( ( row ) => [ row.id, row.child.display_name, row.target, row.rating?.label ?? null ] ), [ [ 12, 'Bo', 'ship', null ], [ 10, 'Ada', '/s/', 'Got it' ] ] );
 	assert.equal( targetLabel( items[ 0 ] ), '/s/' );
+
+} );
+
+test( 'the Live chart link opens the listening page with children\'s norms and a phoneme target', () => {
+
+	assert.equal( listenHref( { target: { kind: 'phoneme', text: 'ʃ' } } ), '#/listen?group=child&phoneme=%CA%83' );
+	assert.equal( listenHref( { target: { kind: 'word', text: 'ship' } } ), '#/listen?group=child' );
+	assert.equal( listenHref( null ), '#/listen?group=child' );
 
 } );

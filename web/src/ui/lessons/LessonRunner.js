@@ -11,7 +11,7 @@ import { currentSession, onSessionChange } from '../../session.js';
 import { h } from '../shared/dom.js';
 import { LessonRunnerPanel } from './LessonRunnerPanel.js';
 import {
-	itemSettings, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, stepItem, targetKindLabel, targetLabel,
+	itemSettings, listenHref, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, stepItem, targetKindLabel, targetLabel,
 } from './LessonRunnerItems.js';
 import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
 import { ItemPresenter } from './LessonRunnerViews.js';
@@ -162,7 +162,8 @@ export class LessonRunner extends View {
 		this.toolbar = h( 'div', { className: 'lr-toolbar', role: 'group', 'aria-label': 'Lesson' },
 			h( 'a', { className: 'lr-link', href: runnerHref() }, 'All lessons' ),
 			button( 'Previous', () => this.act( 'previous' ) ), this.playButton, button( 'Next', () => this.act( 'next' ) ),
-			this.slowButton, button( 'Present', () => this.setPresenting( true ) ), button( 'Full screen (F)', () => this.act( 'fullscreen' ) ) );
+			this.slowButton, button( 'Present', () => this.setPresenting( true ) ), button( 'Full screen (F)', () => this.act( 'fullscreen' ) ),
+			this.liveLink = h( 'a', { className: 'lr-link', target: '_blank', rel: 'noopener', href: listenHref( null ) }, 'Live chart' ) );
 		this.kind = h( 'span', { className: 'lr-kind' } );
 		this.target = h( 'span', { className: 'lr-target-text' } );
 		this.targetBox = h( 'div', { className: 'lr-target', role: 'status', 'aria-live': 'polite' }, this.kind, this.target );
@@ -199,6 +200,7 @@ export class LessonRunner extends View {
 		const item = this.item;
 		this.kind.textContent = targetKindLabel( item );
 		this.target.textContent = targetLabel( item );
+		this.liveLink.href = listenHref( item );
 		this.dots.forEach( ( dot, k ) => ( k === index ? dot.setAttribute( 'aria-current', 'step' ) : dot.removeAttribute( 'aria-current' ) ) );
 		const shown = await this.presenter.present( item );
 		if ( ! shown || this.index !== index ) return;

@@ -124,3 +124,14 @@ export function runnerSpeed( settings, slow ) {
 	return slow ? Math.min( SLOW_SPEED, settings.speed ) : settings.speed;
 
 }
+
+/**
+ * The listening page for the class to say `item`'s target into the room's microphone, on the
+ * projector: children's norms, and the target's vowel or /s/–/ʃ/ when the item is a phoneme.
+ */
+export function listenHref( item ) {
+
+	const phoneme = item?.target?.kind === 'phoneme' ? `&phoneme=${ encodeURIComponent( item.target.text ) }` : '';
+	return `#/listen?group=child${ phoneme }`;
+
+}

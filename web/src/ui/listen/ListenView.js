@@ -15,7 +15,7 @@ import { View } from '../shared/View.js';
 import { ListenError, readRecording, startMicrophone } from './audioInput.js';
 import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
 import { listenMessage, messagePicture } from './listenMessages.js';
-import { F3_TARGET_HZ, inputProblem, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
+import { F3_TARGET_HZ, inputProblem, measurableTarget, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
@@ -46,6 +46,11 @@ export class ListenView extends View {
 
 	mount( container ) {
 
+		// An address may choose the group and a phoneme to aim at (the lesson runner's Live chart link).
+		const query = new URLSearchParams( this.window.location.hash.split( '?' )[ 1 ] ?? '' );
+		if ( GROUPS.some( ( [ group ] ) => group === query.get( 'group' ) ) ) this.state.group = query.get( 'group' );
+		this.f3Target = F3_TARGET_HZ[ this.state.group ];
+		this.wantedPhoneme = query.get( 'phoneme' );
 		this.groupButtons = new Map( GROUPS.map( ( [ group, label ] ) => [ group, h( 'button', {
 			type: 'button', className: 'toggle', 'aria-pressed': String( group === this.state.group ), onClick: () => this.setGroup( group ),
 		}, label ) ] ) );
@@ -103,6 +108,8 @@ export class ListenView extends View {
 		}
 
 		this.state.loaded = true;
+		const wanted = measurableTarget( { kind: 'phoneme', text: this.wantedPhoneme }, this.norms?.groups?.[ this.state.group ] );
+		if ( wanted?.kind === 'vowel' ) this.state.target = wanted.code;
 		this.fillTargets();
 		this.redraw();
 
