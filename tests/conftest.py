@@ -3,6 +3,7 @@ throwaway PostgreSQL server per module that asks for one."""
 
 import json
 import os
+import shutil
 from pathlib import Path
 
 import pytest
@@ -35,6 +36,18 @@ def data_dir() -> Path:
     if not (path / "anatomy" / "artisynth-badin").is_dir():
         pytest.fail(f"reference data missing: expected {path} (set GLASSHEAD_DATA_DIR)")
     return path
+
+
+@pytest.fixture
+def data_copy(tmp_path, data_dir):
+    """A writable copy of the folders the build reads from (those of sources.EXPECTED_FILES),
+    for tests that break a file."""
+    from glasshead.pipeline.sources import EXPECTED_FILES
+
+    copy = tmp_path / "data"
+    for folder in sorted({path.parent for path in EXPECTED_FILES}):
+        shutil.copytree(data_dir / folder, copy / folder, dirs_exist_ok=True)
+    return copy
 
 
 @pytest.fixture(scope="session")

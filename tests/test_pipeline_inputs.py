@@ -1,22 +1,9 @@
 """Bad input stops the build with a message that names what is wrong."""
 
-import shutil
 
-import pytest
 
 from glasshead.cli import main
-from glasshead.pipeline.sources import BADIN, CBCT, PETERSON_BARNEY, TRACT
-
-
-@pytest.fixture
-def data_copy(tmp_path, data_dir):
-    """A writable copy of the folders and files the build reads."""
-    copy = tmp_path / "data"
-    for folder in (BADIN, CBCT, TRACT):
-        shutil.copytree(data_dir / folder, copy / folder)
-    (copy / PETERSON_BARNEY).parent.mkdir(parents=True)
-    shutil.copy(data_dir / PETERSON_BARNEY, copy / PETERSON_BARNEY)
-    return copy
+from glasshead.pipeline.sources import BADIN
 
 
 def test_a_missing_data_directory_names_the_path_and_the_files(tmp_path, capsys):

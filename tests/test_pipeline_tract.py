@@ -6,7 +6,6 @@ Distances are in millimetres, measured on the GLBs as the browser loads them (fl
 
 import hashlib
 import json
-import shutil
 
 import numpy as np
 import pytest
@@ -252,15 +251,6 @@ def test_the_scene_uses_the_speakers_own_hyoid(report, entries):
 
 
 # --- Bad input --------------------------------------------------------------------------------
-
-
-@pytest.fixture
-def data_copy(tmp_path, data_dir):
-    """A writable copy of the anatomy folders the build reads."""
-    copy = tmp_path / "data"
-    for folder in (sources.BADIN, sources.CBCT, sources.TRACT):
-        shutil.copytree(data_dir / folder, copy / folder)
-    return copy
 
 
 def build(data, out):
