@@ -93,6 +93,7 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		assert.equal( state.f3UnderTarget, false );
 		await page.getByRole( 'slider', { name: 'F3 target, Hz' } ).fill( '4000' );
 		assert.equal( ( await listening( page ) ).f3UnderTarget, true );
+		assert.match( await page.locator( '.ls-attempt-measures' ).textContent(), /^vowel: F0 \d+ Hz, F1 \d+ Hz, F2 \d+ Hz/ );
 		await saveScreenshot( page, 'listen-heed-1920' );
 		await page.setViewportSize( { width: 768, height: 1024 } );
 		await page.waitForTimeout( 300 );

@@ -85,11 +85,37 @@ def test_a_stale_if_match_is_a_412_that_changes_nothing_and_names_the_current_et
      "body.items.0.audio.kind"),
     ({"items": [{"target": {"kind": "word", "text": "x"}, "views": {"xray": True}}]},
      "body.items.0.views.xray"),
+    ({"items": [{"target": {"kind": "word", "text": "x"}, "listen": {"measure": "pitch"}}]},
+     "body.items.0.listen"),
+    ({"items": [{"target": {"kind": "word", "text": "x"},
+                 "listen": {"measure": "vowel", "vowel": "xx"}}]},
+     "body.items.0.listen.vowel.vowel"),
+    ({"items": [{"target": {"kind": "word", "text": "x"},
+                 "listen": {"measure": "rhotic", "f3_below_hz": 9000}}]},
+     "body.items.0.listen.rhotic.f3_below_hz"),
 ])
 def test_invalid_lessons_are_422s_that_name_the_field_and_store_nothing(client, change, field):
     response = client.post(f"{API}/lessons", json={**SIP_SHIP, **change})
     assert response.status_code == 422 and field in response.json()["detail"]
     assert client.get(f"{API}/lessons").json()["total"] == N_STARTER
+
+
+def test_an_item_keeps_what_a_try_is_measured_on_and_its_zone(client):
+    items = [{"target": {"kind": "phoneme", "text": "i"},
+              "listen": {"measure": "vowel", "vowel": "iy", "within_sd": 2}},
+             {"target": {"kind": "word", "text": "ship"},
+              "listen": {"measure": "sibilant", "sound": "sh"}},
+             {"target": {"kind": "phoneme", "text": "r"}, "listen": {"measure": "rhotic"}},
+             {"target": {"kind": "word", "text": "tea"}}]
+    lesson = create(client, {**SIP_SHIP, "items": items}).json()
+    assert [item["listen"] for item in lesson["items"]] == [
+        {"measure": "vowel", "vowel": "iy", "within_sd": 2.0},
+        {"measure": "sibilant", "sound": "sh", "from_share": 0.6},
+        {"measure": "rhotic", "f3_below_hz": 2600.0}, None]
+    starters = client.get(f"{API}/lessons", params={"limit": 100}).json()["lessons"]
+    vowels = next(lesson for lesson in starters if lesson["title"] == "The vowels")
+    measured = client.get(f"{API}/lessons/{vowels['id']}").json()["items"]
+    assert all(item["listen"]["measure"] == "vowel" for item in measured)
 
 
 def test_an_unknown_phoneme_symbol_is_named_in_the_422(client):

@@ -36,8 +36,12 @@ test( 'an item left sparse gets the schema defaults, and the draft is a copy tha
 	const item = draftOf( { items: [ { target: { kind: 'word', text: 'sun' } } ] } ).items[ 0 ];
 	assert.deepEqual( item, {
 		target: { kind: 'word', text: 'sun' }, presentation: 'dynamic', audio: { kind: 'natural', cutoff_hz: null, channels: null },
-		views: { skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false }, speed: 1,
+		views: { skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false }, speed: 1, listen: null,
 	} );
+	// What a try is measured on goes through the editor as the lesson had it.
+	const listened = { target: { kind: 'phoneme', text: 'i' }, listen: { measure: 'vowel', vowel: 'iy', within_sd: 2 } };
+	assert.deepEqual( lessonBody( draftOf( { title: 't', items: [ listened ] } ) ).items[ 0 ].listen, listened.listen );
+	assert.equal( 'listen' in lessonBody( draftOf( { title: 't', items: [ { target: { kind: 'word', text: 'sun' } } ] } ) ).items[ 0 ], false );
 	const draft = draftOf( SERVER_LESSON );
 	draft.items[ 0 ] = setField( draft.items[ 0 ], 'views.cutaway', false );
 	assert.equal( SERVER_LESSON.items[ 0 ].views.cutaway, true );

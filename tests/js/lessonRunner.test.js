@@ -105,5 +105,6 @@ test( 'the Live chart link opens the listening page with children\'s norms and a
 	assert.equal( listenHref( { target: { kind: 'phoneme', text: 'ʃ' } } ), '#/listen?group=child&phoneme=%CA%83' );
 	assert.equal( listenHref( { target: { kind: 'word', text: 'ship' } } ), '#/listen?group=child' );
 	assert.equal( listenHref( null ), '#/listen?group=child' );
+	assert.equal( listenHref( { target: { kind: 'word', text: 'beat' }, listen: { measure: 'vowel', vowel: 'iy' } } ), '#/listen?group=child&vowel=iy' );
 
 } );

@@ -6,10 +6,11 @@ import assert from 'node:assert/strict';
 
 import {
 	chartPoint, ellipse, IN_TARGET, inputProblem, nearestVowel, normDistance, sibilantPosition,
-	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures,
+	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures, attemptWords, itemTarget, F3_TARGET_HZ,
 } from '../../web/src/ui/listen/listenScales.js';
 import { listenMessage, MESSAGES, pictureShapes } from '../../web/src/ui/listen/listenMessages.js';
 import { microphoneErrorKind } from '../../web/src/ui/listen/audioInput.js';
+import { spectrogram } from '../../web/src/ui/listen/spectrogram.js';
 import { attemptDone, MAX_ATTEMPT_S, QUIET_END_S } from '../../web/src/ui/practice/PracticeListener.js';
 
 const norm = ( f1, f2, sd1 = 0.1, sd2 = 0.08, rho = 0.3 ) => ( {
@@ -173,5 +174,50 @@ test( 'a spoken try ends once the child has spoken and fallen quiet, or at its l
 	assert.equal( attemptDone( hops( [ ...Array( 10 ).fill( 30 ), ...Array( 20 ).fill( 70 ) ] ) ), false, 'still speaking' );
 	assert.equal( attemptDone( hops( [ ...Array( 10 ).fill( 30 ), ...Array( 20 ).fill( 70 ), ...Array( quietHops + 1 ).fill( 30 ) ] ) ), true );
 	assert.equal( attemptDone( hops( Array( MAX_ATTEMPT_S * 100 + 1 ).fill( 30 ) ) ), true, 'the longest try' );
+
+} );
+
+test( 'the spectrogram puts a tone\'s energy in its own row, and the panel says the measures in words', () => {
+
+	const rate = 16000;
+	const tone = Float32Array.from( { length: rate / 2 }, ( _, i ) => 0.5 * Math.sin( 2 * Math.PI * 2000 * i / rate ) );
+	const rows = 64;
+	const { db, top } = spectrogram( tone, rate, { columns: 10, rows, maxHz: 8000 } );
+	for ( let c = 0; c < 10; c ++ ) {
+
+		const column = Array.from( db.subarray( c * rows, ( c + 1 ) * rows ) );
+		const loudest = column.indexOf( Math.max( ...column ) );
+		assert.ok( Math.abs( ( loudest + 0.5 ) / rows * 8000 - 2000 ) <= 8000 / rows, `column ${ c }: row ${ loudest }` );
+
+	}
+
+	assert.ok( Number.isFinite( top ) );
+	assert.equal( spectrogram( new Float32Array( 10 ), rate ).top, - Infinity );
+	assert.equal( attemptWords( { vowel: { f0: 251.4, f1: 410, f2: 3050, f3: 3600, f3_minus_f2: 550, duration_s: 0.26 }, fricative: null } ),
+		'vowel: F0 251 Hz, F1 410 Hz, F2 3050 Hz, F3 3600 Hz, F3 − F2 550 Hz, 0.26 s' );
+	assert.equal( attemptWords( { vowel: null, fricative: null } ), 'Nothing measured: no voice and no hiss.' );
+
+} );
+
+test( 'an item\'s own listen settings set its target zone: the edge in sd, the meter share, the F3', () => {
+
+	const vowel = ( f1, f2, f3 = 3300 ) => ( { vowel: { f0: 250, f1, f2, f3, duration_s: 0.25 }, fricative: null } );
+	const strict = itemTarget( { target: { kind: 'word', text: 'beat' }, listen: { measure: 'vowel', vowel: 'iy', within_sd: 1 } }, VOWELS );
+	assert.deepEqual( strict, { kind: 'vowel', code: 'iy', withinSd: 1 } );
+	// 1.5 sd from the norm: in at the default edge, only near at an edge of 1.
+	const f1 = Math.exp( VOWELS.iy.log_f1_f2.mean[ 0 ] + 1.5 * 0.1 );
+	assert.equal( attemptZone( vowel( f1, 2800 ), itemTarget( { target: { kind: 'phoneme', text: 'i' } }, VOWELS ), VOWELS ), 'in' );
+	assert.equal( attemptZone( vowel( f1, 2800 ), strict, VOWELS ), 'near' );
+	const r = itemTarget( { target: { kind: 'phoneme', text: 'r' }, listen: { measure: 'rhotic' } }, VOWELS );
+	assert.deepEqual( r, { kind: 'rhotic', f3BelowHz: F3_TARGET_HZ.child } );
+	assert.equal( attemptZone( vowel( 500, 1400, 2000 ), r ), 'in' );
+	assert.equal( attemptZone( vowel( 500, 1400, 2800 ), r ), 'near' );
+	assert.equal( attemptZone( vowel( 500, 1400, 3300 ), r ), 'off' );
+	const sh = itemTarget( { target: { kind: 'word', text: 'ship' }, listen: { measure: 'sibilant', sound: 'sh', from_share: 0.8 } } );
+	const { sh: shEnd, s: sEnd } = SIBILANT_ENDS_HZ.child;
+	const hiss = ( share ) => ( { vowel: null, fricative: { centroid: shEnd + share * ( sEnd - shEnd ), duration_s: 0.2 } } );
+	assert.equal( attemptZone( hiss( 0.1 ), sh ), 'in' );
+	assert.equal( attemptZone( hiss( 0.3 ), sh ), 'near' );
+	assert.equal( attemptZone( hiss( 0.6 ), sh ), 'off' );
 
 } );

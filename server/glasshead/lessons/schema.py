@@ -83,6 +83,40 @@ class Views(BaseModel):
     epg: bool = Field(False, description="the EPG panel")
 
 
+class ListenVowel(BaseModel):
+    """Measure the try's vowel: in the target within ``within_sd`` standard deviations of the
+    norm of ``vowel`` (a vowel of the built vowel norms) for the learner's group."""
+
+    model_config = ConfigDict(extra="forbid")
+    measure: Literal["vowel"]
+    vowel: Literal["iy", "ih", "eh", "ae", "ah", "aa", "ao", "uh", "uw", "er"]
+    within_sd: float = Field(2.45, ge=1.0, le=4.0, description="the target zone's edge, in "
+                                                               "standard deviations")
+
+
+class ListenSibilant(BaseModel):
+    """Measure the try's hiss on the /ʃ/-/s/ meter: in the target from ``from_share`` of the way
+    to ``sound``'s end."""
+
+    model_config = ConfigDict(extra="forbid")
+    measure: Literal["sibilant"]
+    sound: Literal["s", "sh"]
+    from_share: float = Field(0.6, ge=0.5, le=0.95, description="how far along the meter the "
+                                                                "target zone starts")
+
+
+class ListenRhotic(BaseModel):
+    """Measure the try's F3 for /r/: in the target with F3 below ``f3_below_hz``."""
+
+    model_config = ConfigDict(extra="forbid")
+    measure: Literal["rhotic"]
+    f3_below_hz: float = Field(2600.0, ge=1200.0, le=4000.0, description="the F3 target, Hz")
+
+
+#: What a try at an item is measured on, and its target zone (docs/listening.md).
+Listen = Annotated[ListenVowel | ListenSibilant | ListenRhotic, Field(discriminator="measure")]
+
+
 class Item(BaseModel):
     model_config = ConfigDict(extra="forbid")
     target: Target
@@ -91,6 +125,8 @@ class Item(BaseModel):
     views: Views = Field(default_factory=Views)
     speed: float = Field(1.0, ge=0.1, le=1.0, description="1 is natural speed; 0.1 ten times "
                                                           "slower")
+    listen: Listen | None = Field(None, description="what a try is measured on, and its target "
+                                                    "zone; none: not measured")
 
 
 class LessonContent(BaseModel):

@@ -19,13 +19,31 @@ _CUTAWAY = {"skin_transparency": 1.0, "cutaway": True, "diagram": True, "labels"
 _VOWEL = {"skin_transparency": 0.7, "cutaway": True, "cues": False, "labels": True}
 
 
+#: What a try is measured on (schema.Listen), by the phoneme or word it is at: the vowels by
+#: their norms, /s/ and /ʃ/ (and words that start with them) on the meter, /r/ by its F3.
+_VOWEL_CODES = {"i": "iy", "ɪ": "ih", "ɛ": "eh", "æ": "ae", "ʌ": "ah", "ɑ": "aa", "ɔ": "ao",
+                "ʊ": "uh", "u": "uw", "beat": "iy", "bit": "ih", "bet": "eh", "bat": "ae",
+                "but": "ah", "father": "aa", "law": "ao", "book": "uh", "boot": "uw"}
+_LISTEN: dict[str, dict] = {
+    **{key: {"measure": "vowel", "vowel": code} for key, code in _VOWEL_CODES.items()},
+    **{key: {"measure": "sibilant", "sound": "s"} for key in ("s", "sip", "sore", "sell")},
+    **{key: {"measure": "sibilant", "sound": "sh"} for key in ("ʃ", "ship", "shore", "shell")},
+    "r": {"measure": "rhotic"},
+}
+
+
+def _listening(item: dict, key: str) -> dict:
+    return {**item, "listen": _LISTEN[key]} if key in _LISTEN else item
+
+
 def _phoneme(symbol: str, views: dict) -> dict:
-    return {"target": {"kind": "phoneme", "text": symbol}, "presentation": "static",
-            "views": views}
+    return _listening({"target": {"kind": "phoneme", "text": symbol}, "presentation": "static",
+                       "views": views}, symbol)
 
 
 def _word(text: str, views: dict, speed: float = 0.5) -> dict:
-    return {"target": {"kind": "word", "text": text}, "views": views, "speed": speed}
+    return _listening({"target": {"kind": "word", "text": text}, "views": views,
+                       "speed": speed}, text)
 
 
 def _contrast(title: str, description: str, phonemes: list[str], words: list[str],

@@ -76,6 +76,7 @@ export function normaliseItem( item = {} ) {
 		audio: { kind: audio.kind ?? 'natural', cutoff_hz: audio.cutoff_hz ?? null, channels: audio.channels ?? null },
 		views: { ...DEFAULT_VIEWS, ...( item.views ?? {} ) },
 		speed: item.speed ?? 1,
+		listen: item.listen ? { ...item.listen } : null,
 	};
 
 }
@@ -108,7 +109,10 @@ export function lessonBody( draft ) {
 			const audio = { kind: item.audio.kind };
 			if ( item.audio.kind === 'lowpass' && item.audio.cutoff_hz !== null ) audio.cutoff_hz = item.audio.cutoff_hz;
 			if ( item.audio.kind === 'vocoded' && item.audio.channels !== null ) audio.channels = item.audio.channels;
-			return { target: { ...item.target }, presentation: item.presentation, audio, views: { ...item.views }, speed: item.speed };
+			const body = { target: { ...item.target }, presentation: item.presentation, audio, views: { ...item.views }, speed: item.speed };
+			// What a try is measured on is kept as the lesson had it (the starter lessons set it).
+			if ( item.listen ) body.listen = { ...item.listen };
+			return body;
 
 		} ),
 	};

@@ -131,7 +131,8 @@ export function runnerSpeed( settings, slow ) {
  */
 export function listenHref( item ) {
 
+	const vowel = item?.listen?.measure === 'vowel' ? `&vowel=${ item.listen.vowel }` : '';
 	const phoneme = item?.target?.kind === 'phoneme' ? `&phoneme=${ encodeURIComponent( item.target.text ) }` : '';
-	return `#/listen?group=child${ phoneme }`;
+	return `#/listen?group=child${ vowel || phoneme }`;
 
 }

@@ -15,7 +15,8 @@ import { View } from '../shared/View.js';
 import { ListenError, readRecording, startMicrophone } from './audioInput.js';
 import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
 import { listenMessage, messagePicture } from './listenMessages.js';
-import { F3_TARGET_HZ, inputProblem, measurableTarget, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
+import { AttemptPanel } from './AttemptPanel.js';
+import { attemptWords, F3_TARGET_HZ, inputProblem, measurableTarget, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
@@ -23,6 +24,8 @@ const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
 const KEPT_HOPS = 1000;
 /** Voiced hops whose median formants make the live verdict (smooths a hop's jitter). */
 const VERDICT_HOPS = 5;
+/** Seconds of the microphone kept for the last attempt's panel (in the page only). */
+const KEPT_SECONDS = 10;
 /** Seconds of silence or of unvoiced sound before the page says so. */
 const PROBLEM_AFTER_S = 1.5;
 
@@ -51,6 +54,7 @@ export class ListenView extends View {
 		if ( GROUPS.some( ( [ group ] ) => group === query.get( 'group' ) ) ) this.state.group = query.get( 'group' );
 		this.f3Target = F3_TARGET_HZ[ this.state.group ];
 		this.wantedPhoneme = query.get( 'phoneme' );
+		this.wantedVowel = query.get( 'vowel' );
 		this.groupButtons = new Map( GROUPS.map( ( [ group, label ] ) => [ group, h( 'button', {
 			type: 'button', className: 'toggle', 'aria-pressed': String( group === this.state.group ), onClick: () => this.setGroup( group ),
 		}, label ) ] ) );
@@ -65,6 +69,7 @@ export class ListenView extends View {
 		this.meter = new SibilantMeter();
 		this.traces = new TraceStrip();
 		this.spectrum = new SpectrumPanel();
+		this.attemptPanel = new AttemptPanel();
 		this.f3Slider = h( 'input', { type: 'range', min: '1200', max: '4000', step: '50', value: String( this.f3Target ), 'aria-label': 'F3 target, Hz', onInput: () => this.setF3Target( Number( this.f3Slider.value ) ) } );
 		this.f3Value = h( 'span', { className: 'ls-f3-value' }, `${ this.f3Target } Hz` );
 		const controls = h( 'div', { className: 'ls-controls' },
@@ -78,7 +83,8 @@ export class ListenView extends View {
 			h( 'figure', { className: 'ls-meter' }, this.meter.element ),
 			h( 'figure', { className: 'ls-traces' }, this.traces.element ),
 			h( 'figure', { className: 'ls-spectrum' }, this.spectrum.element,
-				h( 'label', { className: 'ls-f3' }, 'F3 target for /r/ ', this.f3Slider, this.f3Value ) ) );
+				h( 'label', { className: 'ls-f3' }, 'F3 target for /r/ ', this.f3Slider, this.f3Value ) ),
+			h( 'figure', { className: 'ls-attempt' }, h( 'figcaption', {}, 'The last attempt' ), this.attemptPanel.element ) );
 		this.attach( container, h( 'div', { className: 'listen' }, controls, displays ) );
 		this.listen( this.root, 'dragover', ( event ) => event.preventDefault() );
 		this.listen( this.root, 'drop', ( event ) => {
@@ -108,7 +114,8 @@ export class ListenView extends View {
 		}
 
 		this.state.loaded = true;
-		const wanted = measurableTarget( { kind: 'phoneme', text: this.wantedPhoneme }, this.norms?.groups?.[ this.state.group ] );
+		const vowels = this.norms?.groups?.[ this.state.group ] ?? {};
+		const wanted = vowels[ this.wantedVowel ] ? { kind: 'vowel', code: this.wantedVowel } : measurableTarget( { kind: 'phoneme', text: this.wantedPhoneme }, vowels );
 		if ( wanted?.kind === 'vowel' ) this.state.target = wanted.code;
 		this.fillTargets();
 		this.redraw();
@@ -131,6 +138,8 @@ export class ListenView extends View {
 		this.meter.resize( width );
 		this.traces.resize( width );
 		this.spectrum.resize( width );
+		this.attemptPanel.resize( width );
+		this.drawAttempt();
 		this.redraw();
 
 	}
@@ -195,6 +204,11 @@ export class ListenView extends View {
 		this.state.active = false;
 		this.startButton.textContent = 'Start';
 		this.state.summary = summariseAttempt( this.hops );
+		const blocks = this.blocks;
+		this.attemptSamples = new Float32Array( blocks.reduce( ( n, b ) => n + b.length, 0 ) );
+		blocks.reduce( ( at, block ) => ( this.attemptSamples.set( block, at ), at + block.length ), 0 );
+		this.attemptRate = this.analyser?.sampleRate ?? 48000;
+		this.drawAttempt();
 		if ( ! this.state.problem ) this.say( 'ready' );
 		this.redraw();
 
@@ -209,6 +223,8 @@ export class ListenView extends View {
 		this.hopCount = 0;
 		this.quietSince = null;
 		this.spectrumFormants = null;
+		this.blocks = [];
+		this.keptSamples = 0;
 
 	}
 
@@ -217,6 +233,9 @@ export class ListenView extends View {
 
 		if ( ! this.analyser ) return;
 		const problem = inputProblem( block );
+		this.blocks.push( block );
+		this.keptSamples += block.length;
+		while ( this.keptSamples > KEPT_SECONDS * this.analyser.sampleRate ) this.keptSamples -= this.blocks.shift().length;
 		const added = this.analyser.push( block );
 		this.keep( added );
 		const voiced = added.findLast( ( hop ) => hop.voiced && hop.formants?.[ 2 ] > 0 );
@@ -294,6 +313,9 @@ export class ListenView extends View {
 			this.hopCount = 0;
 			this.keep( hops );
 			this.state.summary = summariseAttempt( hops );
+			this.attemptSamples = samples;
+			this.attemptRate = sampleRate;
+			this.drawAttempt();
 			this.say( inputProblem( samples ) ?? 'ready' );
 
 		} catch ( error ) {
@@ -362,6 +384,13 @@ export class ListenView extends View {
 		};
 
 		( this.window.requestAnimationFrame ?? setTimeout )( draw );
+
+	}
+
+	/** The last attempt's waveform, spectrogram and measures (once it has ended). */
+	drawAttempt() {
+
+		if ( this.attemptSamples && this.state.summary ) this.attemptPanel.draw( this.attemptSamples, this.attemptRate, attemptWords( this.state.summary ) );
 
 	}
 

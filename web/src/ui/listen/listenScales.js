@@ -256,7 +256,27 @@ export function measurableTarget( target, vowels = {} ) {
 }
 
 /**
- * The verdict on an attempt's summary (summariseAttempt) against a measurable target:
+ * What a lesson item is measured on: its own `listen` (the lesson schema's: a vowel with the
+ * zone's edge in standard deviations, /s/ or /ʃ/ with where the zone starts on the meter, or
+ * /r/ with the F3 to fall below), else what its phoneme target can be (measurableTarget).
+ */
+export function itemTarget( item, vowels = {} ) {
+
+	const listen = item?.listen;
+	if ( listen?.measure === 'vowel' ) return { kind: 'vowel', code: listen.vowel, withinSd: listen.within_sd ?? IN_TARGET };
+	if ( listen?.measure === 'sibilant' ) return { kind: 'sibilant', sound: listen.sound, fromShare: listen.from_share ?? SIBILANT_IN };
+	if ( listen?.measure === 'rhotic' ) return { kind: 'rhotic', f3BelowHz: listen.f3_below_hz ?? F3_TARGET_HZ.child };
+	return measurableTarget( item?.target, vowels );
+
+}
+
+/** How much further than the target zone's edge counts as near: 1 sd, 15 % of the meter, 10 % of F3. */
+const NEAR_SD = 1.05;
+const NEAR_SHARE = SIBILANT_IN - SIBILANT_NEAR;
+const NEAR_F3 = 1.1;
+
+/**
+ * The verdict on an attempt's summary (summariseAttempt) against a target (itemTarget):
  * 'in', 'near' or 'off', or null when the attempt gave nothing to judge (no vowel, no hiss).
  */
 export function attemptZone( summary, target, vowels = {}, group = 'child' ) {
@@ -266,7 +286,9 @@ export function attemptZone( summary, target, vowels = {}, group = 'child' ) {
 		const vowel = summary?.vowel;
 		const norm = vowels[ target.code ];
 		if ( ! vowel?.f1 || ! vowel?.f2 || ! norm ) return null;
-		return zoneOf( normDistance( vowel.f1, vowel.f2, norm.log_f1_f2 ) );
+		const edge = target.withinSd ?? IN_TARGET;
+		const distance = normDistance( vowel.f1, vowel.f2, norm.log_f1_f2 );
+		return distance <= edge ? 'in' : distance <= edge + NEAR_SD ? 'near' : 'off';
 
 	}
 
@@ -276,7 +298,16 @@ export function attemptZone( summary, target, vowels = {}, group = 'child' ) {
 		if ( ! ( centroid > 0 ) ) return null;
 		const position = sibilantPosition( centroid, group );
 		const towards = target.sound === 's' ? position : 1 - position;
-		return towards >= SIBILANT_IN ? 'in' : towards >= SIBILANT_NEAR ? 'near' : 'off';
+		const from = target.fromShare ?? SIBILANT_IN;
+		return towards >= from ? 'in' : towards >= from - NEAR_SHARE ? 'near' : 'off';
+
+	}
+
+	if ( target?.kind === 'rhotic' ) {
+
+		const f3 = summary?.vowel?.f3;
+		if ( ! ( f3 > 0 ) ) return null;
+		return f3 <= target.f3BelowHz ? 'in' : f3 <= target.f3BelowHz * NEAR_F3 ? 'near' : 'off';
 
 	}
 
@@ -296,5 +327,17 @@ export function attemptMeasures( summary, zone, target ) {
 		target_vowel: target?.kind === 'vowel' ? target.code : null,
 	};
 	return Object.fromEntries( Object.entries( measures ).filter( ( [ , v ] ) => v !== null ) );
+
+}
+
+/** An attempt's summary in words, for the clinician's panel: 'vowel: F0 251 Hz, F1 410 Hz, …'. */
+export function attemptWords( summary ) {
+
+	const hz = ( v ) => ( v > 0 ? `${ Math.round( v ) } Hz` : '–' );
+	const parts = [];
+	const vowel = summary?.vowel;
+	if ( vowel ) parts.push( `vowel: F0 ${ hz( vowel.f0 ) }, F1 ${ hz( vowel.f1 ) }, F2 ${ hz( vowel.f2 ) }, F3 ${ hz( vowel.f3 ) }, F3 − F2 ${ hz( vowel.f3_minus_f2 ) }, ${ vowel.duration_s.toFixed( 2 ) } s` );
+	if ( summary?.fricative ) parts.push( `hiss: centroid ${ hz( summary.fricative.centroid ) }, ${ summary.fricative.duration_s.toFixed( 2 ) } s` );
+	return parts.length ? parts.join( '; ' ) : 'Nothing measured: no voice and no hiss.';
 
 }

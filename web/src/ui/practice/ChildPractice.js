@@ -4,7 +4,7 @@
 // then a lesson assigned to them (GET /lessons gives only theirs), then one target at a time: the
 // head says it (the speech player, set up by the item as in the lesson runner), a big button
 // hears it again, "Say it" listens to the child (the microphone asked for then) and shows at once,
-// with a face and a colour, how close a vowel or /s/–/ʃ/ target was, "I tried it" asks how it
+// with a face and a colour, how close the try was to the item's target zone, "I tried it" asks how it
 // went with three faces (or an arrow to go on without), and the try is recorded (POST /practice,
 // with the replays counted and what the voice measured, never the audio) before the next target.
 // Every button is 64 px and more, with a picture and an accessible name.
@@ -19,7 +19,7 @@ import { SpeechView } from '../speak/SpeechView.js';
 import { View } from '../shared/View.js';
 import { ListenError } from '../listen/audioInput.js';
 import { listenMessage, messagePicture } from '../listen/listenMessages.js';
-import { attemptMeasures, attemptZone, measurableTarget, NORMS_URL } from '../listen/listenScales.js';
+import { attemptMeasures, attemptZone, itemTarget, NORMS_URL } from '../listen/listenScales.js';
 import { PracticeListener } from './PracticeListener.js';
 import './childPractice.css';
 
@@ -317,7 +317,7 @@ export class ChildPractice extends View {
 		const round = this.round;
 		const item = round.item;
 		this.norms ??= await this.api.get( NORMS_URL ).catch( () => null );
-		const target = measurableTarget( item.target, this.norms?.groups?.child ?? {} );
+		const target = itemTarget( item, this.norms?.groups?.child ?? {} );
 		this.listener = new PracticeListener( { win: this.window, group: 'child' } );
 		this.sayButton.setAttribute( 'aria-pressed', 'true' );
 		this.showError( '' );
