@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 
 import {
 	chartPoint, ellipse, IN_TARGET, inputProblem, nearestVowel, normDistance, sibilantPosition,
-	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures, attemptWords, itemTarget, F3_TARGET_HZ,
+	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures, attemptWords, itemTarget, F3_TARGET_HZ, roomProblem, NOISY_FLOOR_BELOW_FULL_SCALE_DB,
 } from '../../web/src/ui/listen/listenScales.js';
 import { listenMessage, MESSAGES, pictureShapes } from '../../web/src/ui/listen/listenMessages.js';
 import { microphoneErrorKind } from '../../web/src/ui/listen/audioInput.js';
@@ -111,7 +111,7 @@ test( 'an attempt is summarised from the middle of its longest voiced run and it
 
 test( 'every kind of bad input has words and a picture; an unknown kind reads as unusable', () => {
 
-	for ( const kind of [ 'unsupported', 'refused', 'no-microphone', 'busy', 'not-audio', 'silent', 'clipping', 'whisper' ] ) {
+	for ( const kind of [ 'unsupported', 'refused', 'no-microphone', 'busy', 'not-audio', 'silent', 'clipping', 'whisper', 'noisy', 'asking' ] ) {
 
 		const message = listenMessage( kind );
 		assert.equal( message.kind, kind );
@@ -219,5 +219,15 @@ test( 'an item\'s own listen settings set its target zone: the edge in sd, the m
 	assert.equal( attemptZone( hiss( 0.1 ), sh ), 'in' );
 	assert.equal( attemptZone( hiss( 0.3 ), sh ), 'near' );
 	assert.equal( attemptZone( hiss( 0.6 ), sh ), 'off' );
+
+} );
+
+test( 'a room whose quiet is loud is said to be noisy, once there is enough to tell', () => {
+
+	const full = 94;
+	const hops = ( floor ) => Array.from( { length: 200 }, ( _, k ) => ( { intensity_db: k % 3 ? floor + 30 : floor } ) );
+	assert.equal( roomProblem( hops( full - 60 ), full ), null, 'a quiet room' );
+	assert.equal( roomProblem( hops( full - NOISY_FLOOR_BELOW_FULL_SCALE_DB + 5 ), full ), 'noisy' );
+	assert.equal( roomProblem( hops( full - 20 ).slice( 0, 50 ), full ), null, 'too little to tell' );
 
 } );

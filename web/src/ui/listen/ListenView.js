@@ -8,7 +8,7 @@
 // latest, vowel, fricative, summary, problem, message }.
 
 import { createAnalyser } from '../../core/listen/analyse.js';
-import { GROUPS as ANALYSIS_GROUPS } from '../../core/listen/params.js';
+import { FULL_SCALE_DB, GROUPS as ANALYSIS_GROUPS } from '../../core/listen/params.js';
 import { parseWav } from '../../core/listen/wav.js';
 import { h } from '../shared/dom.js';
 import { View } from '../shared/View.js';
@@ -16,7 +16,7 @@ import { ListenError, readRecording, startMicrophone } from './audioInput.js';
 import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
 import { listenMessage, messagePicture } from './listenMessages.js';
 import { AttemptPanel } from './AttemptPanel.js';
-import { attemptWords, F3_TARGET_HZ, inputProblem, measurableTarget, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
+import { attemptWords, F3_TARGET_HZ, inputProblem, roomProblem, measurableTarget, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
@@ -178,6 +178,7 @@ export class ListenView extends View {
 		try {
 
 			this.beginAttempt( 'microphone' );
+			this.say( 'asking' );
 			this.microphone = await startMicrophone( { win: this.window, onBlock: ( block ) => this.take( block ) } );
 			this.analyser = createAnalyser( { sampleRate: this.microphone.sampleRate, group: this.state.group, band: sibilantBand( this.microphone.sampleRate ) } );
 			this.state.active = true;
@@ -247,7 +248,9 @@ export class ListenView extends View {
 		}
 		const now = this.hops.at( - 1 )?.t ?? 0;
 		const voicedLately = this.hops.some( ( hop ) => hop.voiced && now - hop.t < PROBLEM_AFTER_S );
+		const recent = this.hops.filter( ( hop ) => now - hop.t < 2 * PROBLEM_AFTER_S );
 		if ( problem === 'clipping' ) this.flag( 'clipping' );
+		else if ( roomProblem( recent, FULL_SCALE_DB ) ) this.flag( 'noisy' );
 		else if ( problem === 'silent' || ! voicedLately ) {
 
 			this.quietSince ??= now;

@@ -10,6 +10,7 @@ const SVG = 'http://www.w3.org/2000/svg';
 export const MESSAGES = Object.freeze( {
 	ready: { text: 'Press Start, then say a sound.', picture: 'microphone' },
 	listening: { text: 'Listening…', picture: 'microphone' },
+	asking: { text: 'Glasshead needs the microphone to hear you. What you say stays on this device: allow it when the browser asks.', picture: 'microphone' },
 	unsupported: { text: 'This browser cannot listen. Try an up-to-date Chrome, Edge, Firefox or Safari.', picture: 'no-microphone' },
 	refused: { text: 'The microphone is not allowed. Allow it in the browser’s address bar, then press Start again.', picture: 'no-microphone' },
 	'no-microphone': { text: 'No microphone was found. Plug one in, then press Start again.', picture: 'no-microphone' },
@@ -18,6 +19,7 @@ export const MESSAGES = Object.freeze( {
 	silent: { text: 'I cannot hear you. Come closer to the microphone, or check it is not muted.', picture: 'quiet' },
 	clipping: { text: 'Too loud! Move back from the microphone a little.', picture: 'loud' },
 	whisper: { text: 'That sounds like a whisper. Use your voice for vowels.', picture: 'whisper' },
+	noisy: { text: 'It is noisy here. Find a quieter place, or come closer to the microphone.', picture: 'loud' },
 } );
 
 /** { kind, text, picture } for `kind` (an unknown kind reads as the microphone being unusable). */

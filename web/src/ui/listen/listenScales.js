@@ -56,6 +56,22 @@ export const F3_TARGET_HZ = Object.freeze( { man: 1900, woman: 2200, child: 2600
 
 /** Intensity (dB re full scale) below which the input is taken as silence. */
 export const SILENT_DB = - 55;
+/**
+ * Intensity of the room's quiet (the 10th percentile of the last seconds' hops), dB below full
+ * scale, above which the room is too noisy to measure a voice in: speech is some 20 to 30 dB
+ * over a quiet classroom, and a microphone at arm's length puts it near -30 dB.
+ */
+export const NOISY_FLOOR_BELOW_FULL_SCALE_DB = 45;
+
+/** 'noisy' when the quietest tenth of `hops` (their intensity_db, re 2e-5 Pa with full scale at `fullScaleDb`) is loud, else null. */
+export function roomProblem( hops, fullScaleDb ) {
+
+	const levels = hops.map( ( hop ) => hop.intensity_db ).filter( Number.isFinite ).sort( ( a, b ) => a - b );
+	if ( levels.length < 100 ) return null;
+	return levels[ Math.floor( levels.length / 10 ) ] > fullScaleDb - NOISY_FLOOR_BELOW_FULL_SCALE_DB ? 'noisy' : null;
+
+}
+
 /** A sample this close to full scale counts as clipped; this share of clipped samples is too loud. */
 export const CLIP_LEVEL = 0.99;
 export const CLIP_SHARE = 0.002;

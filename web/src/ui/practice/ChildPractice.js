@@ -253,6 +253,7 @@ export class ChildPractice extends View {
 		this.sayButton = h( 'button', { type: 'button', className: 'cp-button cp-say', 'aria-label': 'Say it', 'aria-pressed': 'false', onClick: () => this.sayIt() },
 			messagePicture( 'microphone', 'Say it', { className: 'cp-picture' } ) );
 		this.verdict = h( 'div', { className: 'cp-verdict', role: 'img', hidden: '' } );
+		this.askNote = h( 'div', { className: 'cp-ask', role: 'status', hidden: '' } );
 		this.actions = h( 'div', { className: 'cp-actions', role: 'group', 'aria-label': 'Practice' },
 			bigButton( 'replay', 'Hear it again', () => this.replay(), { className: 'cp-button cp-replay' } ),
 			this.sayButton,
@@ -260,7 +261,7 @@ export class ChildPractice extends View {
 		this.faces = h( 'div', { className: 'cp-actions cp-faces', role: 'group', 'aria-label': 'How did it go?', hidden: '' },
 			...RATINGS.map( ( r ) => bigButton( r.face, r.label, () => this.record( r.rating ), { className: 'cp-button cp-face' } ) ),
 			bigButton( 'next', 'Next', () => this.record( null ), { className: 'cp-button cp-face' } ) );
-		this.setScreen( 'practice', h( 'div', { className: 'cp-stage' }, this.headBox, this.target, this.dots ), this.verdict, this.actions, this.faces );
+		this.setScreen( 'practice', h( 'div', { className: 'cp-stage' }, this.headBox, this.target, this.dots ), this.askNote, this.verdict, this.actions, this.faces );
 		this.speech = new SpeechView( { api: this.api, sayOnLoad: false } ).mount( this.headBox );
 		this.presenter = new ItemPresenter( this.speech, { obstacles: () => [ this.target ] } );
 		this.presentItem();
@@ -318,9 +319,13 @@ export class ChildPractice extends View {
 		const item = round.item;
 		this.norms ??= await this.api.get( NORMS_URL ).catch( () => null );
 		const target = itemTarget( item, this.norms?.groups?.child ?? {} );
-		this.listener = new PracticeListener( { win: this.window, group: 'child' } );
+		this.listener = new PracticeListener( { win: this.window, group: 'child', onOpen: () => ( this.askNote.hidden = true ) } );
 		this.sayButton.setAttribute( 'aria-pressed', 'true' );
 		this.showError( '' );
+		// Why the browser is about to ask, in a picture and words, until the microphone is open.
+		const asking = listenMessage( 'asking' );
+		this.askNote.replaceChildren( messagePicture( asking.picture, asking.text, { className: 'cp-picture' } ), h( 'span', {}, asking.text ) );
+		this.askNote.hidden = false;
 		let summary;
 		try {
 
@@ -328,6 +333,7 @@ export class ChildPractice extends View {
 
 		} catch ( error ) {
 
+			this.askNote.hidden = true;
 			this.sayButton.setAttribute( 'aria-pressed', 'false' );
 			return this.showError( listenMessage( error instanceof ListenError ? error.kind : 'unsupported' ).text );
 

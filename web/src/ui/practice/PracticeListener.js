@@ -32,12 +32,16 @@ export function attemptDone( hops ) {
 
 export class PracticeListener {
 
-	/** @param {{ win?: Window, group?: string, onHop?: ( hops: object[] ) => void }} options */
-	constructor( { win = globalThis.window, group = 'child', onHop = () => {} } = {} ) {
+	/**
+	 * @param {{ win?: Window, group?: string, onHop?: ( hops: object[] ) => void, onOpen?: () => void }} options
+	 *   `onOpen()` once the microphone is open (the browser's question answered)
+	 */
+	constructor( { win = globalThis.window, group = 'child', onHop = () => {}, onOpen = () => {} } = {} ) {
 
 		this.window = win;
 		this.group = group;
 		this.onHop = onHop;
+		this.onOpen = onOpen;
 		this.microphone = null;
 		this.finished = null;
 
@@ -68,6 +72,7 @@ export class PracticeListener {
 
 		} } );
 		analyser = createAnalyser( { sampleRate: this.microphone.sampleRate, group: this.group, band: sibilantBand( this.microphone.sampleRate ) } );
+		this.onOpen();
 		this.end = () => resolveDone( summariseAttempt( hops ) );
 		return this.finished;
 
