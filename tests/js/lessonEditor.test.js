@@ -2,7 +2,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
 	authorHref, blankLesson, draftOf, fieldErrors, insertItem, isDirty, itemErrors, itemSummary,
-	itemsWithErrors, lessonBody, moveItem, newItem, parseAuthorHash, parseLessonFile, readNumber, removeItem, setField,
+	itemsWithErrors, lessonBody, LISTEN_CHOICES, listenChoice, listenFromChoice, moveItem, newItem, parseAuthorHash, parseLessonFile, readNumber, removeItem, setField,
 } from '../../web/src/ui/author/LessonEditorModel.js';
 import { createLessonClient } from '../../web/src/ui/author/LessonEditorClient.js';
 import { createApi } from '../../web/src/api.js';
@@ -173,5 +173,16 @@ test( 'a draft is kept per lesson with the ETag it was made on, read back as a d
 	forgetDraft( win, 7 );
 	assert.equal( keptDraft( win, 7 ), null );
 	assert.equal( keptDraft( { get localStorage() { throw new Error( 'denied' ); } }, 7 ), null );
+
+} );
+
+test( 'what a try is measured on is chosen from a list and keeps its zone while the measure stays', () => {
+
+	for ( const { value } of LISTEN_CHOICES ) assert.equal( listenChoice( listenFromChoice( value ) ), value );
+	assert.equal( listenFromChoice( '' ), null );
+	assert.deepEqual( listenFromChoice( 'vowel:aa', { measure: 'vowel', vowel: 'iy', within_sd: 2 } ), { measure: 'vowel', vowel: 'aa', within_sd: 2 } );
+	assert.deepEqual( listenFromChoice( 'sibilant:sh', { measure: 'vowel', vowel: 'iy', within_sd: 2 } ), { measure: 'sibilant', sound: 'sh' } );
+	assert.deepEqual( listenFromChoice( 'rhotic', { measure: 'rhotic', f3_below_hz: 2200 } ), { measure: 'rhotic', f3_below_hz: 2200 } );
+	assert.equal( listenChoice( { measure: 'sibilant', sound: 's', from_share: 0.7 } ), 'sibilant:s' );
 
 } );

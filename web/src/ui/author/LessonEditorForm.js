@@ -1,12 +1,13 @@
 // The form of one lesson item in the author's editor: every field of the lesson format (the
-// target, the presentation, the audio with its cut-off or channels, the views, the speed), each
+// target, the presentation, the audio with its cut-off or channels, the views, the speed, what a
+// spoken try is measured on), each
 // with its label and a place beside it for the server's message about it (a 422 names the field).
 // The form keeps its elements while the author types (focus stays put): `set( item, errors )`
 // writes values and messages into them, and every change calls `onChange( path, value )` with the
 // field's path in the item ('target.text', 'views.cutaway', 'speed').
 
 import { h } from '../shared/dom.js';
-import { AUDIO_KINDS, PRESENTATIONS, RANGES, TARGET_KINDS, VIEW_SWITCHES, readNumber } from './LessonEditorModel.js';
+import { AUDIO_KINDS, LISTEN_CHOICES, PRESENTATIONS, RANGES, TARGET_KINDS, VIEW_SWITCHES, listenChoice, listenFromChoice, readNumber } from './LessonEditorModel.js';
 
 let formCount = 0;
 
@@ -31,6 +32,7 @@ export class ItemForm {
 			this.input( 'views.skin_transparency', 'Skin transparency (0 opaque, 1 invisible)', { type: 'number', min: '0', max: '1', step: '0.05' }, readNumber ),
 			h( 'fieldset', { className: 'le-views' }, h( 'legend', {}, 'Views' ), ...VIEW_SWITCHES.map( ( view ) => this.checkbox( `views.${ view.key }`, view.label ) ) ),
 			this.input( 'speed', 'Speed (1 natural, 0.1 ten times slower)', { type: 'number', min: String( RANGES.speed[ 0 ] ), max: String( RANGES.speed[ 1 ] ), step: '0.05' }, readNumber ),
+			this.select( 'listen', 'A spoken try is measured on', LISTEN_CHOICES, { show: listenChoice, read: ( value ) => listenFromChoice( value, this.item?.listen ) } ),
 		);
 		this.element.addEventListener( 'submit', ( event ) => event.preventDefault() );
 
@@ -51,10 +53,12 @@ export class ItemForm {
 
 	}
 
-	select( path, label, options ) {
+	/** A select; `show` turns the item's value into an option's, `read` an option's back (the listen choice). */
+	select( path, label, options, { show = null, read = ( value ) => value } = {} ) {
 
 		const control = h( 'select', { className: 'le-control' }, ...options.map( ( option ) => h( 'option', { value: option.value }, option.label ) ) );
-		control.addEventListener( 'change', () => this.onChange( path, control.value ) );
+		control.addEventListener( 'change', () => this.onChange( path, read( control.value ) ) );
+		if ( show ) this.shown = { ...this.shown, [ path ]: show };
 		return this.row( path, label, control );
 
 	}
@@ -82,9 +86,11 @@ export class ItemForm {
 	set( item, index, errors = new Map() ) {
 
 		this.heading.textContent = `Item ${ index + 1 }`;
+		this.item = item;
 		for ( const [ path, { control, error, row } ] of this.fields ) {
 
-			const value = path.split( '.' ).reduce( ( v, key ) => v?.[ key ], item );
+			const stored = path.split( '.' ).reduce( ( v, key ) => v?.[ key ], item );
+			const value = this.shown?.[ path ] ? this.shown[ path ]( stored ) : stored;
 			if ( control.type === 'checkbox' ) control.checked = Boolean( value );
 			else if ( control.ownerDocument.activeElement !== control || control.tagName === 'SELECT' ) control.value = value === null || value === undefined ? '' : String( value );
 			// The target as a whole (an unknown phoneme) is said beside the target's text.

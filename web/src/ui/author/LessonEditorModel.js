@@ -18,6 +18,39 @@ export const TARGET_KINDS = Object.freeze( [
 	Object.freeze( { value: 'word', label: 'Word' } ),
 	Object.freeze( { value: 'phrase', label: 'Phrase' } ),
 ] );
+/** What a try at an item can be measured on (the lesson format's `listen`), as the editor offers it. */
+export const LISTEN_CHOICES = Object.freeze( [
+	Object.freeze( { value: '', label: 'Not measured (or by its phoneme)' } ),
+	...[ [ 'iy', 'i', 'heed' ], [ 'ih', 'ɪ', 'hid' ], [ 'eh', 'ɛ', 'head' ], [ 'ae', 'æ', 'had' ], [ 'ah', 'ʌ', 'hud' ],
+		[ 'aa', 'ɑ', 'hod' ], [ 'ao', 'ɔ', 'hawed' ], [ 'uh', 'ʊ', 'hood' ], [ 'uw', 'u', 'who’d' ], [ 'er', 'ɝ', 'heard' ] ]
+		.map( ( [ code, ipa, word ] ) => Object.freeze( { value: `vowel:${ code }`, label: `The vowel /${ ipa }/ (as in ${ word })` } ) ),
+	Object.freeze( { value: 'sibilant:s', label: 'The hiss of /s/' } ),
+	Object.freeze( { value: 'sibilant:sh', label: 'The hiss of /ʃ/' } ),
+	Object.freeze( { value: 'rhotic', label: 'The F3 of /r/' } ),
+] );
+
+/** The choice (LISTEN_CHOICES' value) of an item's `listen`. */
+export function listenChoice( listen ) {
+
+	if ( ! listen ) return '';
+	if ( listen.measure === 'vowel' ) return `vowel:${ listen.vowel }`;
+	if ( listen.measure === 'sibilant' ) return `sibilant:${ listen.sound }`;
+	return listen.measure ?? '';
+
+}
+
+/** The `listen` of a choice, keeping the zone `previous` set when the measure stays the same. */
+export function listenFromChoice( choice, previous = null ) {
+
+	const [ measure, what ] = String( choice ?? '' ).split( ':' );
+	const keep = previous?.measure === measure ? previous : {};
+	if ( measure === 'vowel' ) return { ...( keep.within_sd ? { within_sd: keep.within_sd } : {} ), measure, vowel: what };
+	if ( measure === 'sibilant' ) return { ...( keep.from_share ? { from_share: keep.from_share } : {} ), measure, sound: what };
+	if ( measure === 'rhotic' ) return { ...( keep.f3_below_hz ? { f3_below_hz: keep.f3_below_hz } : {} ), measure };
+	return null;
+
+}
+
 export const PRESENTATIONS = Object.freeze( [
 	Object.freeze( { value: 'dynamic', label: 'Dynamic: spoken' } ),
 	Object.freeze( { value: 'static', label: 'Static: the target held' } ),
