@@ -11,6 +11,8 @@ import {
 import { listenMessage, MESSAGES, pictureShapes } from '../../web/src/ui/listen/listenMessages.js';
 import { microphoneErrorKind } from '../../web/src/ui/listen/audioInput.js';
 import { spectrogram } from '../../web/src/ui/listen/spectrogram.js';
+import { AttemptRecorder, KEPT_SECONDS } from '../../web/src/ui/listen/AttemptRecorder.js';
+import { vowel } from './support/listenSignals.js';
 import { attemptDone, MAX_ATTEMPT_S, QUIET_END_S } from '../../web/src/ui/practice/PracticeListener.js';
 
 const norm = ( f1, f2, sd1 = 0.1, sd2 = 0.08, rho = 0.3 ) => ( {
@@ -229,5 +231,23 @@ test( 'a room whose quiet is loud is said to be noisy, once there is enough to t
 	assert.equal( roomProblem( hops( full - 60 ), full ), null, 'a quiet room' );
 	assert.equal( roomProblem( hops( full - NOISY_FLOOR_BELOW_FULL_SCALE_DB + 5 ), full ), 'noisy' );
 	assert.equal( roomProblem( hops( full - 20 ).slice( 0, 50 ), full ), null, 'too little to tell' );
+
+} );
+
+test( 'an attempt keeps the microphone\'s last seconds and its hops, and a recording gives the same hops', () => {
+
+	const sampleRate = 16000;
+	const signal = Float32Array.from( vowel( { sampleRate, seconds: 1, f0: 220, formants: [ 700, 1200, 2600, 3500, 4500 ], bandwidths: [ 80, 100, 150, 200, 250 ] } ) );
+	const live = new AttemptRecorder( { sampleRate, group: 'woman' } );
+	for ( let i = 0; i < signal.length; i += 128 ) live.push( signal.subarray( i, i + 128 ) );
+	const whole = new AttemptRecorder( { sampleRate, group: 'woman' } );
+	const all = whole.analyseAll( signal );
+	assert.ok( live.hops.length > 80 && all.length >= live.hops.length, `${ live.hops.length } hops live, ${ all.length } of the recording` );
+	assert.deepEqual( live.hops.map( ( hop ) => hop.formants ), all.slice( 0, live.hops.length ).map( ( hop ) => hop.formants ) );
+	assert.deepEqual( Array.from( live.samples() ), Array.from( signal ) );
+	assert.ok( live.spectrumFormants && Math.abs( live.spectrumFormants[ 0 ] - 700 ) < 70, `F1 ${ live.spectrumFormants?.[ 0 ] }` );
+	const long = new AttemptRecorder( { sampleRate, group: 'woman' } );
+	for ( let k = 0; k < KEPT_SECONDS + 2; k ++ ) long.push( signal );
+	assert.ok( long.samples().length <= KEPT_SECONDS * sampleRate && long.samples().length > ( KEPT_SECONDS - 1 ) * sampleRate );
 
 } );

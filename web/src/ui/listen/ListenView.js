@@ -7,7 +7,6 @@
 // window.glasshead.listening holds the latest measures: { source, group, target, active, hops,
 // latest, vowel, fricative, summary, problem, message }.
 
-import { createAnalyser } from '../../core/listen/analyse.js';
 import { FULL_SCALE_DB, GROUPS as ANALYSIS_GROUPS } from '../../core/listen/params.js';
 import { parseWav } from '../../core/listen/wav.js';
 import { h } from '../shared/dom.js';
@@ -16,16 +15,13 @@ import { ListenError, readRecording, startMicrophone } from './audioInput.js';
 import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } from './ListenDisplays.js';
 import { listenMessage, messagePicture } from './listenMessages.js';
 import { AttemptPanel } from './AttemptPanel.js';
-import { attemptWords, F3_TARGET_HZ, inputProblem, roomProblem, measurableTarget, nearestVowel, NORMS_URL, sibilantBand, summariseAttempt } from './listenScales.js';
+import { AttemptRecorder } from './AttemptRecorder.js';
+import { attemptWords, F3_TARGET_HZ, inputProblem, roomProblem, measurableTarget, nearestVowel, NORMS_URL, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
-/** Hops kept for the displays (10 s). */
-const KEPT_HOPS = 1000;
 /** Voiced hops whose median formants make the live verdict (smooths a hop's jitter). */
 const VERDICT_HOPS = 5;
-/** Seconds of the microphone kept for the last attempt's panel (in the page only). */
-const KEPT_SECONDS = 10;
 /** Seconds of silence or of unvoiced sound before the page says so. */
 const PROBLEM_AFTER_S = 1.5;
 
@@ -35,14 +31,11 @@ export class ListenView extends View {
 
 		super( options );
 		this.state = { loaded: false, source: null, group: 'child', target: '', active: false, problem: null, message: 'ready', summary: null };
-		this.hops = [];
-		this.hopCount = 0;
+		/** The attempt being measured, or the last one (AttemptRecorder). */
+		this.recorder = null;
 		this.norms = null;
 		this.microphone = null;
 		this.quietSince = null;
-		/** The newest (or, of a file, the loudest voiced) hop's LPC spectrum and its formants. */
-		this.spectrumDb = new Float32Array( 256 );
-		this.spectrumFormants = null;
 		this.f3Target = F3_TARGET_HZ[ this.state.group ];
 
 	}
@@ -180,7 +173,7 @@ export class ListenView extends View {
 			this.beginAttempt( 'microphone' );
 			this.say( 'asking' );
 			this.microphone = await startMicrophone( { win: this.window, onBlock: ( block ) => this.take( block ) } );
-			this.analyser = createAnalyser( { sampleRate: this.microphone.sampleRate, group: this.state.group, band: sibilantBand( this.microphone.sampleRate ) } );
+			this.recorder = new AttemptRecorder( { sampleRate: this.microphone.sampleRate, group: this.state.group } );
 			this.state.active = true;
 			this.startButton.textContent = 'Stop';
 			this.say( 'listening' );
@@ -205,10 +198,6 @@ export class ListenView extends View {
 		this.state.active = false;
 		this.startButton.textContent = 'Start';
 		this.state.summary = summariseAttempt( this.hops );
-		const blocks = this.blocks;
-		this.attemptSamples = new Float32Array( blocks.reduce( ( n, b ) => n + b.length, 0 ) );
-		blocks.reduce( ( at, block ) => ( this.attemptSamples.set( block, at ), at + block.length ), 0 );
-		this.attemptRate = this.analyser?.sampleRate ?? 48000;
 		this.drawAttempt();
 		if ( ! this.state.problem ) this.say( 'ready' );
 		this.redraw();
@@ -220,32 +209,24 @@ export class ListenView extends View {
 		this.state.source = source;
 		this.state.problem = null;
 		this.state.summary = null;
-		this.hops = [];
-		this.hopCount = 0;
+		this.recorder = null;
 		this.quietSince = null;
-		this.spectrumFormants = null;
-		this.blocks = [];
-		this.keptSamples = 0;
+
+	}
+
+	/** The hops kept of the attempt (the last 10 s), oldest first. */
+	get hops() {
+
+		return this.recorder?.hops ?? [];
 
 	}
 
 	/** A block of microphone samples: checked for level, measured, drawn. */
 	take( block ) {
 
-		if ( ! this.analyser ) return;
+		if ( ! this.recorder ) return;
 		const problem = inputProblem( block );
-		this.blocks.push( block );
-		this.keptSamples += block.length;
-		while ( this.keptSamples > KEPT_SECONDS * this.analyser.sampleRate ) this.keptSamples -= this.blocks.shift().length;
-		const added = this.analyser.push( block );
-		this.keep( added );
-		const voiced = added.findLast( ( hop ) => hop.voiced && hop.formants?.[ 2 ] > 0 );
-		if ( voiced ) {
-
-			this.analyser.lpcSpectrum( this.spectrumDb );
-			this.spectrumFormants = voiced.formants;
-
-		}
+		this.recorder.push( block );
 		const now = this.hops.at( - 1 )?.t ?? 0;
 		const voicedLately = this.hops.some( ( hop ) => hop.voiced && now - hop.t < PROBLEM_AFTER_S );
 		const recent = this.hops.filter( ( hop ) => now - hop.t < 2 * PROBLEM_AFTER_S );
@@ -276,14 +257,6 @@ export class ListenView extends View {
 
 	}
 
-	keep( hops ) {
-
-		this.hopCount += hops.length;
-		this.hops.push( ...hops );
-		if ( this.hops.length > KEPT_HOPS ) this.hops.splice( 0, this.hops.length - KEPT_HOPS );
-
-	}
-
 	async openFile( file ) {
 
 		if ( ! file ) return;
@@ -293,31 +266,9 @@ export class ListenView extends View {
 		try {
 
 			const { sampleRate, samples } = await readRecording( file, { parseWav, win: this.window } );
-			this.analyser = createAnalyser( { sampleRate, group: this.state.group, band: sibilantBand( sampleRate ) } );
-			// In blocks, as the microphone would hand them: the same path, whatever the source.
-			const hops = [];
-			let loudest = - Infinity;
-			for ( let i = 0; i < samples.length; i += 1024 ) {
-
-				const added = this.analyser.push( samples.subarray( i, i + 1024 ) );
-				hops.push( ...added );
-				const voiced = added.findLast( ( hop ) => hop.voiced && hop.formants?.[ 2 ] > 0 );
-				if ( voiced?.intensity_db > loudest ) {
-
-					loudest = voiced.intensity_db;
-					this.analyser.lpcSpectrum( this.spectrumDb );
-					this.spectrumFormants = voiced.formants;
-
-				}
-
-			}
-			hops.push( ...this.analyser.flush() );
-			this.hops = [];
-			this.hopCount = 0;
-			this.keep( hops );
-			this.state.summary = summariseAttempt( hops );
-			this.attemptSamples = samples;
-			this.attemptRate = sampleRate;
+			const recorder = new AttemptRecorder( { sampleRate, group: this.state.group } );
+			this.state.summary = summariseAttempt( recorder.analyseAll( samples ) );
+			this.recorder = recorder;
 			this.drawAttempt();
 			this.say( inputProblem( samples ) ?? 'ready' );
 
@@ -379,7 +330,8 @@ export class ListenView extends View {
 			const latestHiss = this.state.summary?.fricative?.centroid ?? [ ...this.hops ].reverse().find( ( hop ) => ! hop.voiced && hop.centroid > 0 )?.centroid ?? null;
 			this.meter.draw( latestHiss, this.state.group );
 			this.traces.draw( this.hops );
-			this.spectrum.draw( this.spectrumFormants ? this.spectrumDb : null, this.ceiling(), this.shownFormants(), this.f3Target );
+			const recorder = this.recorder;
+			this.spectrum.draw( recorder?.spectrumFormants ? recorder.spectrumDb : null, this.ceiling(), this.shownFormants(), this.f3Target );
 			this.verdict.dataset.zone = vowel?.zone ?? '';
 			this.verdict.style.backgroundColor = ZONE_COLOURS[ vowel?.zone ] ?? '';
 			this.verdict.setAttribute( 'aria-label', vowel ? { in: 'In the target', near: 'Near the target', off: 'Try again' }[ vowel.zone ] : 'No sound yet' );
@@ -393,7 +345,7 @@ export class ListenView extends View {
 	/** The last attempt's waveform, spectrogram and measures (once it has ended). */
 	drawAttempt() {
 
-		if ( this.attemptSamples && this.state.summary ) this.attemptPanel.draw( this.attemptSamples, this.attemptRate, attemptWords( this.state.summary ) );
+		if ( this.recorder && this.state.summary ) this.attemptPanel.draw( this.recorder.samples(), this.recorder.sampleRate, attemptWords( this.state.summary ) );
 
 	}
 
@@ -401,7 +353,7 @@ export class ListenView extends View {
 	shownFormants() {
 
 		const vowel = this.state.summary?.vowel;
-		return vowel ? [ vowel.f1, vowel.f2, vowel.f3, null ] : this.spectrumFormants;
+		return vowel ? [ vowel.f1, vowel.f2, vowel.f3, null ] : this.recorder?.spectrumFormants ?? null;
 
 	}
 
@@ -419,7 +371,7 @@ export class ListenView extends View {
 		return {
 			f3Target: this.f3Target, f3, f3UnderTarget: f3 !== null && f3 <= this.f3Target,
 			source: this.state.source, group: this.state.group, target: this.state.target || null,
-			active: this.state.active, hops: this.hopCount, latest: this.hops.at( - 1 ) ?? null,
+			active: this.state.active, hops: this.recorder?.hopCount ?? 0, latest: this.hops.at( - 1 ) ?? null,
 			vowel, summary: this.state.summary, problem: this.state.problem, message: this.state.message,
 		};
 
