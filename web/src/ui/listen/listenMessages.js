@@ -1,10 +1,9 @@
 // What the listening page says, in plain words and a picture, about its input: why the
 // microphone cannot be used, a recording that is not audio, and a voice too quiet, too loud or
 // whispered. `listenMessage( kind )` is the pure part the unit tests read; `messagePicture`
-// draws its picture as inline SVG (no emoji font needed; the page's CSP forbids style
-// attributes, so shapes carry their colours).
+// draws its picture as inline SVG, as the child's practice draws its own (shapesSvg).
 
-const SVG = 'http://www.w3.org/2000/svg';
+import { shapesSvg } from '../shared/ChildPracticePictures.js';
 
 /** Each kind's words and picture. */
 export const MESSAGES = Object.freeze( {
@@ -59,19 +58,6 @@ export function pictureShapes( name ) {
 /** An <svg> of picture `name`, named `label` for screen readers, of class `className`. */
 export function messagePicture( name, label, { className = 'ls-picture', doc = globalThis.document } = {} ) {
 
-	const svg = doc.createElementNS( SVG, 'svg' );
-	svg.setAttribute( 'viewBox', '0 0 100 100' );
-	svg.setAttribute( 'role', 'img' );
-	svg.setAttribute( 'aria-label', label );
-	svg.setAttribute( 'class', className );
-	for ( const [ tag, attributes ] of pictureShapes( name ) ) {
-
-		const shape = doc.createElementNS( SVG, tag );
-		for ( const [ key, value ] of Object.entries( attributes ) ) shape.setAttribute( key, String( value ) );
-		svg.append( shape );
-
-	}
-
-	return svg;
+	return shapesSvg( pictureShapes( name ), { label, className, doc } );
 
 }

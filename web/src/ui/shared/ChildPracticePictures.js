@@ -67,10 +67,10 @@ export function pictureShapes( name ) {
 }
 
 /**
- * An <svg> of picture `name`. With a `label` it is an image of that name (role img); without,
- * it is decoration (the button around it carries the name).
+ * An <svg> of `shapes` ([tag, attributes] in a 100 x 100 box). With a `label` it is an image of
+ * that name (role img); without, it is decoration (the button around it carries the name).
  */
-export function picture( name, { label = null, className = 'cp-picture', doc = globalThis.document } = {} ) {
+export function shapesSvg( shapes, { label = null, className = 'cp-picture', doc = globalThis.document } = {} ) {
 
 	const svg = doc.createElementNS( SVG, 'svg' );
 	svg.setAttribute( 'viewBox', '0 0 100 100' );
@@ -83,7 +83,7 @@ export function picture( name, { label = null, className = 'cp-picture', doc = g
 
 	} else svg.setAttribute( 'aria-hidden', 'true' );
 
-	for ( const [ tag, attributes ] of pictureShapes( name ) ) {
+	for ( const [ tag, attributes ] of shapes ) {
 
 		const shape = doc.createElementNS( SVG, tag );
 		for ( const [ key, value ] of Object.entries( attributes ) ) shape.setAttribute( key, String( value ) );
@@ -92,5 +92,12 @@ export function picture( name, { label = null, className = 'cp-picture', doc = g
 	}
 
 	return svg;
+
+}
+
+/** An <svg> of picture `name` (an avatar or an icon; shapesSvg's options). */
+export function picture( name, options ) {
+
+	return shapesSvg( pictureShapes( name ), options );
 
 }
