@@ -19,12 +19,29 @@ const TRAIL = 30;
 const TRACE_SECONDS = 4;
 const TRACE_RANGE_DB = 70;
 
-export class VowelChart {
+/** A display drawn on one canvas of the page's width: `element` to place, `resize` to follow the page. */
+class CanvasDisplay {
+
+	constructor( width, height, ariaLabel ) {
+
+		this.canvas = new HiDpiCanvas( { width, height, ariaLabel, className: 'ls-canvas' } );
+		this.element = this.canvas.element;
+
+	}
+
+	resize( width, height ) {
+
+		this.canvas.resize( width, height );
+
+	}
+
+}
+
+export class VowelChart extends CanvasDisplay {
 
 	constructor( { width = 420, height = 340 } = {} ) {
 
-		this.canvas = new HiDpiCanvas( { width, height, ariaLabel: 'Vowel chart: the second formant across, the first down', className: 'ls-canvas' } );
-		this.element = this.canvas.element;
+		super( width, height, 'Vowel chart: the second formant across, the first down' );
 		this.norms = null;
 		this.highlight = null;
 
@@ -35,12 +52,6 @@ export class VowelChart {
 
 		this.norms = vowels;
 		this.highlight = highlight;
-
-	}
-
-	resize( width, height ) {
-
-		this.canvas.resize( width, height );
 
 	}
 
@@ -132,18 +143,11 @@ function drawAxes( ctx, box ) {
 
 }
 
-export class SibilantMeter {
+export class SibilantMeter extends CanvasDisplay {
 
 	constructor( { width = 420, height = 90 } = {} ) {
 
-		this.canvas = new HiDpiCanvas( { width, height, ariaLabel: 'Hissing meter: “sh” on the left, “s” on the right', className: 'ls-canvas' } );
-		this.element = this.canvas.element;
-
-	}
-
-	resize( width ) {
-
-		this.canvas.resize( width );
+		super( width, height, 'Hissing meter: “sh” on the left, “s” on the right' );
 
 	}
 
@@ -183,18 +187,11 @@ export class SibilantMeter {
 
 }
 
-export class TraceStrip {
+export class TraceStrip extends CanvasDisplay {
 
 	constructor( { width = 420, height = 140 } = {} ) {
 
-		this.canvas = new HiDpiCanvas( { width, height, ariaLabel: 'Pitch (blue) and loudness (grey) over the last seconds', className: 'ls-canvas' } );
-		this.element = this.canvas.element;
-
-	}
-
-	resize( width ) {
-
-		this.canvas.resize( width );
+		super( width, height, 'Pitch (blue) and loudness (grey) over the last seconds' );
 
 	}
 
@@ -245,18 +242,11 @@ export class TraceStrip {
  * formants marked and a movable F3 target, as staRt shows /r/: F3 falls below the line when the
  * /r/ is rhotic. The target line is drawn green while the hop's F3 is under it.
  */
-export class SpectrumPanel {
+export class SpectrumPanel extends CanvasDisplay {
 
 	constructor( { width = 420, height = 150 } = {} ) {
 
-		this.canvas = new HiDpiCanvas( { width, height, ariaLabel: 'Spectrum of the voice, with the F3 target line', className: 'ls-canvas' } );
-		this.element = this.canvas.element;
-
-	}
-
-	resize( width ) {
-
-		this.canvas.resize( width );
+		super( width, height, 'Spectrum of the voice, with the F3 target line' );
 
 	}
 

@@ -16,7 +16,7 @@ import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } fr
 import { listenMessage, messagePicture } from './listenMessages.js';
 import { AttemptPanel } from './AttemptPanel.js';
 import { AttemptRecorder } from './AttemptRecorder.js';
-import { attemptWords, F3_TARGET_HZ, inputProblem, roomProblem, measurableTarget, nearestVowel, NORMS_URL, summariseAttempt } from './listenScales.js';
+import { attemptWords, F3_TARGET_HZ, inputProblem, roomProblem, measurableTarget, median, nearestVowel, NORMS_URL, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
 const GROUPS = [ [ 'child', 'Child' ], [ 'woman', 'Woman' ], [ 'man', 'Man' ] ];
@@ -304,15 +304,15 @@ export class ListenView extends View {
 
 			const recent = this.hops.filter( ( hop ) => hop.voiced && hop.formants?.[ 0 ] > 0 && hop.formants?.[ 1 ] > 0 ).slice( - VERDICT_HOPS );
 			if ( ! recent.length ) return null;
-			const mid = ( values ) => values.sort( ( a, b ) => a - b )[ values.length >> 1 ];
-			f1 = mid( recent.map( ( hop ) => hop.formants[ 0 ] ) );
-			f2 = mid( recent.map( ( hop ) => hop.formants[ 1 ] ) );
+			f1 = median( recent.map( ( hop ) => hop.formants[ 0 ] ) );
+			f2 = median( recent.map( ( hop ) => hop.formants[ 1 ] ) );
 
 		}
 
-		const target = this.state.target && vowels[ this.state.target ];
-		const verdict = target ? { vowel: this.state.target, ...nearestVowel( f1, f2, { [ this.state.target ]: target } ) } : nearestVowel( f1, f2, vowels );
-		return verdict && { ...verdict, vowel: target ? this.state.target : verdict.vowel, f1, f2 };
+		// Against the chosen target alone, or the nearest of them all.
+		const target = vowels[ this.state.target ];
+		const verdict = nearestVowel( f1, f2, target ? { [ this.state.target ]: target } : vowels );
+		return verdict && { ...verdict, f1, f2 };
 
 	}
 

@@ -183,13 +183,14 @@ export function inputProblem( samples ) {
 
 }
 
-const median = ( values ) => {
+/** The median of `values` (numbers; left unsorted). */
+export function median( values ) {
 
 	const sorted = [ ...values ].sort( ( a, b ) => a - b );
 	const mid = sorted.length >> 1;
 	return sorted.length % 2 ? sorted[ mid ] : ( sorted[ mid - 1 ] + sorted[ mid ] ) / 2;
 
-};
+}
 
 /** A voiced hop this far below the loudest of its run is a consonant's voicing, not the vowel's, dB. */
 export const NUCLEUS_BELOW_PEAK_DB = 10;

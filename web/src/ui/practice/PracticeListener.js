@@ -3,9 +3,9 @@
 // ends by itself once the child has spoken and fallen quiet, or after MAX_ATTEMPT_S, or when
 // the button is pressed again. The audio stays in the page: only the summary leaves this module.
 
-import { createAnalyser } from '../../core/listen/analyse.js';
+import { AttemptRecorder } from '../listen/AttemptRecorder.js';
 import { startMicrophone } from '../listen/audioInput.js';
-import { sibilantBand, summariseAttempt } from '../listen/listenScales.js';
+import { summariseAttempt } from '../listen/listenScales.js';
 
 /** The longest attempt, s. */
 export const MAX_ATTEMPT_S = 5;
@@ -33,14 +33,13 @@ export function attemptDone( hops ) {
 export class PracticeListener {
 
 	/**
-	 * @param {{ win?: Window, group?: string, onHop?: ( hops: object[] ) => void, onOpen?: () => void }} options
+	 * @param {{ win?: Window, group?: string, onOpen?: () => void }} options
 	 *   `onOpen()` once the microphone is open (the browser's question answered)
 	 */
-	constructor( { win = globalThis.window, group = 'child', onHop = () => {}, onOpen = () => {} } = {} ) {
+	constructor( { win = globalThis.window, group = 'child', onOpen = () => {} } = {} ) {
 
 		this.window = win;
 		this.group = group;
-		this.onHop = onHop;
 		this.onOpen = onOpen;
 		this.microphone = null;
 		this.finished = null;
@@ -59,21 +58,19 @@ export class PracticeListener {
 	 */
 	async listen() {
 
-		const hops = [];
 		let resolveDone;
 		this.finished = new Promise( ( resolve ) => ( resolveDone = resolve ) );
-		let analyser = null;
+		let recorder = null;
 		this.microphone = await startMicrophone( { win: this.window, onBlock: ( block ) => {
 
-			if ( ! analyser ) return;
-			hops.push( ...analyser.push( block ) );
-			this.onHop( hops );
-			if ( attemptDone( hops ) ) this.stop();
+			if ( ! recorder ) return;
+			recorder.push( block );
+			if ( attemptDone( recorder.hops ) ) this.stop();
 
 		} } );
-		analyser = createAnalyser( { sampleRate: this.microphone.sampleRate, group: this.group, band: sibilantBand( this.microphone.sampleRate ) } );
+		recorder = new AttemptRecorder( { sampleRate: this.microphone.sampleRate, group: this.group } );
 		this.onOpen();
-		this.end = () => resolveDone( summariseAttempt( hops ) );
+		this.end = () => resolveDone( summariseAttempt( recorder.hops ) );
 		return this.finished;
 
 	}
