@@ -160,12 +160,12 @@ class Espeak:
         pieces = [word[i:i + MAX_WORD_PHONES] for word in words
                   for i in range(0, len(word), MAX_WORD_PHONES)]
         wpm = int(round(min(max(BASE_WPM * rate, WPM_RANGE[0]), WPM_RANGE[1])))
-        batches = synthesis_batches([arpabet_to_espeak(piece) for piece in pieces],
-                                    [all(s == PAUSE for s, _ in piece) for piece in pieces])
+        texts = [arpabet_to_espeak(piece) for piece in pieces]
+        batches = synthesis_batches(texts, [all(s == PAUSE for s, _ in piece) for piece in pieces])
         parts, phones, offset, first_index = [], [], 0, 0
         for lo, hi in batches:
             wanted = [symbol for piece in pieces[lo:hi] for symbol, _ in piece]
-            text = "[[" + " ".join(arpabet_to_espeak(piece) for piece in pieces[lo:hi]) + "]]"
+            text = "[[" + " ".join(texts[lo:hi]) + "]]"
             samples, events = self._speak(text, wpm)
             samples = samples[: sounding_end(samples, events, self.sample_rate)]
             start = offset / self.sample_rate
