@@ -265,6 +265,9 @@ FIT_REPORT_FORMAT_VERSION = 1
 VOWEL_NORMS_FILE = "vowel-norms.json"
 #: Format version of the vowel norms; its readers refuse any other version.
 VOWEL_NORMS_FORMAT_VERSION = 1
+#: The vowels of the vowel norms, by Peterson & Barney's codes (ARPAbet in lower case): the
+#: vowels a spoken try can be measured against (a lesson item's ``listen``).
+VOWEL_NORMS_VOWELS = ("iy", "ih", "eh", "ae", "ah", "aa", "ao", "uh", "uw", "er")
 #: The fit report's overlay plots, one SVG per shape, under the assets directory.
 FIT_PLOTS_DIR = "fit-plots"
 #: The fit report as a page for a browser: a table of every shape with its plot.

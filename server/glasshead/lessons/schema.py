@@ -17,6 +17,7 @@ from typing import Annotated, Final, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, model_validator
 
+from glasshead.constants import VOWEL_NORMS_VOWELS
 from glasshead.phonemes import UnknownPhonemeError, lookup
 
 #: The format's version, carried by every export; an import of a newer one is refused.
@@ -89,7 +90,8 @@ class ListenVowel(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
     measure: Literal["vowel"]
-    vowel: Literal["iy", "ih", "eh", "ae", "ah", "aa", "ao", "uh", "uw", "er"]
+    # The norms' vowels as an enum (pydantic reads a Literal of the tuple; mypy cannot).
+    vowel: Literal[VOWEL_NORMS_VOWELS]  # type: ignore[valid-type]
     within_sd: float = Field(2.45, ge=1.0, le=4.0, description="the target zone's edge, in "
                                                                "standard deviations")
 

@@ -8,6 +8,7 @@ any other, never put back).
 """
 
 from glasshead.lessons.schema import LessonContent
+from glasshead.phonemes import lookup
 
 #: Views that show the tongue against the palate: skin mostly clear, the EPG panel on. Each set
 #: names only what differs from the format's defaults (``schema.Views``), as every lesson here
@@ -21,9 +22,11 @@ _VOWEL = {"skin_transparency": 0.7, "cutaway": True, "cues": False, "labels": Tr
 
 #: What a try is measured on (schema.Listen), by the phoneme or word it is at: the vowels by
 #: their norms, /s/ and /ʃ/ (and words that start with them) on the meter, /r/ by its F3.
-_VOWEL_CODES = {"i": "iy", "ɪ": "ih", "ɛ": "eh", "æ": "ae", "ʌ": "ah", "ɑ": "aa", "ɔ": "ao",
-                "ʊ": "uh", "u": "uw", "beat": "iy", "bit": "ih", "bet": "eh", "bat": "ae",
-                "but": "ah", "father": "aa", "law": "ao", "book": "uh", "boot": "uw"}
+_VOWELS = ["i", "ɪ", "ɛ", "æ", "ʌ", "ɑ", "ɔ", "ʊ", "u"]
+_VOWEL_WORDS = {"beat": "iy", "bit": "ih", "bet": "eh", "bat": "ae", "but": "ah", "father": "aa",
+                "law": "ao", "book": "uh", "boot": "uw"}
+#: The norms' codes are ARPAbet in lower case: a held vowel's is its own symbol's.
+_VOWEL_CODES = {**{v: lookup(v).arpabet.lower() for v in _VOWELS}, **_VOWEL_WORDS}
 _LISTEN: dict[str, dict] = {
     **{key: {"measure": "vowel", "vowel": code} for key, code in _VOWEL_CODES.items()},
     **{key: {"measure": "sibilant", "sound": "s"} for key in ("s", "sip", "sore", "sell")},
@@ -67,9 +70,8 @@ STARTER_LESSONS: tuple[dict, ...] = (
     {"title": "The vowels",
      "description": "From the front of the mouth to the back: how high the tongue is, and "
                     "where, and the lips.",
-     "items": [_phoneme(p, _VOWEL) for p in ["i", "ɪ", "ɛ", "æ", "ʌ", "ɑ", "ɔ", "ʊ", "u"]]
-     + [_word(w, _VOWEL, speed=0.4) for w in ["beat", "bit", "bet", "bat", "but", "father",
-                                             "law", "book", "boot"]]},
+     "items": [_phoneme(p, _VOWEL) for p in _VOWELS]
+     + [_word(w, _VOWEL, speed=0.4) for w in _VOWEL_WORDS]},
 )
 
 

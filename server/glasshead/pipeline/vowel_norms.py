@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from glasshead.constants import VOWEL_NORMS_FILE, VOWEL_NORMS_FORMAT_VERSION
+from glasshead.constants import VOWEL_NORMS_FILE, VOWEL_NORMS_FORMAT_VERSION, VOWEL_NORMS_VOWELS
 from glasshead.pipeline.outputs import current_output, write_json
 from glasshead.pipeline.sources import PETERSON_BARNEY
 
@@ -28,9 +28,6 @@ from glasshead.pipeline.sources import PETERSON_BARNEY
 BUILDER = 1
 #: Peterson & Barney's speaker types, by the group names the listening kernels use.
 GROUPS = {"m": "man", "w": "woman", "c": "child"}
-#: Their vowel codes and the ARPAbet symbols the rest of the project uses.
-ARPABET = {"iy": "IY", "ih": "IH", "eh": "EH", "ae": "AE", "ah": "AH", "aa": "AA", "ao": "AO",
-           "uh": "UH", "uw": "UW", "er": "ER"}
 MEASURES = ("f0", "f1", "f2", "f3")
 
 
@@ -48,7 +45,7 @@ def read_rows(path: Path) -> list[dict]:
                 kind, vowel, ipa = row["type"], row["vowel"], row["IPA"]
             except (KeyError, TypeError, ValueError) as exc:
                 raise VowelNormsError(f"{path}, line {line}: {exc!r}") from None
-            if kind not in GROUPS or vowel not in ARPABET:
+            if kind not in GROUPS or vowel not in VOWEL_NORMS_VOWELS:
                 raise VowelNormsError(f"{path}, line {line}: unknown speaker type or vowel "
                                       f"{kind!r}, {vowel!r}")
             if not all(math.isfinite(v) and v > 0 for v in values.values()):
@@ -62,11 +59,12 @@ def norms(rows: list[dict]) -> dict:
     out: dict[str, dict] = {}
     for code, group in GROUPS.items():
         out[group] = {}
-        for vowel, arpabet in ARPABET.items():
+        for vowel in VOWEL_NORMS_VOWELS:
             mine = [r for r in rows if r["type"] == code and r["vowel"] == vowel]
             if len(mine) < 3:
                 raise VowelNormsError(f"too few {group} tokens of {vowel!r}: {len(mine)}")
-            entry: dict = {"ipa": mine[0]["ipa"], "arpabet": arpabet, "n": len(mine)}
+            # Their codes are ARPAbet in lower case.
+            entry: dict = {"ipa": mine[0]["ipa"], "arpabet": vowel.upper(), "n": len(mine)}
             for m in MEASURES:
                 values = np.array([r[m] for r in mine])
                 entry[m] = {"mean": round(float(values.mean()), 1),

@@ -280,6 +280,22 @@ export const FIT_REPORT_FORMAT_VERSION = 1;
 export const VOWEL_NORMS_FILE = 'vowel-norms.json';
 /** Format version of the vowel norms; its readers refuse any other version. */
 export const VOWEL_NORMS_FORMAT_VERSION = 1;
+/**
+ * The vowels of the vowel norms, by Peterson & Barney's codes (ARPAbet in lower case): the vowels a
+ * spoken try can be measured against (a lesson item's ``listen``).
+ */
+export const VOWEL_NORMS_VOWELS = Object.freeze( [
+	'iy',
+	'ih',
+	'eh',
+	'ae',
+	'ah',
+	'aa',
+	'ao',
+	'uh',
+	'uw',
+	'er',
+] );
 /** The fit report's overlay plots, one SVG per shape, under the assets directory. */
 export const FIT_PLOTS_DIR = 'fit-plots';
 /** The fit report as a page for a browser: a table of every shape with its plot. */

@@ -5,6 +5,8 @@
 // shows it and tests/js/lessonEditor.test.js reads it. The format is the server's
 // (server/glasshead/lessons/schema.py, docs/lessons.md).
 
+import { VOWEL_NORMS_VOWELS } from '../../core/constants.js';
+
 /** The editor's route. */
 export const AUTHOR_PATH = '/author';
 /** The lesson format's version, as exports carry it. */
@@ -18,12 +20,16 @@ export const TARGET_KINDS = Object.freeze( [
 	Object.freeze( { value: 'word', label: 'Word' } ),
 	Object.freeze( { value: 'phrase', label: 'Phrase' } ),
 ] );
+/** Each vowel of the norms in IPA and the /hVd/ word it is said in. */
+const VOWEL_WORDS = Object.freeze( {
+	iy: [ 'i', 'heed' ], ih: [ 'ɪ', 'hid' ], eh: [ 'ɛ', 'head' ], ae: [ 'æ', 'had' ], ah: [ 'ʌ', 'hud' ],
+	aa: [ 'ɑ', 'hod' ], ao: [ 'ɔ', 'hawed' ], uh: [ 'ʊ', 'hood' ], uw: [ 'u', 'who’d' ], er: [ 'ɝ', 'heard' ],
+} );
+
 /** What a try at an item can be measured on (the lesson format's `listen`), as the editor offers it. */
 export const LISTEN_CHOICES = Object.freeze( [
 	Object.freeze( { value: '', label: 'Not measured (or by its phoneme)' } ),
-	...[ [ 'iy', 'i', 'heed' ], [ 'ih', 'ɪ', 'hid' ], [ 'eh', 'ɛ', 'head' ], [ 'ae', 'æ', 'had' ], [ 'ah', 'ʌ', 'hud' ],
-		[ 'aa', 'ɑ', 'hod' ], [ 'ao', 'ɔ', 'hawed' ], [ 'uh', 'ʊ', 'hood' ], [ 'uw', 'u', 'who’d' ], [ 'er', 'ɝ', 'heard' ] ]
-		.map( ( [ code, ipa, word ] ) => Object.freeze( { value: `vowel:${ code }`, label: `The vowel /${ ipa }/ (as in ${ word })` } ) ),
+	...VOWEL_NORMS_VOWELS.map( ( code ) => Object.freeze( { value: `vowel:${ code }`, label: `The vowel /${ VOWEL_WORDS[ code ][ 0 ] }/ (as in ${ VOWEL_WORDS[ code ][ 1 ] })` } ) ),
 	Object.freeze( { value: 'sibilant:s', label: 'The hiss of /s/' } ),
 	Object.freeze( { value: 'sibilant:sh', label: 'The hiss of /ʃ/' } ),
 	Object.freeze( { value: 'rhotic', label: 'The F3 of /r/' } ),
