@@ -15,7 +15,7 @@ import { after, before, describe, test } from 'node:test';
 import { F3_TARGET_HZ, sibilantPosition } from '../web/src/ui/listen/listenScales.js';
 import { listenHref } from '../web/src/ui/lessons/LessonRunnerItems.js';
 import { apiSession, authHeaders } from './accounts.js';
-import { fakeMicrophoneArgs, launchBrowser, openPage, readDebug, REPO, saveScreenshot, startServer } from './harness.js';
+import { animationFrames, fakeMicrophoneArgs, launchBrowser, openPage, readDebug, REPO, saveScreenshot, startServer } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const SPEECH = join( DATA_DIR, 'speech' );
@@ -87,6 +87,7 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		assert.ok( vowel && vowel.f0 > 150 && vowel.f0 < 400, `a child's pitch: ${ JSON.stringify( vowel ) }` );
 		assert.equal( state.vowel.vowel, 'iy' );
 		assert.equal( state.vowel.zone, 'in', `F1 ${ vowel.f1 } Hz, F2 ${ vowel.f2 } Hz: ${ state.vowel.distance } sd from /i/` );
+		assert.equal( state.problem, null, `a clear voice is no problem: ${ state.message }` ); // looped loud speech once read as a noisy room
 		await page.waitForFunction( () => document.querySelector( '.ls-verdict' ).getAttribute( 'aria-label' ) === 'In the target' );
 		// The spectrum's F3 line: an /i/'s F3 lies above the /r/ target until the line is moved past it.
 		assert.ok( state.f3 > state.f3Target, `F3 ${ state.f3 } Hz, target ${ state.f3Target } Hz` );
@@ -163,6 +164,10 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		const { attempt } = ( await readDebug( page ) ).practice;
 		assert.equal( attempt.zone, 'in', JSON.stringify( attempt ) );
 		assert.equal( await page.locator( '.cp-verdict' ).getAttribute( 'aria-label' ), 'In the target' );
+		// The verdict moved the head's frame: the head is drawn again a few frames after the resize.
+		await animationFrames( page, 3 );
+		const drawn = ( await readDebug( page ) ).frames;
+		await page.waitForFunction( ( after ) => window.glasshead.frames >= after + 2 && window.glasshead.renderPending === false, drawn, { timeout: 60_000 } );
 		await saveScreenshot( page, 'listen-practice-1024x768' );
 		await page.getByRole( 'button', { name: 'Got it' } ).click();
 		await page.waitForFunction( () => window.glasshead.practice.screen === 'done', null, { timeout: 60_000 } );

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 
 import {
 	chartPoint, ellipse, IN_TARGET, inputProblem, nearestVowel, normDistance, sibilantPosition,
-	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures, attemptWords, itemTarget, F3_TARGET_HZ, roomProblem, NOISY_FLOOR_BELOW_FULL_SCALE_DB,
+	SIBILANT_ENDS_HZ, sibilantBand, summariseAttempt, zoneOf, measurableTarget, attemptZone, attemptMeasures, attemptWords, itemTarget, F3_TARGET_HZ, roomProblem, NOISY_CONTRAST_DB, NOISY_FLOOR_BELOW_FULL_SCALE_DB,
 } from '../../web/src/ui/listen/listenScales.js';
 import { listenMessage, MESSAGES, pictureShapes } from '../../web/src/ui/listen/listenMessages.js';
 import { microphoneErrorKind } from '../../web/src/ui/listen/audioInput.js';
@@ -227,10 +227,12 @@ test( 'an item\'s own listen settings set its target zone: the edge in sd, the m
 test( 'a room whose quiet is loud is said to be noisy, once there is enough to tell', () => {
 
 	const full = 94;
-	const hops = ( floor ) => Array.from( { length: 200 }, ( _, k ) => ( { intensity_db: k % 3 ? floor + 30 : floor } ) );
-	assert.equal( roomProblem( hops( full - 60 ), full ), null, 'a quiet room' );
-	assert.equal( roomProblem( hops( full - NOISY_FLOOR_BELOW_FULL_SCALE_DB + 5 ), full ), 'noisy' );
-	assert.equal( roomProblem( hops( full - 20 ).slice( 0, 50 ), full ), null, 'too little to tell' );
+	const hops = ( floor, over ) => Array.from( { length: 200 }, ( _, k ) => ( { intensity_db: k % 3 ? floor + over : floor } ) );
+	const loudRoom = full - NOISY_FLOOR_BELOW_FULL_SCALE_DB + 5;
+	assert.equal( roomProblem( hops( full - 60, 30 ), full ), null, 'a quiet room' );
+	assert.equal( roomProblem( hops( loudRoom, NOISY_CONTRAST_DB - 8 ), full ), 'noisy' );
+	assert.equal( roomProblem( hops( loudRoom, NOISY_CONTRAST_DB + 2 ), full ), null, 'loud speech with short gaps stands clear of them' );
+	assert.equal( roomProblem( hops( full - 20, 5 ).slice( 0, 50 ), full ), null, 'too little to tell' );
 
 } );
 

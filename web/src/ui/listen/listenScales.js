@@ -57,18 +57,22 @@ export const F3_TARGET_HZ = Object.freeze( { man: 1900, woman: 2200, child: 2600
 /** Intensity (dB re full scale) below which the input is taken as silence. */
 export const SILENT_DB = - 55;
 /**
- * Intensity of the room's quiet (the 10th percentile of the last seconds' hops), dB below full
- * scale, above which the room is too noisy to measure a voice in: speech is some 20 to 30 dB
- * over a quiet classroom, and a microphone at arm's length puts it near -30 dB.
+ * A room is too noisy to measure a voice in when its quiet (the 10th percentile of the last
+ * seconds' hops) is loud, more than NOISY_FLOOR_BELOW_FULL_SCALE_DB under full scale, and the
+ * voice (the 90th percentile) stands less than NOISY_CONTRAST_DB over it. Loud speech with short
+ * gaps has a loud 10th percentile too (a looped "heed": -32 dB), but stands 22 dB over it.
  */
 export const NOISY_FLOOR_BELOW_FULL_SCALE_DB = 45;
+export const NOISY_CONTRAST_DB = 20;
 
-/** 'noisy' when the quietest tenth of `hops` (their intensity_db, re 2e-5 Pa with full scale at `fullScaleDb`) is loud, else null. */
+/** 'noisy' for such a room (`hops`' intensity_db, re 2e-5 Pa with full scale at `fullScaleDb`), else null. */
 export function roomProblem( hops, fullScaleDb ) {
 
 	const levels = hops.map( ( hop ) => hop.intensity_db ).filter( Number.isFinite ).sort( ( a, b ) => a - b );
 	if ( levels.length < 100 ) return null;
-	return levels[ Math.floor( levels.length / 10 ) ] > fullScaleDb - NOISY_FLOOR_BELOW_FULL_SCALE_DB ? 'noisy' : null;
+	const quiet = levels[ Math.floor( levels.length / 10 ) ];
+	const voice = levels[ Math.floor( levels.length * 9 / 10 ) ];
+	return quiet > fullScaleDb - NOISY_FLOOR_BELOW_FULL_SCALE_DB && voice - quiet < NOISY_CONTRAST_DB ? 'noisy' : null;
 
 }
 
