@@ -2,6 +2,7 @@
 export of everything stored about a child and its deletion, on SQLite and on a real PostgreSQL
 server (tests/postgres_support.py)."""
 
+import base64
 import csv
 import io
 
@@ -14,13 +15,15 @@ from glasshead import accounts
 from glasshead.epg.formats import CSV_ELECTRODES, CSV_MAGIC
 from glasshead.settings import get_settings
 from glasshead.store.db import engine_for, get_engine
+from wav_support import tone_wav
 
 API = "/api/v1"
 PASSWORD = "correct horse battery"
 USERS = (("root", "admin"), ("tess", "teacher"), ("cleo", "clinician"), ("ava", "author"))
 #: Columns that name a child, table by table: after a deletion none may hold the child's id.
 CHILD_COLUMNS = {"children": "id", "practice_records": "child_id", "assignments": "child_id",
-                 "child_tokens": "child_id", "epg_recordings": "child_id"}
+                 "child_tokens": "child_id", "epg_recordings": "child_id",
+                 "practice_audio": "child_id", "audio_recording_switches": "child_id"}
 
 
 def add_users(engine) -> None:
@@ -194,7 +197,7 @@ def test_an_admin_export_holds_everything_stored_about_the_child_and_no_token_se
     answer = client.get(f"{API}/children/{ada['id']}/export", headers=admin)
     assert answer.status_code == 200
     body = answer.json()
-    assert body["export_version"] == 1
+    assert body["export_version"] == 2
     assert body["child"]["display_name"] == "Ada" and body["child"]["avatar"] == "owl"
     assert body["school_class"]["id"] == school_class["id"]
     assert body["school_class"]["join_code"] == school_class["join_code"]
@@ -212,6 +215,35 @@ def test_an_admin_export_holds_everything_stored_about_the_child_and_no_token_se
     # The first 8 electrodes on: the front row's 6 (columns 2 to 7) and 2 of the next row.
     assert recording["frames"][0][:3] == ["01111110", "11000000", "00000000"]
     assert recording["export_url"] == f"/api/v1/epg/recordings/{recording_id}/export"
+    assert body["audio"] == [] and body["audio_recording_switches"] == []
+
+
+def test_the_export_holds_each_kept_attempt_recording_and_every_change_of_its_switch(sqlite):
+    _, client = sqlite
+    admin = bearer(client, "root")
+    _, ada, _, _ = make_setting(client, admin)
+    wav = keep_an_attempt(client, admin, ada["id"])
+    body = client.get(f"{API}/children/{ada['id']}/export", headers=admin).json()
+    [audio] = body["audio"]
+    assert base64.b64decode(audio["wav_base64"]) == wav
+    assert audio["sample_rate"] == 16_000 and audio["duration_s"] == pytest.approx(0.5)
+    assert audio["audio_url"] == f"/api/v1/practice/{audio['practice_id']}/audio"
+    assert [(c["enabled"], c["set_by_name"]) for c in body["audio_recording_switches"]] == [
+        (True, "Root")]
+
+
+def keep_an_attempt(client, admin, child_id: int) -> bytes:
+    """Recording switched on for the child, and half a second of a tone kept with their newest
+    practice record; answers the WAV file."""
+    assert client.put(f"{API}/children/{child_id}/audio-recording", json={"enabled": True},
+                      headers=admin).status_code == 200
+    [newest, *_] = client.get(f"{API}/practice", params={"child_id": child_id},
+                              headers=admin).json()["records"]
+    wav = tone_wav(16_000, 0.5)
+    kept = client.put(f"{API}/practice/{newest['id']}/audio", content=wav,
+                      headers={**admin, "Content-Type": "audio/wav"})
+    assert kept.status_code == 201, kept.text
+    return wav
 
 
 @pytest.mark.parametrize("username", ["tess", "cleo", "ava"])
@@ -231,16 +263,19 @@ def forget_and_check(engine, client) -> None:
     admin = bearer(client, "root")
     school_class, ada, bo, lesson = make_setting(client, admin)
     add_recording(engine, client, admin, ada["id"])
+    keep_an_attempt(client, admin, ada["id"])
     before = child_rows(engine, ada["id"])
     assert before == {"children": 1, "practice_records": 2, "assignments": 1,
-                      "child_tokens": 1, "epg_recordings": 1}
+                      "child_tokens": 1, "epg_recordings": 1, "practice_audio": 1,
+                      "audio_recording_switches": 1}
     url = f"{API}/children/{ada['id']}/data"
     stale = client.delete(url, headers={**admin, "If-Match": f'"child-{ada["id"]}-v9"'})
     assert stale.status_code == 412 and child_rows(engine, ada["id"]) == before
     gone = client.delete(url, headers=admin)
     assert gone.status_code == 200, gone.text
     assert gone.json() == {"child_id": ada["id"], "children": 1, "practice_records": 2,
-                           "assignments": 1, "recordings": 1, "child_tokens": 1,
+                           "assignments": 1, "recordings": 1, "practice_audio": 1,
+                           "audio_recording_switches": 1, "child_tokens": 1,
                            "idempotency_keys": 1}
     assert set(child_rows(engine, ada["id"]).values()) == {0}
     with engine.connect() as connection:  # nor the import's answer kept for its retries

@@ -54,6 +54,7 @@ from pathlib import Path
 
 import pytest
 import schemathesis
+from hypothesis import strategies as st
 from schemathesis.engine import events, from_schema
 from schemathesis.python import asgi
 from schemathesis.python.asgi import shutdown_lifespans
@@ -67,6 +68,7 @@ from glasshead.settings import get_settings
 from glasshead.store.db import engine_for, upgrade_to_head
 from glasshead.store.lessons import Assignment, Child, Lesson, SchoolClass
 from glasshead.store.users import User
+from wav_support import tone_wav
 
 OPENAPI = "/api/v1/openapi.json"
 CONTRACT = json.loads((Path(__file__).parent / "api-contract.json").read_text())
@@ -105,6 +107,13 @@ STATEFUL_GROUPS = {
 UNEXPECTED_METHODS = ["GET", "PUT", "POST", "DELETE", "OPTIONS", "PATCH", "TRACE"]
 #: How many records of each kind ``seed`` makes before a group's stateful sequences.
 SEED_COPIES = 3
+
+# An attempt's recording (PUT /practice/{id}/audio): WAV files the server keeps and ones it
+# refuses (stereo, too low a rate, cut short), and bytes that are no WAV at all.
+schemathesis.openapi.media_type("audio/wav", st.one_of(
+    st.sampled_from([tone_wav(16_000, 0.2), tone_wav(16_000, 0.2, channels=2),
+                     tone_wav(4_000, 0.2), tone_wav(16_000, 0.2)[:1_000]]),
+    st.binary(max_size=256)))
 
 
 @dataclass(frozen=True)

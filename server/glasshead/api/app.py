@@ -25,7 +25,8 @@ API_PREFIX = "/api/v1"
 ROUTE_MODULES = ["health", "anatomy", "recordings", "epg_compare", "epg_indices", "poses",
                  "collision", "tongue", "epg", "face", "landmarks", "velum",
                  "phonemes", "observations", "fits", "utterances", "auth", "users",
-                 "lessons", "classes", "class_staff", "practice", "child_records"]
+                 "lessons", "classes", "class_staff", "practice", "practice_audio",
+                 "child_records"]
 
 #: Functions run once at start-up (e.g. database migrations), as "module:function".
 STARTUP_HOOKS: list[str] = ["glasshead.store.db:upgrade_to_head"]

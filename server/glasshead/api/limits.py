@@ -23,7 +23,7 @@ from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from glasshead import uploads
-from glasshead.api.routes import recordings, utterances
+from glasshead.api.routes import practice_audio, recordings, utterances
 
 MIB = 1024 * 1024
 #: Room for the multipart framing (boundaries, part headers, small fields) around a file.
@@ -38,6 +38,8 @@ BODY_LIMITS: tuple[tuple[str, str, int], ...] = (
     ("POST", "/api/v1/epg/recordings", recordings.MAX_UPLOAD_BYTES + MULTIPART_SLACK),
     ("POST", "/api/v1/fits", max(uploads.MAX_BYTES.values()) + MULTIPART_SLACK),
     ("POST", "/api/v1/utterances/textgrid", utterances.MAX_TEXTGRID_BYTES + MULTIPART_SLACK),
+    # A WAV file sent as the body: 30 s at 48 kHz (routes/practice_audio.py).
+    ("PUT", "/api/v1/practice/{record_id}/audio", practice_audio.MAX_AUDIO_BYTES),
     # JSON routes whose largest valid body passes 1 MiB: 20,000 vertices (about 1.2 MB), with
     # 40,000 triangles; 20,000 EPG frames of 8 rows (about 2 MB) with their times.
     ("POST", "/api/v1/collision/correct", 2 * MIB),

@@ -11,10 +11,11 @@ record; ids never reused).
 from datetime import datetime
 
 from sqlalchemy import JSON, CheckConstraint, ForeignKey, Integer, String, UniqueConstraint
-from sqlalchemy.orm import Mapped, mapped_column
+from sqlalchemy.orm import Mapped, mapped_column, relationship
 
 from glasshead.lessons.schema import DESCRIPTION_MAX_CHARS, LANGUAGE_MAX_CHARS, TITLE_MAX_CHARS
 from glasshead.store.base import Base, Timestamped, UtcDateTime, Versioned, utc_now
+from glasshead.store.practice_audio import PracticeAudio
 
 #: The avatars a child may pick (icons in the web app, named so that no reading is needed).
 AVATARS = ("cat", "dog", "fox", "owl", "frog", "bear", "fish", "bird", "rabbit", "turtle",
@@ -119,3 +120,11 @@ class PracticeRecord(Versioned, Timestamped, Base):
     #: What the learner's voice measured on this go ({f0, f1, f2, f3, f3_minus_f2, centroid,
     #: duration_s, verdict, target_vowel}), or None when nothing listened. Never the audio.
     measures: Mapped[dict | None] = mapped_column(JSON)
+    #: The attempt's recording, when the child's clinician keeps them (store/practice_audio.py);
+    #: loaded with the record, its WAV bytes only when read.
+    audio: Mapped[PracticeAudio | None] = relationship(
+        lazy="selectin", cascade="all, delete-orphan", passive_deletes=True)
+
+    @property
+    def has_audio(self) -> bool:
+        return self.audio is not None

@@ -102,6 +102,7 @@ from glasshead.store.lessons import (  # noqa: E402, F401
     PracticeRecord,
     SchoolClass,
 )
+from glasshead.store.practice_audio import AudioRecordingSwitch, PracticeAudio  # noqa: E402, F401
 from glasshead.store.users import (  # noqa: E402, F401
     AuthToken,
     ChildToken,

@@ -5,14 +5,16 @@ deletion.
 A school or clinic must be able to answer two requests about a child: "show me everything you
 keep about them" and "forget them". ``GET /children/{id}/export`` gathers the child, their
 class, the assignments that name them or their class, their practice, their EPG recordings
-with every frame, and that sign-in tokens existed (when made, until when, whether revoked; never
-a token or its hash). ``DELETE /children/{id}/data`` removes the child with all of that in one
-transaction: recordings are deleted explicitly, never left behind as reference recordings, and
-the import answers kept for retries that list them go too. The CSV is for the adults who follow
-the child (the owner of the child's class, or an admin); another class's child is a 404, so that
-nobody learns that it exists.
+with every frame, the recordings of their attempts (each WAV file in base64) with every change
+of the switch that let them be kept, and that sign-in tokens existed (when made, until when,
+whether revoked; never a token or its hash). ``DELETE /children/{id}/data`` removes the child
+with all of that in one transaction: recordings are deleted explicitly, never left behind as
+reference recordings, and the import answers kept for retries that list them go too. The CSV is
+for the adults who follow the child (the owner of the child's class, or an admin); another
+class's child is a 404, so that nobody learns that it exists.
 """
 
+import base64
 import csv
 import io
 from datetime import datetime
@@ -21,7 +23,7 @@ from typing import Annotated
 from fastapi import APIRouter, Depends, HTTPException, Response
 from pydantic import BaseModel
 from sqlalchemy import delete, or_, select
-from sqlalchemy.orm import Session
+from sqlalchemy.orm import Session, undefer
 
 from glasshead.api.auth import FORBIDDEN, UNAUTHENTICATED, AdminUser, Person, require_role
 from glasshead.api.error_responses import Responses
@@ -34,13 +36,14 @@ from glasshead.epg.sequence import rows_to_strings
 from glasshead.store.idempotency_keys import IdempotencyKey
 from glasshead.store.lessons import Assignment, Child, Lesson, PracticeRecord, SchoolClass
 from glasshead.store.models import EpgRecording
+from glasshead.store.practice_audio import AudioRecordingSwitch, PracticeAudio
 from glasshead.store.session import SessionDep
 from glasshead.store.users import ChildToken, User
 
 router = APIRouter(tags=["child records"])
 
-#: The version of the export's layout, carried in it.
-EXPORT_VERSION = 1
+#: The version of the export's layout, carried in it (2: the attempts' audio and its switch).
+EXPORT_VERSION = 2
 #: The attempt's measures, each a column of the practice CSV (empty when not measured).
 MEASURE_COLUMNS = ("f0", "f1", "f2", "f3", "f3_minus_f2", "centroid", "duration_s", "verdict",
                    "target_vowel")
@@ -76,6 +79,8 @@ class ChildExport(BaseModel):
     assignments: list[dict]
     practice: list[dict]
     recordings: list[dict]
+    audio: list[dict]
+    audio_recording_switches: list[dict]
     tokens: list[TokenTrace]
 
 
@@ -87,6 +92,8 @@ class DeletedCounts(BaseModel):
     practice_records: int
     assignments: int
     recordings: int
+    practice_audio: int
+    audio_recording_switches: int
     child_tokens: int
     idempotency_keys: int
 
@@ -169,6 +176,22 @@ def _recording_json(record: EpgRecording) -> dict:
             "frames": [rows_to_strings(frame) for frame in sequence.frames]}
 
 
+def _audio_json(audio: PracticeAudio) -> dict:
+    return {**_columns(audio), "wav_base64": base64.b64encode(audio.wav).decode("ascii"),
+            "audio_url": f"/api/v1/practice/{audio.practice_id}/audio"}
+
+
+def _audio(session: Session, child: Child) -> list[PracticeAudio]:
+    return list(session.scalars(select(PracticeAudio).where(PracticeAudio.child_id == child.id)
+                                .options(undefer(PracticeAudio.wav)).order_by(PracticeAudio.id)))
+
+
+def _switches(session: Session, child: Child) -> list[AudioRecordingSwitch]:
+    return list(session.scalars(select(AudioRecordingSwitch)
+                                .where(AudioRecordingSwitch.child_id == child.id)
+                                .order_by(AudioRecordingSwitch.id)))
+
+
 def _assignments(session: Session, child: Child) -> list[Assignment]:
     return list(session.scalars(select(Assignment).where(or_(
         Assignment.child_id == child.id, Assignment.class_id == child.class_id)
@@ -182,7 +205,9 @@ def export_child_data(child_id: RecordId, session: SessionDep, admin: AdminUser,
                       response: Response) -> ChildExport:
     """Everything stored about one child, as one JSON document: the child, their class,
     the assignments that reach them (theirs and their class's), every practice record, every
-    EPG recording with its frames, and the sign-in tokens they were given (times only)."""
+    EPG recording with its frames, every kept recording of an attempt (its WAV in base64) and
+    every change of the switch that kept them, and the sign-in tokens they were given (times
+    only)."""
     child = _child_or_404(session, child_id)
     practice = session.scalars(select(PracticeRecord).where(PracticeRecord.child_id == child.id)
                                .order_by(PracticeRecord.practised_at, PracticeRecord.id))
@@ -197,6 +222,8 @@ def export_child_data(child_id: RecordId, session: SessionDep, admin: AdminUser,
         assignments=[_columns(a) for a in _assignments(session, child)],
         practice=[_columns(p) for p in practice],
         recordings=[_recording_json(r) for r in _recordings(session, child)],
+        audio=[_audio_json(a) for a in _audio(session, child)],
+        audio_recording_switches=[_columns(c) for c in _switches(session, child)],
         tokens=[TokenTrace(created_at=t.created_at, expires_at=t.expires_at,
                            revoked_at=t.revoked_at) for t in tokens])
 
@@ -218,8 +245,9 @@ def _kept_answers_listing(session: Session, recording_ids: set[int]) -> list[Ide
                           404: {"description": "no such child"}})
 def delete_child_data(child_id: RecordId, session: SessionDep, admin: AdminUser,
                       if_match: IfMatch = None) -> DeletedCounts:
-    """Forget a child: their recordings, practice, own assignments, sign-in tokens and the
-    child, in one transaction; answers how many rows of each went. ``If-Match`` takes the
+    """Forget a child: their recordings, the audio of their attempts and its switch, practice,
+    own assignments, sign-in tokens and the child, in one transaction; answers how many rows
+    of each went. ``If-Match`` takes the
     child's ETag (``GET /children/{id}``)."""
     child = _child_or_404(session, child_id)
     check_if_match(if_match, "child", child, f"child {child_id}")
@@ -233,6 +261,11 @@ def delete_child_data(child_id: RecordId, session: SessionDep, admin: AdminUser,
     counts = DeletedCounts(
         child_id=child_id, children=1, idempotency_keys=len(kept), recordings=session.execute(
             delete(EpgRecording).where(EpgRecording.child_id == child_id)).rowcount,
+        practice_audio=session.execute(
+            delete(PracticeAudio).where(PracticeAudio.child_id == child_id)).rowcount,
+        audio_recording_switches=session.execute(
+            delete(AudioRecordingSwitch)
+            .where(AudioRecordingSwitch.child_id == child_id)).rowcount,
         practice_records=session.execute(
             delete(PracticeRecord).where(PracticeRecord.child_id == child_id)).rowcount,
         assignments=session.execute(

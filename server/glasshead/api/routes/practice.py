@@ -4,7 +4,8 @@ An assignment names its lesson and exactly one of a class or a child (422 otherw
 record is one go at one item of a lesson: the child, the lesson and the item's position in it,
 the time, how many times the child replayed it, a rating (1 not yet, 2 nearly, 3 got it)
 with who gave it (the child or an adult), and what the learner's voice measured
-(``api/practice_measures.py``; numbers, never the audio). A record names an item the lesson
+(``api/practice_measures.py``; numbers, never the audio: the recording is kept apart, only while
+a clinician's switch for the child is on, ``practice_audio.py``). A record names an item the lesson
 has (422 naming ``item_index`` otherwise). Writes take If-Match (412 when stale).
 
 Assignments and practice records are those of a class's owner (the teacher or clinician who
@@ -142,6 +143,8 @@ class PracticeOut(BaseModel):
     rating: int | None
     rated_by: str | None
     measures: AttemptMeasures | None
+    has_audio: bool = Field(description="whether the attempt's recording is kept "
+                                         "(GET /practice/{id}/audio)")
     created_at: datetime
     updated_at: datetime
 
