@@ -1,6 +1,6 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { childChoices, measuredSeries, measureWords, practiceRows, ratingWords, recordingExportPath } from '../../web/src/ui/clinician/clinicianChildRows.js';
+import { childChoices, measuredSeries, measureWords, practiceRows, ratingWords, readableTime, recordingExportPath, RECORDING_SWITCH_ROLES, recordingHistoryLines, recordingSwitchWords } from '../../web/src/ui/clinician/clinicianChildRows.js';
 import { downloadFile } from '../../web/src/ui/shared/download.js';
 import { createApi } from '../../web/src/api.js';
 
@@ -19,15 +19,15 @@ test( 'practice rows name the lesson, the item from 1 and its target, and say th
 
 	const lessons = new Map( [ [ 3, { title: 'sip, ship', items: [ { target: { kind: 'phoneme', text: 's' } }, { target: { kind: 'word', text: 'ship' } } ] } ] ] );
 	const records = [
-		{ lesson_id: 3, item_index: 1, practised_at: '2026-03-02T09:30:12Z', replays: 2, rating: 3, rated_by: 'adult', measures: { centroid: 4012.4, verdict: 'off' } },
-		{ lesson_id: 3, item_index: 0, practised_at: '2026-03-01T09:00:00.5+00:00', replays: 0, rating: null, rated_by: null },
-		{ lesson_id: 8, item_index: 0, practised_at: '2026-03-01T08:00:00Z', replays: 1, rating: 1, rated_by: 'child' },
+		{ id: 31, lesson_id: 3, item_index: 1, practised_at: '2026-03-02T09:30:12Z', replays: 2, rating: 3, rated_by: 'adult', measures: { centroid: 4012.4, verdict: 'off' }, has_audio: true },
+		{ id: 30, lesson_id: 3, item_index: 0, practised_at: '2026-03-01T09:00:00.5+00:00', replays: 0, rating: null, rated_by: null, has_audio: false },
+		{ id: 29, lesson_id: 8, item_index: 0, practised_at: '2026-03-01T08:00:00Z', replays: 1, rating: 1, rated_by: 'child' },
 	];
 	assert.deepEqual( practiceRows( records, lessons ), [
-		{ when: '2026-03-02 09:30', lesson: 'sip, ship', item: 2, target: 'ship', replays: 2, rating: '3, got it (adult)', heard: 'off: centroid 4012 Hz' },
-		{ when: '2026-03-01 09:00', lesson: 'sip, ship', item: 1, target: '/s/', replays: 0, rating: '', heard: '' },
-		{ when: '2026-03-01 08:00', lesson: 'lesson 8', item: 1, target: '', replays: 1, rating: '1, not yet (child)', heard: '' },
-	] );
+		{ id: 31, when: '2026-03-02 09:30', lesson: 'sip, ship', item: 2, target: 'ship', replays: 2, rating: '3, got it (adult)', heard: 'off: centroid 4012 Hz', audio: true },
+		{ id: 30, when: '2026-03-01 09:00', lesson: 'sip, ship', item: 1, target: '/s/', replays: 0, rating: '', heard: '', audio: false },
+		{ id: 29, when: '2026-03-01 08:00', lesson: 'lesson 8', item: 1, target: '', replays: 1, rating: '1, not yet (child)', heard: '', audio: false },
+	], 'a go has a player only when the server says its sound was kept' );
 	assert.equal( ratingWords( 2, null ), '2, nearly' );
 	assert.equal( recordingExportPath( 12, 'emur-json' ), 'epg/recordings/12/export?format=emur-json' );
 
@@ -74,5 +74,23 @@ test( 'the measured goes are plotted oldest first, vowels by F1 and F2 and hisse
 	} );
 	assert.equal( measureWords( { f1: 410.4, f2: 3050.5, verdict: 'in' } ), 'in the target: F1 410, F2 3051 Hz' );
 	assert.equal( measureWords( null ), '' );
+
+} );
+
+test( 'the recording switch says whether it is on, since when and by whom, in UTC whatever the browser\'s zone', () => {
+
+	assert.equal( recordingSwitchWords( { enabled: false, set_by: null, set_by_name: null, set_at: null, history: [] } ), 'Off', 'never switched on' );
+	assert.equal( recordingSwitchWords( { enabled: true, set_by: 3, set_by_name: 'Dr Ames', set_at: '2026-03-02T09:30:12Z' } ), 'On since 2 March 2026, 09:30 UTC, by Dr Ames' );
+	assert.equal( recordingSwitchWords( { enabled: false, set_by: 4, set_by_name: 'Ben', set_at: '2026-12-31T23:59:59+01:00' } ), 'Off since 31 December 2026, 22:59 UTC, by Ben' );
+	assert.equal( recordingSwitchWords( { enabled: true, set_at: '2026-01-05T07:04:00.123456' } ), 'On since 5 January 2026, 07:04 UTC', 'a time without a zone is UTC, and no name, no "by"' );
+	assert.equal( recordingSwitchWords( null ), 'Off', 'nothing known: off' );
+	assert.equal( recordingSwitchWords( { enabled: 'yes' } ), 'Off', 'only true is on' );
+	assert.equal( readableTime( 'not a time' ), 'not a time' );
+	assert.deepEqual( recordingHistoryLines( [
+		{ enabled: false, set_by: 4, set_by_name: 'Ben', set_at: '2026-03-03T10:00:00Z' },
+		{ enabled: true, set_by: 3, set_by_name: 'Dr Ames', set_at: '2026-03-02T09:30:00Z' },
+	] ), [ 'Off: 3 March 2026, 10:00 UTC, by Ben', 'On: 2 March 2026, 09:30 UTC, by Dr Ames' ] );
+	assert.deepEqual( recordingHistoryLines( undefined ), [] );
+	assert.deepEqual( [ ...RECORDING_SWITCH_ROLES ].sort(), [ 'admin', 'clinician' ], 'teachers see it but do not change it' );
 
 } );

@@ -85,6 +85,20 @@ test( 'an exchange adds headers, sends FormData as it is, reads the answer as as
 
 } );
 
+test( 'raw bytes are PUT as they are, under the Content-Type given, never as JSON', async () => {
+
+	const { api, requests } = recording();
+	const wav = new Uint8Array( [ 0x52, 0x49, 0x46, 0x46 ] );
+	await api.putBytes( 'practice/7/audio', wav, 'audio/wav' );
+	await api.putBytes( 'practice/8/audio', wav.buffer, 'audio/wav', { headers: { 'If-Match': '"1"' } } );
+	assert.deepEqual( requests.map( ( r ) => [ r.url, r.init.method, r.init.headers[ 'Content-Type' ] ] ),
+		[ [ '/api/v1/practice/7/audio', 'PUT', 'audio/wav' ], [ '/api/v1/practice/8/audio', 'PUT', 'audio/wav' ] ] );
+	assert.equal( requests[ 0 ].init.body, wav, 'the very bytes, not a JSON text of them' );
+	assert.equal( requests[ 1 ].init.body, wav.buffer );
+	assert.equal( requests[ 1 ].init.headers[ 'If-Match' ], '"1"' );
+
+} );
+
 test( 'a binary GET resolves to the bytes; an empty answer (204) to null', async () => {
 
 	const { api } = recording( respond( 200, null ) );

@@ -6,6 +6,7 @@
 //   const anatomy = await api.get( 'anatomy' );                  // GET /api/v1/anatomy
 //   await api.post( 'poses', { name, params } );                 // POST /api/v1/poses
 //   const bytes = await api.getBinary( info.url );               // an asset URL from an answer
+//   await api.putBytes( 'practice/7/audio', wavBytes, 'audio/wav' ); // raw bytes, not JSON
 //   const { body, headers } = await api.exchange( 'PUT', 'lessons/3', { body, headers: { 'If-Match': etag } } );
 //
 // Paths resolve as links do against the API base `/api/v1/`: 'anatomy' is /api/v1/anatomy, while
@@ -64,6 +65,13 @@ export function describeDetail( detail ) {
 
 }
 
+/** Whether a request body is raw bytes, sent as they are (a WAV file). */
+function isBytes( body ) {
+
+	return body instanceof ArrayBuffer || ArrayBuffer.isView( body ) || ( typeof Blob !== 'undefined' && body instanceof Blob );
+
+}
+
 /** What exchange() can read an answer as (the Response method of each name). */
 const READS = new Set( [ 'json', 'arrayBuffer', 'blob', 'text' ] );
 
@@ -82,10 +90,10 @@ export function resolveUrl( path, base = API_BASE ) {
  *   stands in for the browser's fetch (tests); the default is the global fetch at the time of each
  *   request. `tokenSource()` gives the bearer token to send with each request, or null for none
  * @returns {{ base: string, url: Function, get: Function, post: Function, put: Function,
- *   patch: Function, delete: Function, getBinary: Function, exchange: Function }} every method
- *   returns a Promise and takes a last `{ signal }` option; get/post/put/patch/delete resolve to
- *   the parsed JSON answer (null for an empty one), getBinary to an ArrayBuffer, and exchange to
- *   the whole answer (see below)
+ *   patch: Function, delete: Function, getBinary: Function, putBytes: Function, exchange: Function }}
+ *   every method returns a Promise and takes a last `{ signal }` option; get/post/put/patch/delete
+ *   and putBytes resolve to the parsed JSON answer (null for an empty one), getBinary to an
+ *   ArrayBuffer, and exchange to the whole answer (see below)
  */
 export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = null } = {} ) {
 
@@ -93,7 +101,8 @@ export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = nu
 	 * One request, and the whole answer: { body, status, headers }.
 	 * @param {{ body?: any, headers?: Object<string, string>, read?: 'json'|'arrayBuffer'|'blob'|'text',
 	 *   signal?: AbortSignal }} options `body` is sent as JSON, or as it is when it is FormData (a
-	 *   multipart upload); `headers` are added to the request's (If-Match); `read` says what `body`
+	 *   multipart upload) or bytes (a Blob, an ArrayBuffer or a typed array, with their
+	 *   Content-Type in `headers`); `headers` are added to the request's (If-Match); `read` says what `body`
 	 *   of the answer is: parsed JSON (null for 204, the default), an ArrayBuffer, a Blob or text
 	 */
 	async function exchange( method, path, { body, headers: extra = null, read = 'json', signal } = {} ) {
@@ -106,6 +115,7 @@ export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = nu
 		Object.assign( headers, extra );
 		const init = { method, headers, signal };
 		if ( body instanceof FormData ) init.body = body; // the browser writes its Content-Type
+		else if ( isBytes( body ) ) init.body = body; // raw bytes: their Content-Type is the caller's header
 		else if ( body !== undefined ) {
 
 			headers[ 'Content-Type' ] = 'application/json';
@@ -175,6 +185,8 @@ export function createApi( { base = API_BASE, fetchImpl = null, tokenSource = nu
 		patch: ( path, body, options ) => request( 'PATCH', path, { ...options, body } ),
 		delete: ( path, options ) => request( 'DELETE', path, options ),
 		getBinary: ( path, options ) => request( 'GET', path, { ...options, read: 'arrayBuffer' } ),
+		/** PUT raw `bytes` (a Blob, an ArrayBuffer or a typed array) of `contentType`; resolves to the JSON answer. */
+		putBytes: ( path, bytes, contentType, options ) => request( 'PUT', path, { ...options, body: bytes, headers: { ...options?.headers, 'Content-Type': contentType } } ),
 		exchange,
 	} );
 

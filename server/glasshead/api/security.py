@@ -31,9 +31,11 @@ from starlette.datastructures import Headers
 from starlette.middleware.trustedhost import TrustedHostMiddleware
 
 #: The policy for every response but the docs pages: this origin only. Images may be data: URLs
-#: (the page's empty favicon); no plugins, no <base> elsewhere, forms post here, never framed.
-CSP = ("default-src 'self'; img-src 'self' data:; object-src 'none'; base-uri 'self'; "
-       "form-action 'self'; frame-ancestors 'none'")
+#: (the page's empty favicon), and sound blob: URLs (a kept attempt, fetched with the page's
+#: token, plays in an <audio> element); no plugins, no <base> elsewhere, forms post here, never
+#: framed.
+CSP = ("default-src 'self'; img-src 'self' data:; media-src 'self' blob:; object-src 'none'; "
+       "base-uri 'self'; form-action 'self'; frame-ancestors 'none'")
 #: Methods that change state, and so are refused from another site.
 UNSAFE_METHODS = frozenset({"POST", "PUT", "PATCH", "DELETE"})
 #: Names that always reach this machine's loopback interface.

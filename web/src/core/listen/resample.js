@@ -8,7 +8,7 @@
 // phases of h are tabled once, each normalised to a gain of exactly 1 at DC. Each output sample
 // is computed from input values alone, so chunking the input never changes the output.
 
-import { besselI0 } from './frames.js';
+import { besselI0, SampleStream } from './frames.js';
 
 /**
  * Zero crossings of the sinc on each side: the filter's length (140 taps per output sample from
@@ -137,5 +137,27 @@ export function resampleStream( resampler, input, output ) {
 	}
 
 	return made;
+
+}
+
+/**
+ * A whole recording at another rate, through the same filter as the stream: the samples
+ * before the first and after the last are taken as silence, and the output holds every sample
+ * that falls within the input, ceil( n toRate / fromRate ) of them. `options` as createResampler's
+ * (a `rolloff` under 1 keeps what lies just below the new Nyquist frequency from folding back).
+ * @param {Float32Array} samples
+ * @returns {Float32Array} a new array (a copy when the rates are equal)
+ */
+export function resampleSamples( samples, fromRate, toRate, options = {} ) {
+
+	if ( fromRate === toRate ) return Float32Array.from( samples );
+	const resampler = createResampler( fromRate, toRate, options );
+	const count = Math.ceil( samples.length * resampler.up / resampler.down );
+	const input = new SampleStream( resampler.halfTaps, samples.length + 2 * resampler.halfTaps + 16 );
+	input.append( samples );
+	input.appendZeros( resampler.halfTaps + 1 );
+	const output = new SampleStream( 0, count + 16 );
+	resampleStream( resampler, input, output );
+	return output.data.slice( output.offset( 0 ), output.offset( 0 ) + count );
 
 }

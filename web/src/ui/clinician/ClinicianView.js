@@ -354,6 +354,7 @@ export class ClinicianView extends View {
 	dispose() {
 
 		this.palate3d?.dispose();
+		this.childHistory?.dispose();
 
 	}
 

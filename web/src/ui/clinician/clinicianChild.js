@@ -4,13 +4,17 @@
 // recordings (GET /epg/recordings?child_id=), open a recording beside the target, and export the
 // practice as CSV (GET /children/{id}/practice.csv) and a recording in the formats the server
 // exports (GET /epg/recordings/{id}/export). The goes the child said into the microphone are
-// plotted over the sessions (AttemptPlot.js), and the table says what each one measured. The
-// pure parts (the choices, the rows, the series) are in clinicianChildRows.js.
+// plotted over the sessions (AttemptPlot.js), and the table says what each one measured, with a
+// player for each go whose sound was kept (AttemptSound.js). The switch that keeps the sound of the
+// child's goes is at the top (RecordingSwitch.js). The pure parts (the choices, the rows, the
+// series, the switch in words) are in clinicianChildRows.js.
 
 import { api as pageApi } from '../../api.js';
 import { h } from '../shared/dom.js';
 import { childChoices, EXPORT_FORMATS, measuredSeries, practiceRows, recordingExportPath } from './clinicianChildRows.js';
 import { AttemptPlot } from './AttemptPlot.js';
+import { AttemptSound } from './AttemptSound.js';
+import { RecordingSwitch } from './RecordingSwitch.js';
 import { downloadFile } from '../shared/download.js';
 import './clinicianChild.css';
 
@@ -33,10 +37,12 @@ export class ChildHistory {
 		this.table = h( 'table', { className: 'cv-table cc-practice', 'aria-label': 'Practice history' } );
 		this.recordings = h( 'ul', { className: 'cc-recordings', 'aria-label': 'Recordings of the child' } );
 		this.attempts = new AttemptPlot();
+		this.recordingSwitch = new RecordingSwitch( { api } );
+		this.sound = new AttemptSound( { api } );
 		this.element = h( 'figure', { className: 'cv-card cc-child', 'aria-label': 'A child’s history' },
 			h( 'figcaption', {}, 'A child’s history' ),
 			h( 'div', { className: 'cc-bar' }, h( 'label', {}, 'Child ', this.select ), this.csvButton ),
-			this.status,
+			this.status, this.recordingSwitch.element,
 			h( 'h3', { className: 'cc-heading' }, 'Practice' ), this.table,
 			h( 'h3', { className: 'cc-heading' }, 'Spoken goes' ), this.attempts.element,
 			h( 'h3', { className: 'cc-heading' }, 'Recordings' ), this.recordings );
@@ -46,7 +52,7 @@ export class ChildHistory {
 	/** What window.glasshead.clinician.child reports. */
 	report() {
 
-		return { ...this.state, options: [ ...this.select.options ].map( ( o ) => o.value ).filter( Boolean ) };
+		return { ...this.state, options: [ ...this.select.options ].map( ( o ) => o.value ).filter( Boolean ), recording: this.recordingSwitch.report(), sound: this.sound.report() };
 
 	}
 
@@ -78,6 +84,8 @@ export class ChildHistory {
 		this.csvButton.disabled = id === null;
 		this.table.replaceChildren();
 		this.recordings.replaceChildren();
+		this.sound.dispose();
+		this.recordingSwitch.load( id );
 		if ( id === null ) return;
 		this.say( 'Loading the child’s history…' );
 		try {
@@ -113,7 +121,9 @@ export class ChildHistory {
 
 		this.state.practice = total;
 		const head = h( 'tr', {}, ...[ 'When (UTC)', 'Lesson', 'Item', 'Target', 'Replays', 'Rating', 'Heard' ].map( ( t ) => h( 'th', { scope: 'col' }, t ) ) );
-		const body = rows.map( ( row ) => h( 'tr', {}, ...[ row.when, row.lesson, String( row.item ), row.target, String( row.replays ), row.rating, row.heard ].map( ( t ) => h( 'td', {}, t ) ) ) );
+		const body = rows.map( ( row ) => h( 'tr', { 'data-practice': String( row.id ) },
+			...[ row.when, row.lesson, String( row.item ), row.target, String( row.replays ), row.rating ].map( ( t ) => h( 'td', {}, t ) ),
+			h( 'td', {}, h( 'span', { className: 'cc-heard' }, ...( row.heard ? [ h( 'span', {}, row.heard ) ] : [] ), ...( row.audio ? [ this.sound.button( row.id, row.when ) ] : [] ) ) ) ) );
 		this.table.replaceChildren( h( 'thead', {}, head ), h( 'tbody', {}, ...( body.length ? body : [ h( 'tr', {}, h( 'td', { colspan: '7' }, 'No practice yet.' ) ) ] ) ) );
 
 	}
@@ -157,6 +167,13 @@ export class ChildHistory {
 			this.fail( error );
 
 		}
+
+	}
+
+	/** Let go of the sounds opened (the view is leaving). */
+	dispose() {
+
+		this.sound.dispose();
 
 	}
 

@@ -30,7 +30,8 @@ export function ratingWords( rating, ratedBy ) {
 
 /**
  * The history table's rows from practice records and the lessons they name (Map id -> lesson,
- * with items): [{ when, lesson, item, target, replays, rating, heard }], in the records' order.
+ * with items): [{ id, when, lesson, item, target, replays, rating, heard, audio }], in the
+ * records' order; `audio` is whether the go's sound was kept.
  */
 export function practiceRows( records, lessons ) {
 
@@ -39,6 +40,7 @@ export function practiceRows( records, lessons ) {
 		const lesson = lessons.get( record.lesson_id );
 		const target = lesson?.items?.[ record.item_index ]?.target;
 		return {
+			id: record.id,
 			when: record.practised_at.replace( 'T', ' ' ).replace( /:\d\d(\.\d+)?(Z|[+-]\d\d:\d\d)$/, '' ),
 			lesson: lesson?.title ?? `lesson ${ record.lesson_id }`,
 			item: record.item_index + 1,
@@ -46,6 +48,7 @@ export function practiceRows( records, lessons ) {
 			replays: record.replays,
 			rating: ratingWords( record.rating, record.rated_by ),
 			heard: measureWords( record.measures ),
+			audio: record.has_audio === true,
 		};
 
 	} );
@@ -84,5 +87,43 @@ export function measuredSeries( records ) {
 		vowel: measured.filter( ( r ) => r.measures.f1 && r.measures.f2 ).map( ( r ) => ( { when: r.practised_at, f1: r.measures.f1, f2: r.measures.f2, verdict: r.measures.verdict ?? null } ) ),
 		fricative: measured.filter( ( r ) => r.measures.centroid && ! r.measures.f1 ).map( ( r ) => ( { when: r.practised_at, centroid: r.measures.centroid, verdict: r.measures.verdict ?? null } ) ),
 	};
+
+}
+
+/** The roles that may switch the keeping of a child's recordings (the server's rule too). */
+export const RECORDING_SWITCH_ROLES = Object.freeze( [ 'clinician', 'admin' ] );
+
+const MONTHS = Object.freeze( [ 'January', 'February', 'March', 'April', 'May', 'June', 'July', 'August', 'September', 'October', 'November', 'December' ] );
+
+/** An ISO time as a person reads it, in UTC whatever the browser's zone: '2 March 2026, 09:30 UTC'. */
+export function readableTime( iso ) {
+
+	// A time without a zone is the server's UTC (JavaScript would read it as local time).
+	const text = String( iso ?? '' );
+	const date = new Date( /T[\d:.]+$/.test( text ) ? `${ text }Z` : text );
+	if ( Number.isNaN( date.getTime() ) ) return text;
+	const two = ( n ) => String( n ).padStart( 2, '0' );
+	return `${ date.getUTCDate() } ${ MONTHS[ date.getUTCMonth() ] } ${ date.getUTCFullYear() }, ${ two( date.getUTCHours() ) }:${ two( date.getUTCMinutes() ) } UTC`;
+
+}
+
+/**
+ * A child's recording switch (GET /children/{id}/audio-recording) in words: 'On since 2 March
+ * 2026, 09:30 UTC, by Dr Ames', 'Off since …, by …' once someone turned it off, 'Off' when
+ * nobody ever turned it on.
+ */
+export function recordingSwitchWords( state ) {
+
+	const on = state?.enabled === true;
+	if ( ! state?.set_at ) return on ? 'On' : 'Off';
+	const by = state.set_by_name ? `, by ${ state.set_by_name }` : '';
+	return `${ on ? 'On' : 'Off' } since ${ readableTime( state.set_at ) }${ by }`;
+
+}
+
+/** The switch's history, newest first, one line each: 'On: 2 March 2026, 09:30 UTC, by Dr Ames'. */
+export function recordingHistoryLines( history ) {
+
+	return ( history ?? [] ).map( ( entry ) => `${ entry.enabled ? 'On' : 'Off' }: ${ readableTime( entry.set_at ) }${ entry.set_by_name ? `, by ${ entry.set_by_name }` : '' }` );
 
 }

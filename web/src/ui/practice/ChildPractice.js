@@ -6,12 +6,17 @@
 // hears it again, "Say it" listens to the child (the microphone asked for then) and shows at once,
 // with a face and a colour, how close the try was to the item's target zone, "I tried it" asks how it
 // went with three faces (or an arrow to go on without), and the try is recorded (POST /practice,
-// with the replays counted and what the voice measured, never the audio) before the next target.
-// Every button is 64 px and more, with a picture and an accessible name.
+// with the replays counted and what the voice measured) before the next target. The sound of a
+// try stays on the device unless a clinician has switched recording on for the child: then a red
+// dot in the corner says so, and each try's sound is kept with its record (PracticeAudio.js).
+// Every button is 64 px and more, with a picture and an accessible name. The class code and the
+// roster are in ChildPracticeSignIn.js.
 
-import { clearSession, currentSession, saveSession } from '../../session.js';
+import { currentSession } from '../../session.js';
 import { h } from '../shared/dom.js';
-import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from './ChildPracticeFlow.js';
+import { PracticeRound } from './ChildPracticeFlow.js';
+import { bigButton, signInMethods } from './ChildPracticeSignIn.js';
+import { KEEPING_LABEL, PracticeAudio, uploadFailureMessage } from './PracticeAudio.js';
 import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
 import { targetLabel } from '../lessons/LessonRunnerItems.js';
 import { ItemPresenter } from '../lessons/LessonRunnerViews.js';
@@ -27,13 +32,6 @@ import './childPractice.css';
 const VERDICT_FACES = Object.freeze( { in: 'happy', near: 'meh', off: 'sad' } );
 const VERDICT_LABELS = Object.freeze( { in: 'In the target', near: 'Nearly', off: 'Try again' } );
 
-/** A big button: a picture, and words under it when given (the name is always there for a screen reader). */
-function bigButton( icon, label, onClick, { words = null, className = 'cp-button' } = {} ) {
-
-	return h( 'button', { type: 'button', className, 'aria-label': label, onClick }, picture( icon ), ...( words ? [ h( 'span', { className: 'cp-words' }, words ) ] : [] ) );
-
-}
-
 export class ChildPractice extends View {
 
 	/** @param {{ api?: object, win?: Window }} options */
@@ -45,6 +43,7 @@ export class ChildPractice extends View {
 		this.joinCode = null;
 		this.round = null;
 		this.error = null;
+		this.audio = new PracticeAudio( { api: this.api } );
 
 	}
 
@@ -67,6 +66,7 @@ export class ChildPractice extends View {
 			lesson: round?.lesson.id ?? null, item: round ? round.index : null, items: round?.lesson.items.length ?? 0,
 			replays: round?.replays ?? 0, recorded: round?.records.map( ( r ) => r.id ) ?? [], ready: this.ready ?? false,
 			listening: this.listener?.listening ?? false, attempt: this.attempt ? { zone: this.attempt.zone, measures: this.attempt.measures } : null,
+			audio: this.audio.report(),
 		};
 
 	}
@@ -86,7 +86,10 @@ export class ChildPractice extends View {
 
 	}
 
-	/** Show `screen`: a fresh element with the child's picture in the corner once signed in. */
+	/**
+	 * Show `screen`: a fresh element with the child's picture in the corner once signed in, and
+	 * the sign that their tries are kept when they are.
+	 */
 	setScreen( screen, ...content ) {
 
 		this.screen = screen;
@@ -95,8 +98,10 @@ export class ChildPractice extends View {
 		const top = h( 'div', { className: 'cp-top' } );
 		if ( child ) {
 
+			this.keepingSign = h( 'p', { className: 'cp-keeping', role: 'status' }, h( 'span', { className: 'cp-keeping-dot', 'aria-hidden': 'true' } ), h( 'span', {}, KEEPING_LABEL ) );
+			this.keepingSign.hidden = ! this.audio.enabled;
 			top.append( h( 'span', { className: 'cp-me' }, picture( child.avatar, { label: child.avatar } ), h( 'span', {}, child.display_name ) ),
-				bigButton( 'back', 'Not me: sign out', () => this.signOut(), { className: 'cp-button cp-small' } ) );
+				this.keepingSign, bigButton( 'back', 'Not me: sign out', () => this.signOut(), { className: 'cp-button cp-small' } ) );
 
 		}
 
@@ -117,89 +122,13 @@ export class ChildPractice extends View {
 
 	}
 
-	showCode() {
+	/** Whether the child's tries are kept, read afresh (the sign follows). */
+	async readRecordingSwitch() {
 
-		this.roster = null;
-		const input = h( 'input', {
-			id: 'cp-code', className: 'cp-code', type: 'text', autocomplete: 'off', autocapitalize: 'characters', spellcheck: 'false',
-			maxlength: '12', 'aria-label': 'Class code', placeholder: 'A B C 3 4 7',
-		} );
-		const form = h( 'form', { className: 'cp-code-form', 'aria-label': 'Class code', onSubmit: ( event ) => {
-
-			event.preventDefault();
-			this.findClass( input.value );
-
-		} }, h( 'label', { className: 'cp-label', for: 'cp-code' }, 'Class code' ), input,
-		h( 'button', { type: 'submit', className: 'cp-button cp-go', 'aria-label': 'Go' }, picture( 'next' ) ) );
-		this.setScreen( 'code', form );
-		input.focus();
-
-	}
-
-	/** POST /auth/class-roster: the class's children to pick from. */
-	async findClass( typed ) {
-
-		const code = normaliseJoinCode( typed );
-		if ( ! looksLikeJoinCode( code ) ) return this.showError( 'A class code has six letters and numbers.' );
-		this.showError( '' );
-		try {
-
-			this.roster = await this.api.post( 'auth/class-roster', { join_code: code } );
-
-		} catch ( error ) {
-
-			return this.showError( error.status === 404 || error.status === 401 ? 'There is no class with this code.' : error.message );
-
-		}
-
-		this.joinCode = code;
-		this.showRoster();
-
-	}
-
-	showRoster() {
-
-		const children = this.roster.children ?? [];
-		const grid = h( 'div', { className: 'cp-roster', role: 'group', 'aria-label': 'Who are you?' },
-			...children.map( ( child ) => h( 'button', { type: 'button', className: 'cp-person', 'aria-label': child.display_name, onClick: () => this.signIn( child ) },
-				picture( child.avatar ), h( 'span', { className: 'cp-words' }, child.display_name ) ) ) );
-		this.setScreen( 'roster', h( 'div', { className: 'cp-heading' }, bigButton( 'back', 'Back to the class code', () => this.showCode(), { className: 'cp-button cp-small' } ),
-			h( 'h1', { className: 'cp-title' }, this.roster.class_name ) ), grid );
-
-	}
-
-	/** POST /auth/child-sessions for the picked child; the session is kept (session.js). */
-	async signIn( child ) {
-
-		try {
-
-			const issued = await this.api.post( 'auth/child-sessions', { join_code: this.joinCode, child_id: child.id } );
-			saveSession( { kind: 'child', token: issued.token, expires_at: issued.expires_at, child: issued.child }, { win: this.window } );
-
-		} catch ( error ) {
-
-			return this.showError( error.message );
-
-		}
-
-		this.showLessons();
-
-	}
-
-	async signOut() {
-
-		try {
-
-			await this.api.delete( 'auth/child-sessions/current' );
-
-		} catch {
-			// Already expired or revoked: forgetting it here is all there is to do.
-		}
-
-		clearSession( { win: this.window } );
-		this.round = null;
-		this.lessons = null;
-		this.showCode();
+		const child = this.child;
+		if ( ! child ) return this.audio.reset();
+		await this.audio.read( child.id );
+		if ( this.keepingSign ) this.keepingSign.hidden = ! this.audio.enabled;
 
 	}
 
@@ -210,7 +139,7 @@ export class ChildPractice extends View {
 		this.setScreen( 'lessons' );
 		try {
 
-			this.lessons = ( await this.api.get( 'lessons?limit=100' ) ).lessons ?? [];
+			[ this.lessons ] = await Promise.all( [ this.api.get( 'lessons?limit=100' ).then( ( body ) => body.lessons ?? [] ), this.readRecordingSwitch() ] );
 
 		} catch ( error ) {
 
@@ -232,7 +161,8 @@ export class ChildPractice extends View {
 		let lesson;
 		try {
 
-			lesson = await this.api.get( `lessons/${ id }` );
+			// The switch read again: a clinician may have changed it since the child signed in.
+			[ lesson ] = await Promise.all( [ this.api.get( `lessons/${ id }` ), this.readRecordingSwitch() ] );
 
 		} catch ( error ) {
 
@@ -342,7 +272,7 @@ export class ChildPractice extends View {
 		this.sayButton.setAttribute( 'aria-pressed', 'false' );
 		if ( this.round !== round || round.item !== item ) return;
 		const zone = attemptZone( summary, target, this.norms?.groups?.child ?? {}, 'child' );
-		this.attempt = { zone, measures: attemptMeasures( summary, zone, target ) };
+		this.attempt = { zone, measures: attemptMeasures( summary, zone, target ), recording: this.listener.recording };
 		if ( ! summary.vowel && ! summary.fricative ) return this.showError( listenMessage( 'silent' ).text );
 		this.verdict.replaceChildren( ...( zone ? [ picture( VERDICT_FACES[ zone ], { label: VERDICT_LABELS[ zone ] } ) ] : [] ) );
 		this.verdict.dataset.zone = zone ?? '';
@@ -352,10 +282,11 @@ export class ChildPractice extends View {
 
 	}
 
-	/** POST /practice for this try, then the next target (or the end). */
+	/** POST /practice for this try, then the next target (or the end); its sound kept after, if it is kept. */
 	async record( rating ) {
 
 		const round = this.round;
+		const recording = this.attempt?.recording ?? null;
 		for ( const button of this.faces.querySelectorAll( 'button' ) ) button.disabled = true;
 		let saved;
 		try {
@@ -373,10 +304,30 @@ export class ChildPractice extends View {
 
 		}
 
+		this.keepSound( saved.id, recording );
 		if ( this.round !== round ) return;
 		this.showError( '' );
 		if ( round.next( saved ) ) this.presentItem();
 		else this.showDone();
+
+	}
+
+	/** The try's sound, when recording is on; a failure is said, and the try stays saved. */
+	async keepSound( recordId, recording ) {
+
+		if ( ! this.audio.enabled ) return;
+		// The next target is shown first: resampling and writing the WAV take a moment on a tablet.
+		await new Promise( ( resolve ) => setTimeout( resolve, 0 ) );
+		try {
+
+			await this.audio.keep( recordId, recording );
+
+		} catch ( error ) {
+
+			this.showError( uploadFailureMessage( error ) );
+			if ( this.keepingSign ) this.keepingSign.hidden = ! this.audio.enabled;
+
+		}
 
 	}
 
@@ -407,6 +358,9 @@ export class ChildPractice extends View {
 	}
 
 }
+
+// The class code, the roster and signing out live in ChildPracticeSignIn.js.
+Object.assign( ChildPractice.prototype, signInMethods );
 
 /** Route entry for the view registry. */
 export function mountChildPractice( container ) {

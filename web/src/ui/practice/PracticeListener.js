@@ -1,7 +1,8 @@
 // One spoken attempt in the child's practice: the microphone is opened when the child presses
 // "Say it" (never before), the voice is measured as it comes (core/listen), and the attempt
 // ends by itself once the child has spoken and fallen quiet, or after MAX_ATTEMPT_S, or when
-// the button is pressed again. The audio stays in the page: only the summary leaves this module.
+// the button is pressed again. The summary is what the page measures; the attempt's samples are
+// handed on too (`recording`), for PracticeAudio.js to keep only when recording is switched on.
 
 import { AttemptRecorder } from '../listen/AttemptRecorder.js';
 import { startMicrophone } from '../listen/audioInput.js';
@@ -43,6 +44,8 @@ export class PracticeListener {
 		this.onOpen = onOpen;
 		this.microphone = null;
 		this.finished = null;
+		/** The last attempt's samples as the microphone gave them: { samples, sampleRate }, or null. */
+		this.recording = null;
 
 	}
 
@@ -60,6 +63,7 @@ export class PracticeListener {
 
 		let resolveDone;
 		this.finished = new Promise( ( resolve ) => ( resolveDone = resolve ) );
+		this.recording = null;
 		let recorder = null;
 		this.microphone = await startMicrophone( { win: this.window, onBlock: ( block ) => {
 
@@ -70,7 +74,14 @@ export class PracticeListener {
 		} } );
 		recorder = new AttemptRecorder( { sampleRate: this.microphone.sampleRate, group: this.group } );
 		this.onOpen();
-		this.end = () => resolveDone( summariseAttempt( recorder.hops ) );
+		this.end = () => {
+
+			// A fresh recorder per attempt: its samples are this attempt's, from the microphone's
+			// opening to its end (far under the recorder's KEPT_SECONDS).
+			this.recording = { samples: recorder.samples(), sampleRate: recorder.sampleRate };
+			resolveDone( summariseAttempt( recorder.hops ) );
+
+		};
 		return this.finished;
 
 	}
