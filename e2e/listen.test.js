@@ -4,8 +4,9 @@
 // speechocean762 child's /s/ words move the meter to the /s/ side; a file that is not audio and
 // a refused microphone are said in words; and in the child's practice, "Say it" on the target
 // /i/ shows at once that the try was in the target and keeps its measures in the practice
-// record. Screenshots listen-* at a projector's and an upright tablet's size are for a person to
-// look at.
+// record. The mouth panel poses the head at the target vowel and draws the learner's tongue as
+// estimated from the sound. Screenshots listen-* at a projector's and an upright tablet's size are
+// for a person to look at.
 
 import assert from 'node:assert/strict';
 import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
@@ -16,6 +17,7 @@ import { F3_TARGET_HZ, sibilantPosition } from '../web/src/ui/listen/listenScale
 import { listenHref } from '../web/src/ui/lessons/LessonRunnerItems.js';
 import { apiSession, authHeaders } from './accounts.js';
 import { animationFrames, fakeMicrophoneArgs, launchBrowser, openPage, readDebug, REPO, saveScreenshot, startServer } from './harness.js';
+import { decodePng } from './png.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const SPEECH = join( DATA_DIR, 'speech' );
@@ -64,6 +66,75 @@ describe( 'listening', { timeout: 600_000 }, () => {
 
 	const listening = async ( page ) => ( await readDebug( page ) ).listening;
 
+	/** Wait until the mouth panel's head is loaded and has drawn every change; its debug state. */
+	async function mouthSettled( page ) {
+
+		await page.waitForFunction( () => window.glasshead.listening?.mouth?.head === 'ready' && window.glasshead.listening.mouth.headPending === false, null, { timeout: 180_000, polling: 100 } );
+		await animationFrames( page, 3 );
+		return ( await listening( page ) ).mouth;
+
+	}
+
+	/**
+	 * Where the mouth panel lies: every part of it inside the displays' width (nothing cut off),
+	 * no sideways scrolling, and whether it sits beside the chart, wholly on the screen.
+	 */
+	function mouthLayout( page ) {
+
+		return page.evaluate( () => {
+
+			const box = ( selector ) => document.querySelector( selector ).getBoundingClientRect();
+			const displays = box( '.ls-displays' );
+			const parts = [ '.ls-mouth', '.ls-mouth-head-box', '.ls-mouth-drawing', '.ls-mouth-note', '.ls-chart canvas' ].map( ( selector ) => ( { selector, rect: box( selector ) } ) );
+			const element = document.querySelector( '.ls-displays' );
+			return {
+				cutOff: parts.filter( ( { rect } ) => rect.left < displays.left - 0.5 || rect.right > displays.right + 0.5 || rect.width < 1 ).map( ( { selector } ) => selector ),
+				sideways: element.scrollWidth > element.clientWidth,
+				besideChart: Math.abs( box( '.ls-mouth' ).top - box( '.ls-chart' ).top ) < 1 && box( '.ls-mouth' ).left > box( '.ls-chart' ).right,
+				onScreen: box( '.ls-mouth' ).top >= 0 && box( '.ls-mouth' ).bottom <= window.innerHeight,
+			};
+
+		} );
+
+	}
+
+	/**
+	 * What the mouth panel shows, read from its pixels: of the drawing (its 2D canvas) the share
+	 * of pixels in the target's fill and in the estimate's blue; of the head (a screenshot of its
+	 * box) the share of pixels that are not the viewer's background, and of the tongue's red.
+	 */
+	async function mouthPixels( page ) {
+
+		const drawing = await page.evaluate( () => {
+
+			const canvas = document.querySelector( '.ls-mouth-drawing' );
+			const data = canvas.getContext( '2d' ).getImageData( 0, 0, canvas.width, canvas.height ).data;
+			let fill = 0, blue = 0;
+			for ( let i = 0; i < data.length; i += 4 ) {
+
+				const [ r, g, b ] = [ data[ i ], data[ i + 1 ], data[ i + 2 ] ];
+				if ( r > 220 && g > 170 && g < 215 && b > 175 && b < 220 ) fill ++; // the target's pale red over white
+				if ( b > 150 && r < 80 && g < 140 ) blue ++; // the estimate's dashes
+			}
+
+			return { fill: fill / ( data.length / 4 ), blue: blue / ( data.length / 4 ) };
+
+		} );
+		const image = decodePng( await page.locator( '.ls-mouth-head' ).screenshot() );
+		let other = 0, red = 0;
+		const pixels = image.width * image.height;
+		for ( let i = 0; i < pixels; i ++ ) {
+
+			const [ r, g, b ] = image.data.subarray( 4 * i, 4 * i + 3 );
+			if ( Math.abs( r - 0xdf ) + Math.abs( g - 0xe3 ) + Math.abs( b - 0xe8 ) > 30 ) other ++;
+			if ( r > 120 && g < 70 && b < 80 ) red ++;
+
+		}
+
+		return { drawing, head: { drawn: other / pixels, tongue: red / pixels } };
+
+	}
+
 	/** Choose the group and target, press Start, hear HEARD_S of input, press Stop: the page's state. */
 	async function attempt( page, { group = 'child', target = '' } = {} ) {
 
@@ -95,10 +166,31 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		await page.getByRole( 'slider', { name: 'F3 target, Hz' } ).fill( '4000' );
 		assert.equal( ( await listening( page ) ).f3UnderTarget, true );
 		assert.match( await page.locator( '.ls-attempt-measures' ).textContent(), /^vowel: F0 \d+ Hz, F1 \d+ Hz, F2 \d+ Hz/ );
+		// The mouth: the head at /i/'s target, and beside it the learner's tongue estimated from the
+		// sound, which leans most on /i/.
+		await page.waitForFunction( () => window.glasshead.listening.mouth?.estimate, null, { timeout: 60_000 } );
+		const mouth = await mouthSettled( page );
+		assert.equal( mouth.target, 'iy' );
+		const weights = Object.entries( mouth.estimate.weights ).sort( ( a, b ) => b[ 1 ] - a[ 1 ] );
+		assert.equal( weights[ 0 ][ 0 ], 'iy', JSON.stringify( mouth.estimate.weights ) );
+		assert.ok( Math.abs( weights.reduce( ( sum, [ , w ] ) => sum + w, 0 ) - 1 ) < 1e-9 );
+		assert.ok( Number.isFinite( mouth.estimate.params.dorsum_height ), 'the estimate has the tongue\'s parameters' );
+		assert.match( await page.locator( '.ls-mouth-note' ).textContent(), /guess from the sound/ );
+		const pixels = await mouthPixels( page );
+		assert.ok( pixels.drawing.fill > 0.03 && pixels.drawing.blue > 0.002, `the drawing shows the target and the estimate: ${ JSON.stringify( pixels.drawing ) }` );
+		assert.ok( pixels.head.drawn > 0.5 && pixels.head.tongue > 0.02, `the head is drawn, its tongue showing: ${ JSON.stringify( pixels.head ) }` );
+		assert.deepEqual( await mouthLayout( page ), { cutOff: [], sideways: false, besideChart: true, onScreen: true }, 'on a projector the mouth sits beside the chart' );
+		// A still head draws nothing more.
+		const frames = ( await listening( page ) ).mouth.headFrames;
+		await animationFrames( page, 10 );
+		assert.equal( ( await listening( page ) ).mouth.headFrames, frames, 'the head drew frames with nothing changing' );
 		await saveScreenshot( page, 'listen-heed-1920' );
 		await page.setViewportSize( { width: 768, height: 1024 } );
 		await page.waitForTimeout( 300 );
+		await page.locator( '.ls-mouth' ).scrollIntoViewIfNeeded();
+		await mouthSettled( page );
 		await saveScreenshot( page, 'listen-heed-tablet' );
+		assert.deepEqual( await mouthLayout( page ), { cutOff: [], sideways: false, besideChart: false, onScreen: true }, 'on a tablet the mouth lies under the chart, whole' );
 		assert.deepEqual( page.problems, [] );
 
 	} );
@@ -111,9 +203,19 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		assert.equal( state.vowel.vowel, 'aa' );
 		assert.equal( state.vowel.zone, 'in', `F1 ${ vowel.f1 } Hz, F2 ${ vowel.f2 } Hz: ${ state.vowel.distance } sd from /ɑ/` );
 		assert.ok( vowel.f1 > 700 && vowel.f2 < 2000, JSON.stringify( vowel ) );
+		const before = await mouthSettled( page );
+		assert.equal( before.target, 'aa' );
+		const aaPose = ( await readDebug( page ) ).params;
 		await page.getByRole( 'combobox', { name: 'Target vowel' } ).selectOption( 'iy' );
 		await page.waitForFunction( () => window.glasshead.listening.vowel?.vowel === 'iy' );
 		assert.equal( ( await listening( page ) ).vowel.zone, 'off', 'far from /i/' );
+		// A new target poses the head again and redraws the panel; the estimate stays the attempt's.
+		const after = await mouthSettled( page );
+		assert.equal( after.target, 'iy' );
+		assert.ok( after.headFrames > before.headFrames && after.draws > before.draws, `${ JSON.stringify( before ) } then ${ JSON.stringify( after ) }` );
+		assert.deepEqual( after.estimate, before.estimate );
+		const iyPose = ( await readDebug( page ) ).params;
+		assert.ok( iyPose.dorsum_front_height > aaPose.dorsum_front_height, `/i/ raises the front of the dorsum: ${ aaPose.dorsum_front_height } then ${ iyPose.dorsum_front_height }` );
 		assert.deepEqual( page.problems, [] );
 
 	} );
@@ -177,6 +279,29 @@ describe( 'listening', { timeout: 600_000 }, () => {
 		assert.deepEqual( [ measures.verdict, measures.target_vowel, records[ 0 ].rating ], [ 'in', 'iy', 3 ] );
 		assert.ok( measures.f1 > 250 && measures.f1 < 600 && measures.f2 > 2500 && measures.f0 > 150, JSON.stringify( measures ) );
 		assert.deepEqual( problems, [] );
+
+	} );
+
+	test( 'without WebGL2 the mouth panel says so in words, and the page still measures a recording and draws both tongues', async () => {
+
+		const browser = await launchBrowser( { args: [ '--disable-3d-apis' ] } );
+		browsers.push( browser );
+		const page = await openPage( browser, { width: 1920, height: 1080 } );
+		await page.goto( `${ server.baseUrl }/#/listen?group=child&vowel=aa` );
+		await page.waitForFunction( () => window.glasshead?.loaded === true, null, { timeout: 60_000 } );
+		await page.waitForFunction( () => window.glasshead.listening.mouth?.head === 'no-webgl' );
+		assert.match( await page.locator( '.ls-mouth-message' ).textContent(), /cannot show the 3D head \(it needs WebGL2\)/ );
+		await page.locator( 'input[type=file]' ).setInputFiles( HEED );
+		await page.waitForFunction( () => window.glasshead.listening.mouth.estimate !== null, null, { timeout: 60_000 } );
+		const state = await listening( page );
+		assert.equal( state.vowel.vowel, 'aa' );
+		assert.equal( state.mouth.target, 'aa' );
+		const weights = Object.entries( state.mouth.estimate.weights ).sort( ( a, b ) => b[ 1 ] - a[ 1 ] );
+		assert.equal( weights[ 0 ][ 0 ], 'iy' );
+		const { drawing } = await mouthPixels( page );
+		assert.ok( drawing.fill > 0.03 && drawing.blue > 0.002, JSON.stringify( drawing ) );
+		// three.js says in the console that it could not make a context; nothing else may go wrong.
+		assert.deepEqual( page.problems.filter( ( problem ) => ! /WebGL/.test( problem ) ), [] );
 
 	} );
 

@@ -5,7 +5,8 @@
 // leaves the device: nothing here sends it anywhere.
 //
 // window.glasshead.listening holds the latest measures: { source, group, target, active, hops,
-// latest, vowel, fricative, summary, problem, message }.
+// latest, vowel, fricative, summary, problem, message, mouth } (mouth: MouthPanel.js, the head
+// at the target and the learner's tongue estimated from the sound).
 
 import { FULL_SCALE_DB, GROUPS as ANALYSIS_GROUPS } from '../../core/listen/params.js';
 import { parseWav } from '../../core/listen/wav.js';
@@ -16,6 +17,7 @@ import { SibilantMeter, SpectrumPanel, TraceStrip, VowelChart, ZONE_COLOURS } fr
 import { listenMessage, messagePicture } from './listenMessages.js';
 import { AttemptPanel } from './AttemptPanel.js';
 import { AttemptRecorder } from './AttemptRecorder.js';
+import { MouthPanel, topRowSizes } from './MouthPanel.js';
 import { attemptWords, F3_TARGET_HZ, inputProblem, roomProblem, measurableTarget, median, nearestVowel, NORMS_URL, summariseAttempt } from './listenScales.js';
 import './listen.css';
 
@@ -63,6 +65,7 @@ export class ListenView extends View {
 		this.traces = new TraceStrip();
 		this.spectrum = new SpectrumPanel();
 		this.attemptPanel = new AttemptPanel();
+		this.mouth = new MouthPanel( { api: this.api } );
 		this.f3Slider = h( 'input', { type: 'range', min: '1200', max: '4000', step: '50', value: String( this.f3Target ), 'aria-label': 'F3 target, Hz', onInput: () => this.setF3Target( Number( this.f3Slider.value ) ) } );
 		this.f3Value = h( 'span', { className: 'ls-f3-value' }, `${ this.f3Target } Hz` );
 		const controls = h( 'div', { className: 'ls-controls' },
@@ -72,7 +75,7 @@ export class ListenView extends View {
 			h( 'div', { className: 'ls-buttons' }, this.startButton, h( 'label', { className: 'ls-open' }, 'Open a recording…', this.fileInput ) ),
 			this.status, this.verdict );
 		const displays = h( 'div', { className: 'ls-displays' },
-			h( 'figure', { className: 'ls-chart' }, this.chart.element ),
+			h( 'div', { className: 'ls-top' }, h( 'figure', { className: 'ls-chart' }, this.chart.element ), this.mouth.element ),
 			h( 'figure', { className: 'ls-meter' }, this.meter.element ),
 			h( 'figure', { className: 'ls-traces' }, this.traces.element ),
 			h( 'figure', { className: 'ls-spectrum' }, this.spectrum.element,
@@ -127,7 +130,9 @@ export class ListenView extends View {
 	layout( displays ) {
 
 		const width = Math.max( 280, Math.floor( displays.clientWidth ) - 30 ); // its padding and the canvas's border
-		this.chart.resize( width, Math.round( Math.min( width * 0.75, 520 ) ) );
+		const top = topRowSizes( width );
+		this.chart.resize( top.chart.width, top.chart.height );
+		this.mouth.resize( top.mouth.width, top.mouth.height );
 		this.meter.resize( width );
 		this.traces.resize( width );
 		this.spectrum.resize( width );
@@ -327,6 +332,7 @@ export class ListenView extends View {
 			const vowel = this.currentVowel();
 			this.chart.setNorms( this.norms?.groups?.[ this.state.group ] ?? null, this.state.target || null );
 			this.chart.draw( this.hops, vowel );
+			this.mouth.update( { vowels: this.norms?.groups?.[ this.state.group ], target: this.state.target, summary: this.state.summary } );
 			const latestHiss = this.state.summary?.fricative?.centroid ?? [ ...this.hops ].reverse().find( ( hop ) => ! hop.voiced && hop.centroid > 0 )?.centroid ?? null;
 			this.meter.draw( latestHiss, this.state.group );
 			this.traces.draw( this.hops );
@@ -372,7 +378,7 @@ export class ListenView extends View {
 			f3Target: this.f3Target, f3, f3UnderTarget: f3 !== null && f3 <= this.f3Target,
 			source: this.state.source, group: this.state.group, target: this.state.target || null,
 			active: this.state.active, hops: this.recorder?.hopCount ?? 0, latest: this.hops.at( - 1 ) ?? null,
-			vowel, summary: this.state.summary, problem: this.state.problem, message: this.state.message,
+			vowel, summary: this.state.summary, problem: this.state.problem, message: this.state.message, mouth: this.mouth.debugState(),
 		};
 
 	}
@@ -381,6 +387,7 @@ export class ListenView extends View {
 
 		this.microphone?.stop();
 		this.microphone = null;
+		this.mouth?.dispose();
 
 	}
 
