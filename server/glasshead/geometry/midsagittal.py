@@ -11,7 +11,6 @@ points on the plane z = 0 it is a plain 2D similarity.
 import math
 
 import numpy as np
-import trimesh
 
 #: mm: consecutive points of a polyline closer than this are one point (``resample``).
 DUPLICATE_MM = 1e-9
@@ -33,6 +32,8 @@ def resample(polyline, step_mm) -> np.ndarray:
 
 def midline_section(vertices, faces) -> list[np.ndarray]:
     """The z = 0 section of a mesh as a list of (k, 2) polylines (mm)."""
+    import trimesh  # here, not at the top: the server imports this module and needs no trimesh
+
     mesh = trimesh.Trimesh(vertices, faces, process=False)
     section = mesh.section(plane_origin=[0.0, 0.0, 0.0], plane_normal=[0.0, 0.0, 1.0])
     if section is None:

@@ -18,7 +18,6 @@ import wave
 from pathlib import Path
 
 import numpy as np
-from scipy import signal
 
 KINDS = ("natural", "lowpass", "vocoded", "none", "articulatory")
 #: Default and accepted low-pass cut-off, Hz.
@@ -53,6 +52,8 @@ def lowpass(samples: np.ndarray, sample_rate: int, cutoff_hz: float) -> np.ndarr
     x = _as_float(samples)
     if not 0 < cutoff_hz < sample_rate / 2:
         raise ValueError(f"cut-off {cutoff_hz} Hz must lie between 0 and {sample_rate / 2} Hz")
+    from scipy import signal  # here, not at the top: importing it costs the server 1.3 s to start
+
     sos = signal.butter(LOWPASS_ORDER, cutoff_hz, btype="lowpass", fs=sample_rate, output="sos")
     return signal.sosfiltfilt(sos, x) if len(x) > 3 * (2 * len(sos) + 1) else x * 0.0
 
@@ -71,6 +72,8 @@ def vocode(samples: np.ndarray, sample_rate: int, channels: int, seed: int = 0) 
     """(n,) samples noise-vocoded with ``channels`` bands (Shannon et al. 1995), at the same RMS;
     (n,) float64. ``seed``: the noise carriers' random seed (the same input gives the same
     output)."""
+    from scipy import signal  # here, not at the top: see lowpass
+
     x = _as_float(samples)
     high = min(VOCODER_BAND_HZ[1], 0.45 * sample_rate)
     edges = greenwood_edges(channels, VOCODER_BAND_HZ[0], high)
