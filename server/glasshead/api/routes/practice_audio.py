@@ -138,7 +138,10 @@ UPLOAD_RESPONSES: Responses = {
             status_code=status.HTTP_201_CREATED, response_model=PracticeAudioOut,
             responses=UPLOAD_RESPONSES,
             openapi_extra={"requestBody": {"required": True, "content": {
-                "audio/wav": {"schema": {"type": "string", "format": "binary"}}}}})
+                "audio/wav": {"schema": {"type": "string", "format": "binary"},
+                              # The bytes themselves cannot be shown: what they are.
+                              "example": "RIFF<size>WAVEfmt <PCM, 1 channel, 16000 Hz, 16-bit>"
+                                         "data<samples>"}}}})
 async def put_practice_audio(record_id: RecordId, request: Request, session: SessionDep,
                              person: Reader) -> PracticeAudioOut:
     """Keep the recording of an attempt with its practice record, while the child's recording
