@@ -10,6 +10,9 @@ from assets_support import copy_built_assets
 from glasshead.asset_store import ASSETS, AssetStore, AssetUnavailableError
 from glasshead.constants import REBUILD_COMMAND
 
+#: An utterance with its flesh points, which pose the lip meshes.
+FLESH_POINTS = {"phones": [{"symbol": "P", "start_s": 0.0, "end_s": 0.1}],
+                "audio": {"kind": "none"}, "flesh_points": True}
 #: Every route that reads a built asset, with a request that is valid when the asset is there.
 ROUTES = {
     "manifest": [("get", "/api/v1/anatomy", None)],
@@ -29,6 +32,8 @@ ROUTES = {
                     {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
     "pharynx_mesh": [("post", "/api/v1/collision/correct",
                       {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
+    "upper_lip_mesh": [("post", "/api/v1/utterances", FLESH_POINTS)],
+    "lower_lip_mesh": [("post", "/api/v1/utterances", FLESH_POINTS)],
     "phoneme_targets": [("get", "/api/v1/phonemes", None), ("get", "/api/v1/phonemes/T", None)],
     "vtl_observations": [("get", "/api/v1/observations", None),
                          ("get", "/api/v1/observations/a", None)],

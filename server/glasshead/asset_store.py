@@ -33,6 +33,7 @@ from glasshead.constants import (
     FIT_REPORT_FILE,
     FIT_REPORT_FORMAT_VERSION,
     LANDMARKS_FILE,
+    LOWER_LIP_GLB,
     MANIFEST_FILE,
     MANIFEST_FORMAT_VERSION,
     PHARYNX_GLB,
@@ -40,6 +41,7 @@ from glasshead.constants import (
     PHONEME_TARGETS_FORMAT_VERSION,
     REBUILD_COMMAND,
     TONGUE_RIG_FILE,
+    UPPER_LIP_GLB,
     VELUM_REST_GLB,
     VELUM_RIG_FILE,
     VTL_OBSERVATIONS_FILE,
@@ -243,6 +245,9 @@ ASSETS: tuple[AssetSpec, ...] = (
     # The tongue's collision with the velum and the pharyngeal wall (geometry.tract_collision).
     AssetSpec("velum_mesh", VELUM_REST_GLB, read_glb_mesh),
     AssetSpec("pharynx_mesh", PHARYNX_GLB, read_glb_mesh),
+    # The lips at rest, for the flesh points of an utterance (geometry.flesh_points).
+    AssetSpec("upper_lip_mesh", UPPER_LIP_GLB, read_glb_mesh),
+    AssetSpec("lower_lip_mesh", LOWER_LIP_GLB, read_glb_mesh),
     AssetSpec("phoneme_targets", PHONEME_TARGETS_FILE, read_phoneme_targets),
     AssetSpec("vtl_observations", VTL_OBSERVATIONS_FILE, read_vtl_observations),
     AssetSpec("fit_report", FIT_REPORT_FILE, read_fit_report),

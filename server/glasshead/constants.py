@@ -246,6 +246,10 @@ VELUM_RIG_FILE = "velum-rig.json"
 #: collision reads besides the velum rig (glasshead.geometry.tract_collision).
 VELUM_REST_GLB = "velum_rest.glb"
 PHARYNX_GLB = "pharynx.glb"
+#: The lips at rest: the meshes the flesh points of an utterance pose with the face rig
+#: (glasshead.geometry.flesh_points).
+UPPER_LIP_GLB = "upper_lip.glb"
+LOWER_LIP_GLB = "lower_lip.glb"
 #: The teaching landmarks: parts and places of articulation (glasshead.pipeline.landmarks).
 LANDMARKS_FILE = "landmarks.json"
 #: Format version of the landmarks file; its readers refuse any other version.

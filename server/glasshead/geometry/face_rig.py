@@ -277,15 +277,21 @@ def lip_parameters(rig, params):
     return values
 
 
-def prepare_meshes(rig, rest_vertices):
+def prepare_meshes(rig, rest_vertices, names=MESH_NAMES):
     """The fixed per-mesh data a pose needs, from the rig and the meshes' rest vertices.
 
-    rest_vertices : dict with every name in MESH_NAMES -> (n, 3) float, project frame, in the
-    vertex order the rig was built for.  Returns dict name -> dict of ``rest``, ``weights``,
-    ``coeffs`` and, for the lips, ``midline_edges`` and ``reference_vertex``.
+    rest_vertices : dict with every name in ``names`` -> (n, 3) float, project frame, in the
+    vertex order the rig was built for.  names : the meshes to prepare (MESH_NAMES, or a subset
+    that holds both lips: ``pose_face`` then poses only those).  Returns dict name -> dict of
+    ``rest``, ``weights``, ``coeffs`` and, for the lips, ``midline_edges`` and
+    ``reference_vertex``.
     """
+    unknown = [n for n in names if n not in MESH_NAMES]
+    if unknown or not set(LIP_MESHES) <= set(names):
+        raise ValueError(f"names must be meshes of the rig ({', '.join(MESH_NAMES)}) including "
+                         f"both lips, got {', '.join(names)}")
     prepared = {}
-    for name in MESH_NAMES:
+    for name in names:
         if name not in rest_vertices:
             raise ValueError(f"rest_vertices lacks the mesh {name!r}")
         rest = _points(name, rest_vertices[name])

@@ -199,6 +199,8 @@ def _coarticulate(phones: list[dict], targets: dict) -> dict:
     return coarticulate(phones, targets, rate_hz=RATE_HZ)
 
 
+#: Decimals of the flesh points sent, mm (a micrometre).
+FLESH_POINT_DECIMALS = 3
 #: Decimals of the dominance curves sent (far below what a plot shows; keeps the answer small).
 DOMINANCE_DECIMALS = 5
 
@@ -244,10 +246,15 @@ def cached_answer(request: dict, targets_sha256: str, cache: UtteranceCache) -> 
                         with_audio=request["audio"]["kind"] != "none")
 
 
-def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCache) -> bytes:
+def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCache,
+         flesh_points=None) -> bytes:
     """The response's JSON bytes for a validated request (``text`` | ``phonemes`` | ``phones``,
-    ``rate``, ``audio``), from ``cache`` or made and kept there. UtteranceInputError for input
-    that cannot be spoken; espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
+    ``rate``, ``audio``, ``dominance``, ``flesh_points``), from ``cache`` or made and kept there.
+    ``flesh_points``: what a request with ``"flesh_points": true`` needs, a function of the
+    tracks ({name: [float] * n_frames}) giving {point: (n_frames, 3) mm}
+    (``geometry.flesh_points.FleshPointRig.tracks``); ``targets_sha256`` must then also stand for
+    what that function reads. UtteranceInputError for input that cannot be spoken;
+    espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
     hit = cached_answer(request, targets_sha256, cache)
     if hit is not None:
         return hit
@@ -322,6 +329,14 @@ def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCach
     }
     if request.get("dominance"):
         response["dominance"] = _dominance(timed, targets)
+    if request.get("flesh_points"):
+        if flesh_points is None:
+            raise ValueError("a request for flesh points needs the flesh_points function")
+        import numpy as np
+
+        response["flesh_points"] = {
+            name: (np.round(track, FLESH_POINT_DECIMALS) + 0.0).tolist()  # + 0.0: no -0.0
+            for name, track in flesh_points(result["tracks"]).items()}
     data = json.dumps(response, separators=(",", ":")).encode()
     cache.put(utterance_id, data, wav)
     return data

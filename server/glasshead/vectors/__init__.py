@@ -28,6 +28,8 @@ GENERATORS = (
     Generator("glasshead.vectors.tongue:files",
               ("tongue-surface.json", "tongue-jaw.json", "tongue-bspline.json")),
     Generator("glasshead.vectors.face:files", ("face-rig.json",)),
+    # after the tongue and face files: it reads their fixtures
+    Generator("glasshead.vectors.flesh_points:files", ("flesh-points.json",)),
     Generator("glasshead.vectors.velum:files", ("velum.json",)),
     Generator("glasshead.vectors.tract_collision:files", ("tract-collision.json",)),
     Generator("glasshead.vectors.collision:files",

@@ -259,6 +259,12 @@ export const VELUM_RIG_FILE = 'velum-rig.json';
  */
 export const VELUM_REST_GLB = 'velum_rest.glb';
 export const PHARYNX_GLB = 'pharynx.glb';
+/**
+ * The lips at rest: the meshes the flesh points of an utterance pose with the face rig
+ * (glasshead.geometry.flesh_points).
+ */
+export const UPPER_LIP_GLB = 'upper_lip.glb';
+export const LOWER_LIP_GLB = 'lower_lip.glb';
 /** The teaching landmarks: parts and places of articulation (glasshead.pipeline.landmarks). */
 export const LANDMARKS_FILE = 'landmarks.json';
 /** Format version of the landmarks file; its readers refuse any other version. */

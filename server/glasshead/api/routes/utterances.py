@@ -10,6 +10,7 @@ server. The worker keeps what it made in the cache it is sent (``settings.uttera
 directory on this machine, or the database, where every server on it finds it).
 """
 
+import hashlib
 import re
 from typing import Annotated, Literal
 
@@ -20,6 +21,7 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from glasshead.api.deps import AssetsDep, CacheDep, ComputeDep, open_cache
 from glasshead.asset_store import AssetStore
+from glasshead.geometry.flesh_points import FLESH_POINT_NAMES, FleshPointRig
 from glasshead.jobs.compute import ComputePool
 from glasshead.speech import audio, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
@@ -35,6 +37,10 @@ TEXTGRID_EXAMPLE = ('File type = "ooTextFile"\nObject class = "TextGrid"\n\n0\n0
                     '"IntervalTier"\n"phones"\n0\n0.5\n4\n0\n0.05\n""\n0.05\n0.22\n"s"\n'
                     '0.22\n0.34\n"ɪ"\n0.34\n0.5\n"p"\n')
 AudioKind = Literal["natural", "lowpass", "vocoded", "none", "articulatory"]
+FleshPoint = Literal[FLESH_POINT_NAMES]
+#: The assets the flesh points read besides the phoneme targets (all of them part of the
+#: cache key of a request that asks for them).
+FLESH_POINT_ASSETS = ("tongue_rig", "face_rig", "landmarks", "upper_lip_mesh", "lower_lip_mesh")
 Rate = Field(1.0, ge=0.5, le=2.0, description="speaking rate: 1 is espeak-ng's 175 words a "
                                               "minute; timed phones are divided by it")
 
@@ -75,6 +81,8 @@ class UtteranceRequest(BaseModel):
     audio: AudioOptions = Field(default_factory=AudioOptions)
     dominance: bool = Field(False, description="also send each phone's dominance curves, per "
                                                "group of parameters (the player plots them)")
+    flesh_points: bool = Field(False, description="also send the tracks of the points where "
+                               "articulography puts its sensors (tongue, incisors, lips)")
 
     @model_validator(mode="after")
     def one_input(self):
@@ -122,15 +130,48 @@ class Utterance(BaseModel):
     dominance: dict | None = Field(None, description="with dominance: true, {groups: {group: "
                                    "[[float] * n_frames per phone]}, parameters: {parameter: "
                                    "group}}")
+    flesh_points: dict[FleshPoint, list[list[float]]] | None = Field(
+        None, description="with flesh_points: true, {point: [[x, y, z] * n_frames]}, mm in the "
+        "project frame (x anterior, y up, z left): the tongue's tip (10 mm behind the apex), "
+        "blade, dorsum and back (25, 40 and 55 mm) on its upper mid-sagittal outline before the "
+        "collision correction, the lower incisor's edge moved by the jaw, the lips' vermilion "
+        "midpoints posed by the face rig, and the upper incisor's edge (fixed)")
+
+
+def content_key(store: AssetStore, request: dict) -> str:
+    """What the answer to ``request`` is made from, as the cache key takes it: the phoneme
+    targets' hash, or with ``flesh_points`` a hash of it and of every asset the points read."""
+    targets = store.entry("phoneme_targets").sha256
+    if not request.get("flesh_points"):
+        return targets
+    hashes = [targets] + [store.entry(name).sha256 for name in FLESH_POINT_ASSETS]
+    return hashlib.sha256("\0".join(hashes).encode()).hexdigest()
+
+
+def flesh_point_rig(store: AssetStore) -> FleshPointRig:
+    """The flesh points' rig of the store's current assets, prepared once per version of them."""
+    entries = {name: store.entry(name) for name in FLESH_POINT_ASSETS}
+    key = ("flesh_points",) + tuple(e.sha256 for e in entries.values())
+    return store.derived("face_rig", key, lambda face: FleshPointRig(
+        entries["tongue_rig"].value, face,
+        {"upper_lip": entries["upper_lip_mesh"].value[0],
+         "lower_lip": entries["lower_lip_mesh"].value[0]},
+        entries["landmarks"].value))
 
 
 def speak(store: AssetStore, payload: dict) -> bytes:
     """In a compute worker: the utterance's JSON (``utterance.make``), made and kept in the
     cache the payload names (``cache_dir`` or ``database_url``, as ``open_cache`` takes)."""
+    request = payload["request"]
     entry = store.entry("phoneme_targets")
+
+    def flesh(tracks):  # prepared only when the answer is not cached
+        return flesh_point_rig(store).tracks(tracks)
+
     try:
-        return utterance.make(payload["request"], entry.value, entry.sha256,
-                              open_cache(payload))
+        return utterance.make(request, entry.value, content_key(store, request),
+                              open_cache(payload),
+                              flesh_points=flesh if request.get("flesh_points") else None)
     except utterance.UtteranceInputError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
     except EspeakUnavailableError as exc:
@@ -152,7 +193,7 @@ def _speaking(request: dict) -> str:
 async def _respond(request: dict, assets: AssetStore, cache: utterance.UtteranceCache,
                    compute: ComputePool) -> Response:
     hit = await run_in_threadpool(utterance.cached_answer, request,
-                                  assets.entry("phoneme_targets").sha256, cache)
+                                  content_key(assets, request), cache)
     if hit is not None:
         return Response(content=hit, media_type="application/json")
     return await compute.respond(speak, {"request": request, **cache.location},
@@ -163,7 +204,8 @@ async def _respond(request: dict, assets: AssetStore, cache: utterance.Utterance
 async def create_utterance(body: UtteranceRequest, assets: AssetsDep, cache: CacheDep,
                            compute: ComputeDep) -> Response:
     """Speak text, phonemes (IPA or ARPAbet) or timed phones: the phones with their times, the
-    coarticulated tracks and cues, and the audio's URL."""
+    coarticulated tracks and cues, and the audio's URL; with ``flesh_points``, also the tracks
+    of the EMA sensor points on the rig."""
     return await _respond(body.model_dump(mode="json"), assets, cache, compute)
 
 
