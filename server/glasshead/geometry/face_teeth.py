@@ -17,6 +17,14 @@ import numpy as np
 import numpy.typing as npt
 
 
+def teeth_tables(teeth: Mapping[str, Any]) -> dict[str, Any]:
+    """The rig's ``teeth`` with each row's table ``x`` read as an array once: ``teeth_bound``
+    takes a JSON list too, but converts it at every call, and a pose calls it for every step of
+    both rows (a caller that poses many frames prepares them with this)."""
+    return {name: dict(row, x=np.asarray(row["x"], dtype=np.float64))
+            for name, row in teeth.items()}
+
+
 def teeth_bound(y: npt.ArrayLike, z: npt.ArrayLike, surface: Mapping[str, Any],
                 gradient: bool = False) -> Any:
     """The labial face x = F(y, z) of a row of incisors, receding outside its table.

@@ -33,6 +33,7 @@ import numpy as np
 import numpy.typing as npt
 
 from glasshead.geometry import face_rig as face
+from glasshead.geometry.face_teeth import teeth_tables
 from glasshead.geometry.jaw import apply_jaw_pose, jaw_pose
 from glasshead.geometry.tongue_surface import TongueRig
 
@@ -113,10 +114,7 @@ class FleshPointRig:
         self._tongue_index = {name: k for k, name in enumerate(tongue.parameter_names)}
         self._lip_ranges = {p["name"]: (p["min"], p["max"]) for p in face_definition["parameters"]}
         self.anchors = tongue_anchors(tongue)
-        # the incisor faces' tables read as arrays once, not at every frame
-        self.face = dict(face_definition, teeth={
-            name: dict(row, x=np.asarray(row["x"], dtype=np.float64))
-            for name, row in face_definition["teeth"].items()})
+        self.face = dict(face_definition, teeth=teeth_tables(face_definition["teeth"]))
         self.lips = face.prepare_meshes(face_definition, lip_rest, names=face.LIP_MESHES)
         positions = {mark["name"]: mark["position"] for mark in landmarks["landmarks"]}
         missing = [m for m in INCISOR_LANDMARKS.values() if m not in positions]

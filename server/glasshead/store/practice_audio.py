@@ -11,8 +11,8 @@ tables go with the child: their export lists them and their deletion removes the
 
 from datetime import datetime
 
-from sqlalchemy import Boolean, Float, ForeignKey, Integer, LargeBinary, String
-from sqlalchemy.orm import Mapped, mapped_column
+from sqlalchemy import Boolean, Float, ForeignKey, Integer, LargeBinary, String, select
+from sqlalchemy.orm import Mapped, Session, mapped_column
 
 from glasshead.store.base import Base, UtcDateTime, utc_now
 from glasshead.store.users import MAX_DISPLAY_NAME_LENGTH
@@ -31,6 +31,22 @@ class AudioRecordingSwitch(Base):
     set_by: Mapped[int | None] = mapped_column(ForeignKey("users.id", ondelete="SET NULL"))
     set_by_name: Mapped[str] = mapped_column(String(MAX_DISPLAY_NAME_LENGTH))
     set_at: Mapped[datetime] = mapped_column(UtcDateTime(), default=utc_now)
+
+
+def switch_history(session: Session, child_id: int, *, newest_first: bool = True
+                   ) -> list[AudioRecordingSwitch]:
+    """Every change of a child's recording switch, newest first (oldest first for an export)."""
+    order = AudioRecordingSwitch.id.desc() if newest_first else AudioRecordingSwitch.id
+    return list(session.scalars(select(AudioRecordingSwitch)
+                                .where(AudioRecordingSwitch.child_id == child_id)
+                                .order_by(order)))
+
+
+def recording_on(session: Session, child_id: int) -> bool:
+    """Whether the child's switch is on now: its last change switched it on."""
+    return bool(session.scalar(select(AudioRecordingSwitch.enabled)
+                               .where(AudioRecordingSwitch.child_id == child_id)
+                               .order_by(AudioRecordingSwitch.id.desc()).limit(1)))
 
 
 class PracticeAudio(Base):

@@ -13,6 +13,8 @@
 // Placements: HPRC (Tiede et al.) puts the tongue tip sensor about 1 cm behind the apex, the
 // others behind it at sensor spacing; MOCHA-TIMIT (Wrench) places tip, blade and dorsum alike.
 
+import { midlinePage, stationVertexOffset } from './tongue.js';
+
 /** Arc length from the apex along the upper mid-sagittal outline to each tongue sensor, mm. */
 export const TONGUE_SENSOR_ARC_MM = Object.freeze( {
 	tongue_tip: 10, tongue_blade: 25, tongue_dorsum: 40, tongue_back: 55,
@@ -26,21 +28,6 @@ export const FLESH_POINT_NAMES = Object.freeze( [
 export const FLESH_POINTS_LENGTH = 8 * 3;
 const TONGUE_POINTS = 4;
 
-/** The page sample at angle 0 (the mid-sagittal one). */
-export function midlinePage( rig ) {
-
-	let best = 0;
-	for ( let j = 1; j < rig.pageCount; j ++ ) if ( rig.pageCos[ j ] > rig.pageCos[ best ] ) best = j;
-	return best;
-
-}
-
-function outlineOffset( rig, page, station ) {
-
-	return 3 * ( 2 + station * rig.pageCount + page );
-
-}
-
 /**
  * Where the tongue sensors sit on the rest outline (allocates; once per rig).
  * @param {import('./tongue.js').TongueRig} rig
@@ -53,8 +40,8 @@ export function tongueAnchors( rig, positions, arcs = Object.values( TONGUE_SENS
 
 	const page = midlinePage( rig );
 	const n = rig.stationCount;
-	const x = ( i ) => positions[ outlineOffset( rig, page, i ) ];
-	const y = ( i ) => positions[ outlineOffset( rig, page, i ) + 1 ];
+	const x = ( i ) => positions[ stationVertexOffset( rig, i, page ) ];
+	const y = ( i ) => positions[ stationVertexOffset( rig, i, page ) + 1 ];
 	let apex = 0;
 	for ( let i = 1; i < n; i ++ ) if ( x( i ) > x( apex ) ) apex = i;
 	const step = y( ( apex + 1 ) % n ) > y( ( apex - 1 + n ) % n ) ? 1 : n - 1;
@@ -105,7 +92,7 @@ export function fleshPoints( rig, positions, anchors, incisors, pose, face, face
 	const { page, first, second, weight } = anchors;
 	for ( let k = 0; k < TONGUE_POINTS; k ++ ) {
 
-		const a = outlineOffset( rig, page, first[ k ] ), b = outlineOffset( rig, page, second[ k ] );
+		const a = stationVertexOffset( rig, first[ k ], page ), b = stationVertexOffset( rig, second[ k ], page );
 		const w = weight[ k ];
 		target[ 3 * k ] = ( 1 - w ) * positions[ a ] + w * positions[ b ];
 		target[ 3 * k + 1 ] = ( 1 - w ) * positions[ a + 1 ] + w * positions[ b + 1 ];

@@ -202,3 +202,19 @@ export class TongueRig {
 	}
 
 }
+
+/** The page sample at angle 0: the mid-sagittal outline point of each station. */
+export function midlinePage( rig ) {
+
+	let best = 0;
+	for ( let j = 1; j < rig.pageCount; j ++ ) if ( rig.pageCos[ j ] > rig.pageCos[ best ] ) best = j;
+	return best;
+
+}
+
+/** Where the vertex of station `station` at page `page` starts in the surface's positions (xyz; two poles first). */
+export function stationVertexOffset( rig, station, page ) {
+
+	return 3 * ( 2 + station * rig.pageCount + page );
+
+}

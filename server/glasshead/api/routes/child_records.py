@@ -36,7 +36,7 @@ from glasshead.epg.sequence import rows_to_strings
 from glasshead.store.idempotency_keys import IdempotencyKey
 from glasshead.store.lessons import Assignment, Child, Lesson, PracticeRecord, SchoolClass
 from glasshead.store.models import EpgRecording
-from glasshead.store.practice_audio import AudioRecordingSwitch, PracticeAudio
+from glasshead.store.practice_audio import AudioRecordingSwitch, PracticeAudio, switch_history
 from glasshead.store.session import SessionDep
 from glasshead.store.users import ChildToken, User
 
@@ -186,12 +186,6 @@ def _audio(session: Session, child: Child) -> list[PracticeAudio]:
                                 .options(undefer(PracticeAudio.wav)).order_by(PracticeAudio.id)))
 
 
-def _switches(session: Session, child: Child) -> list[AudioRecordingSwitch]:
-    return list(session.scalars(select(AudioRecordingSwitch)
-                                .where(AudioRecordingSwitch.child_id == child.id)
-                                .order_by(AudioRecordingSwitch.id)))
-
-
 def _assignments(session: Session, child: Child) -> list[Assignment]:
     return list(session.scalars(select(Assignment).where(or_(
         Assignment.child_id == child.id, Assignment.class_id == child.class_id)
@@ -223,7 +217,8 @@ def export_child_data(child_id: RecordId, session: SessionDep, admin: AdminUser,
         practice=[_columns(p) for p in practice],
         recordings=[_recording_json(r) for r in _recordings(session, child)],
         audio=[_audio_json(a) for a in _audio(session, child)],
-        audio_recording_switches=[_columns(c) for c in _switches(session, child)],
+        audio_recording_switches=[_columns(c) for c in switch_history(session, child.id,
+                                                                     newest_first=False)],
         tokens=[TokenTrace(created_at=t.created_at, expires_at=t.expires_at,
                            revoked_at=t.revoked_at) for t in tokens])
 

@@ -16,8 +16,8 @@ from datetime import datetime
 from typing import Annotated
 
 from fastapi import APIRouter, Depends, HTTPException, Request, Response, status
+from fastapi.concurrency import run_in_threadpool
 from pydantic import BaseModel, ConfigDict
-from sqlalchemy import select
 from sqlalchemy.orm import Session
 
 from glasshead.api.auth import Person, allow, require_role
@@ -25,7 +25,12 @@ from glasshead.api.error_responses import Responses
 from glasshead.api.lookups import RecordId
 from glasshead.api.ownership import child_of, practice_for
 from glasshead.store.lessons import Child
-from glasshead.store.practice_audio import AudioRecordingSwitch, PracticeAudio
+from glasshead.store.practice_audio import (
+    AudioRecordingSwitch,
+    PracticeAudio,
+    recording_on,
+    switch_history,
+)
 from glasshead.store.session import SessionDep
 from glasshead.store.users import User
 
@@ -83,13 +88,6 @@ class PracticeAudioOut(BaseModel):
     created_at: datetime
 
 
-def switch_history(session: Session, child_id: int) -> list[AudioRecordingSwitch]:
-    """The changes of a child's switch, newest first."""
-    return list(session.scalars(select(AudioRecordingSwitch)
-                                .where(AudioRecordingSwitch.child_id == child_id)
-                                .order_by(AudioRecordingSwitch.id.desc())))
-
-
 def _state(session: Session, child: Child) -> AudioRecordingState:
     history = switch_history(session, child.id)
     last = history[0] if history else None
@@ -98,11 +96,6 @@ def _state(session: Session, child: Child) -> AudioRecordingState:
         set_by=last.set_by if last else None, set_by_name=last.set_by_name if last else None,
         set_at=last.set_at if last else None,
         history=[SwitchChange.model_validate(change) for change in history])
-
-
-def recording_on(session: Session, child_id: int) -> bool:
-    history = switch_history(session, child_id)
-    return bool(history and history[0].enabled)
 
 
 @router.get("/children/{child_id}/audio-recording", operation_id="getAudioRecording",
@@ -152,6 +145,12 @@ async def put_practice_audio(record_id: RecordId, request: Request, session: Ses
         raise HTTPException(status_code=415, detail="send the recording as a WAV file, "
                                                     "Content-Type: audio/wav")
     body = await request.body()
+    # The database and the WAV's check off the event loop, as the sync routes run.
+    return await run_in_threadpool(_keep_audio, session, person, record_id, body)
+
+
+def _keep_audio(session: Session, person: Person, record_id: int,
+                body: bytes) -> PracticeAudioOut:
     record = practice_for(session, person, record_id)
     if not recording_on(session, record.child_id):
         raise HTTPException(status_code=409, detail=f"recording is off for child "

@@ -116,14 +116,20 @@ export function recordingSwitchWords( state ) {
 
 	const on = state?.enabled === true;
 	if ( ! state?.set_at ) return on ? 'On' : 'Off';
-	const by = state.set_by_name ? `, by ${ state.set_by_name }` : '';
-	return `${ on ? 'On' : 'Off' } since ${ readableTime( state.set_at ) }${ by }`;
+	return `${ on ? 'On' : 'Off' } since ${ whenAndWho( state ) }`;
 
 }
 
 /** The switch's history, newest first, one line each: 'On: 2 March 2026, 09:30 UTC, by Dr Ames'. */
 export function recordingHistoryLines( history ) {
 
-	return ( history ?? [] ).map( ( entry ) => `${ entry.enabled ? 'On' : 'Off' }: ${ readableTime( entry.set_at ) }${ entry.set_by_name ? `, by ${ entry.set_by_name }` : '' }` );
+	return ( history ?? [] ).map( ( entry ) => `${ entry.enabled ? 'On' : 'Off' }: ${ whenAndWho( entry ) }` );
+
+}
+
+/** A change of the switch's time and maker: '2 March 2026, 09:30 UTC, by Dr Ames'. */
+function whenAndWho( change ) {
+
+	return `${ readableTime( change.set_at ) }${ change.set_by_name ? `, by ${ change.set_by_name }` : '' }`;
 
 }

@@ -31,7 +31,6 @@ export class PracticeAudio {
 	constructor( { api } ) {
 
 		this.api = api;
-		this.childId = null;
 		this.enabled = false;
 		/** Records whose sound the server took, and those it did not. */
 		this.kept = [];
@@ -48,7 +47,6 @@ export class PracticeAudio {
 	async read( childId ) {
 
 		const read = ++ this.reads;
-		this.childId = childId;
 		let enabled = false;
 		try {
 
@@ -70,7 +68,6 @@ export class PracticeAudio {
 	reset() {
 
 		this.reads ++;
-		this.childId = null;
 		this.enabled = false;
 
 	}

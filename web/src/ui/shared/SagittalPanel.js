@@ -5,6 +5,7 @@
 // recording context; the data are plain typed arrays read from the articulation.
 
 import { planeSectionSegments } from '../../core/section.js';
+import { midlinePage, stationVertexOffset } from '../../core/tongue.js';
 
 /** The panel's window on the mid-sagittal plane, mm (project frame): mouth, tongue and jaw. */
 export const SAGITTAL_BOX = Object.freeze( { xMin: - 70, xMax: 46, yMin: - 62, yMax: 32 } );
@@ -137,22 +138,13 @@ export function sagittalCurve( rig, positions, target ) {
 	const middle = midlinePage( rig );
 	for ( let i = 0; i < rig.stationCount; i ++ ) {
 
-		const o = 3 * ( 2 + i * rig.pageCount + middle );
+		const o = stationVertexOffset( rig, i, middle );
 		target[ 2 * i ] = positions[ o ];
 		target[ 2 * i + 1 ] = positions[ o + 1 ];
 
 	}
 
 	return target;
-
-}
-
-/** The page sample nearest the mid-sagittal plane (angle 0). */
-export function midlinePage( rig ) {
-
-	let best = 0;
-	for ( let j = 1; j < rig.pageCount; j ++ ) if ( rig.pageCos[ j ] > rig.pageCos[ best ] ) best = j;
-	return best;
 
 }
 
