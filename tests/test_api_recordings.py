@@ -6,27 +6,19 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
-from fastapi.testclient import TestClient
 
 from accounts_support import signed_in
-from glasshead.api.app import create_app
 from glasshead.api.routes import recordings
 from glasshead.epg.formats import CSV_ELECTRODES, CSV_MAGIC
-from glasshead.settings import get_settings
 from glasshead.vectors.sources import emur_path
 
 API = "/api/v1"
 
 
 @pytest.fixture
-def client(tmp_path, monkeypatch):
+def client(start_app):
     """The app on a fresh SQLite file, migrated at start-up, with an admin signed in."""
-    monkeypatch.setenv("GLASSHEAD_DATABASE_URL", f"sqlite:///{tmp_path / 'api.sqlite3'}")
-    monkeypatch.setenv("GLASSHEAD_WEB_DIST_DIR", str(tmp_path / "no-web"))
-    get_settings.cache_clear()
-    with TestClient(create_app()) as client:
-        yield signed_in(client, "admin")
-    get_settings.cache_clear()
+    return signed_in(start_app()[1], "admin")
 
 
 @pytest.fixture(scope="module")
