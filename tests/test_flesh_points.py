@@ -26,7 +26,7 @@ def store(built_assets):
 
 @pytest.fixture(scope="module")
 def rig(store):
-    from glasshead.api.routes.utterances import flesh_point_rig
+    from glasshead.flesh_point_assets import flesh_point_rig
 
     return flesh_point_rig(store)
 

@@ -133,6 +133,29 @@ def train(args):
     return 0
 
 
+def compare_ema(args):
+    """Compare the head with real articulography (docs/ema.md): text tables, or JSON."""
+    from glasshead.asset_store import AssetUnavailableError
+    from glasshead.ema import EmaFormatError
+    from glasshead.training import ema_comparison
+
+    settings = get_settings()
+    try:
+        paths = args.files or ema_comparison.hprc_recordings(settings.data_dir)
+        report = ema_comparison.run(paths, settings.assets_dir)
+    except (EmaFormatError, ema_comparison.ComparisonError, OSError) as error:
+        print(f"glasshead compare-ema: {error}", file=sys.stderr)
+        return 2
+    except AssetUnavailableError as error:
+        print(f"glasshead compare-ema: {error}", file=sys.stderr)
+        return 3
+    if args.json:
+        print(json.dumps(report, indent=1))
+    else:
+        print(ema_comparison.format_report(report))
+    return 0
+
+
 def vectors(args):
     """Regenerate the shared test vectors (docs/vectors.md)."""
     from glasshead.vectors import VECTOR_FILES
@@ -242,6 +265,14 @@ def main(argv=None):
     train_parser.add_argument("--max-evals", type=int, default=None,
                               help="cap on the optimiser's evaluations (default: the trainer's)")
     train_parser.set_defaults(handler=train)
+    compare_parser = commands.add_parser(
+        "compare-ema", help="drive the head with real articulography's phone timings and "
+                            "report how closely it follows the sensors (docs/ema.md)")
+    compare_parser.add_argument("files", nargs="*", metavar="FILE",
+                                help="EMA files, labels beside them (default: the HPRC "
+                                     "recordings in the data directory)")
+    compare_parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    compare_parser.set_defaults(handler=compare_ema)
     vectors_parser = commands.add_parser(
         "vectors", help="regenerate the shared test vectors in tests/vectors (docs/vectors.md)")
     vectors_parser.add_argument("names", nargs="*", metavar="FILE",

@@ -21,7 +21,8 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from glasshead.api.deps import AssetsDep, CacheDep, ComputeDep, open_cache
 from glasshead.asset_store import AssetStore
-from glasshead.geometry.flesh_points import FLESH_POINT_NAMES, FleshPointRig
+from glasshead.flesh_point_assets import FLESH_POINT_ASSETS, flesh_point_rig
+from glasshead.geometry.flesh_points import FLESH_POINT_NAMES
 from glasshead.jobs.compute import ComputePool
 from glasshead.speech import audio, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
@@ -38,9 +39,6 @@ TEXTGRID_EXAMPLE = ('File type = "ooTextFile"\nObject class = "TextGrid"\n\n0\n0
                     '0.22\n0.34\n"ɪ"\n0.34\n0.5\n"p"\n')
 AudioKind = Literal["natural", "lowpass", "vocoded", "none", "articulatory"]
 FleshPoint = Literal[FLESH_POINT_NAMES]
-#: The assets the flesh points read besides the phoneme targets (all of them part of the
-#: cache key of a request that asks for them).
-FLESH_POINT_ASSETS = ("tongue_rig", "face_rig", "landmarks", "upper_lip_mesh", "lower_lip_mesh")
 Rate = Field(1.0, ge=0.5, le=2.0, description="speaking rate: 1 is espeak-ng's 175 words a "
                                               "minute; timed phones are divided by it")
 
@@ -146,17 +144,6 @@ def content_key(store: AssetStore, request: dict) -> str:
         return targets
     hashes = [targets] + [store.entry(name).sha256 for name in FLESH_POINT_ASSETS]
     return hashlib.sha256("\0".join(hashes).encode()).hexdigest()
-
-
-def flesh_point_rig(store: AssetStore) -> FleshPointRig:
-    """The flesh points' rig of the store's current assets, prepared once per version of them."""
-    entries = {name: store.entry(name) for name in FLESH_POINT_ASSETS}
-    key = ("flesh_points",) + tuple(e.sha256 for e in entries.values())
-    return store.derived("face_rig", key, lambda face: FleshPointRig(
-        entries["tongue_rig"].value, face,
-        {"upper_lip": entries["upper_lip_mesh"].value[0],
-         "lower_lip": entries["lower_lip_mesh"].value[0]},
-        entries["landmarks"].value))
 
 
 def speak(store: AssetStore, payload: dict) -> bytes:
