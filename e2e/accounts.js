@@ -87,6 +87,8 @@ export function account( server, role ) {
 	}
 
 	const key = `${ databaseUrl } ${ role }`;
+	const shared = sharedAccounts( databaseUrl );
+	if ( shared?.[ role ] && ! made.has( key ) ) made.set( key, Promise.resolve( shared[ role ] ) );
 	if ( ! made.has( key ) ) {
 
 		const user = {
@@ -102,6 +104,19 @@ export function account( server, role ) {
 	}
 
 	return made.get( key );
+
+}
+
+/**
+ * The users made once for a run's shared server (scripts/test.mjs), passed to every test file as
+ * GLASSHEAD_E2E_ACCOUNTS: { databaseUrl, users: { role: user } }; null for another database.
+ */
+function sharedAccounts( databaseUrl ) {
+
+	const text = process.env.GLASSHEAD_E2E_ACCOUNTS;
+	if ( ! text ) return null;
+	const { databaseUrl: sharedUrl, users } = JSON.parse( text );
+	return sharedUrl === databaseUrl ? users : null;
 
 }
 

@@ -67,11 +67,13 @@ export function freePort() {
  * Start `uvicorn glasshead.api.app:app` from the repository root and wait until
  * /api/v1/health answers. Returns { baseUrl, databaseUrl, stop() }: `databaseUrl` is the server's
  * own database (for e2e/accounts.js to create users in), null for a server started elsewhere
- * unless GLASSHEAD_E2E_DATABASE_URL names it.
+ * unless GLASSHEAD_E2E_DATABASE_URL names it. `own`: a server of the file's own even when
+ * GLASSHEAD_E2E_BASE_URL names a shared one (for tests that leave the server in a state the
+ * other files must not meet, such as a user refused for too many wrong passwords).
  */
-export async function startServer( { timeoutMs = 60_000 } = {} ) {
+export async function startServer( { timeoutMs = 60_000, own = false } = {} ) {
 
-	if ( process.env.GLASSHEAD_E2E_BASE_URL ) {
+	if ( process.env.GLASSHEAD_E2E_BASE_URL && ! own ) {
 
 		const baseUrl = process.env.GLASSHEAD_E2E_BASE_URL.replace( /\/+$/, '' );
 		await waitForHealth( baseUrl, timeoutMs, () => null );
@@ -192,14 +194,14 @@ export async function launchBrowser( { args = [] } = {} ) {
  * start the server (startServer) and launch the browser (launchBrowser), then run
  * `prepare( { server, browser } )`, the file's own set-up (accounts, data, a first page); after
  * them, close the browser and stop the server, whatever failed. Returns that { server, browser }
- * object, filled in once the tests' `before` has run.
+ * object, filled in once the tests' `before` has run. `ownServer`: as startServer's `own`.
  */
-export function serverAndBrowser( prepare = () => {} ) {
+export function serverAndBrowser( prepare = () => {}, { ownServer = false } = {} ) {
 
 	const running = { server: null, browser: null };
 	before( async () => {
 
-		running.server = await startServer();
+		running.server = await startServer( { own: ownServer } );
 		running.browser = await launchBrowser();
 		await prepare( running );
 

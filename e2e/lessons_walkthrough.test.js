@@ -48,7 +48,7 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		sessions = {};
 		for ( const role of [ 'author', 'teacher', 'clinician' ] ) sessions[ role ] = await apiSession( server, role );
 
-	} );
+	}, { ownServer: true } ); // a new school: the teacher starts with no class
 
 	test( 'an author writes a lesson, which a teacher can read but not change', async () => {
 

@@ -22,7 +22,7 @@ describe( 'signing in', { timeout: 600_000 }, () => {
 		( { server, browser } = running );
 		await account( server, 'teacher' );
 
-	} );
+	}, { ownServer: true } ); // its admin is refused for 15 minutes after five wrong passwords
 
 	const nav = ( page ) => page.getByRole( 'navigation', { name: 'Views' } );
 	const storedSession = ( page ) => page.evaluate( () => JSON.parse( window.localStorage.getItem( 'glasshead.session' ) ?? 'null' ) );

@@ -9,7 +9,7 @@
 // about as long as its longer lane instead of the sum. The benchmarks' quick pass (40 to 50 s of CPU)
 // follows whichever lane ends first, in the time the other lane still takes. Each suite's output
 // is printed whole when it ends, never interleaved. GLASSHEAD_TEST_LANES=1 runs them one after
-// another.
+// another. `node scripts/test.mjs end-to-end python` runs the named suites alone, in that order.
 import { spawn } from 'node:child_process';
 import { existsSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
@@ -25,7 +25,7 @@ const suites = [
 	{ name: 'lint', command: process.execPath, args: [ join( REPO, 'scripts', 'lint.mjs' ) ] },
 	{ name: 'python', command: join( REPO, '.venv', 'bin', 'pytest' ), args: [ '-p', 'no:cacheprovider', '--durations=30' ] },
 	{ name: 'javascript', command: process.execPath, args: [ '--test', '--test-reporter=spec', ...testFiles( 'tests/js' ) ] },
-	{ name: 'end-to-end', command: process.execPath, args: [ '--test', '--test-concurrency=1', '--test-reporter=spec', ...testFiles( 'e2e' ) ] },
+	{ name: 'end-to-end', command: process.execPath, args: [ '--test', '--test-concurrency=1', '--test-reporter=spec', ...testFiles( 'e2e' ) ], around: withSharedServer },
 	{ name: 'bench', command: process.execPath, args: [ join( REPO, 'bench', 'run.mjs' ), '--quick' ] },
 ];
 
@@ -33,29 +33,59 @@ const tally = { passed: 0, failed: 0, skipped: 0, todo: 0 };
 const failedSuites = [];
 const started = Date.now();
 
+/**
+ * The end-to-end files' one server: started here with a user of every role, its address, database
+ * and users passed to each file (e2e/harness.js, e2e/accounts.js), so that each file does not
+ * start its own server and make its own users (about 5 s of CPU a file). Files that start a
+ * server of their own still do. GLASSHEAD_E2E_SERVER_PER_FILE=1 leaves each file its own.
+ */
+async function withSharedServer( run ) {
+	if ( process.env.GLASSHEAD_E2E_SERVER_PER_FILE === '1' || process.env.GLASSHEAD_E2E_BASE_URL ) return run( {} );
+	const { startServer } = await import( '../e2e/harness.js' );
+	const { ROLES, createAccounts } = await import( '../e2e/accounts.js' );
+	let server;
+	try {
+		server = await startServer();
+		const users = await createAccounts( server, ROLES );
+		return await run( {
+			GLASSHEAD_E2E_BASE_URL: server.baseUrl,
+			GLASSHEAD_E2E_DATABASE_URL: server.databaseUrl,
+			GLASSHEAD_E2E_ACCOUNTS: JSON.stringify( { databaseUrl: server.databaseUrl, users } ),
+		} );
+	} catch ( error ) {
+		return { status: 1, stdout: '', stderr: `could not start the end-to-end tests' server: ${ error.message }\n` };
+	} finally {
+		await server?.stop();
+	}
+}
+
 /** Run one suite with its output held back, then print it under its heading and count it. */
-function runSuite( suite ) {
+async function runSuite( suite ) {
+	const begun = Date.now();
+	const around = suite.around ?? ( ( run ) => run( {} ) );
+	const { status, stdout, stderr } = await around( ( env ) => spawnSuite( suite, env ) );
+	const seconds = ( ( Date.now() - begun ) / 1000 ).toFixed( 0 );
+	console.log( `\n==> ${suite.name} tests (${seconds} s)` );
+	process.stdout.write( stdout );
+	process.stderr.write( stderr );
+	const counts = countResults( suite.name, stdout );
+	tally.passed += counts.passed;
+	tally.failed += counts.failed;
+	tally.skipped += counts.skipped;
+	tally.todo += counts.todo ?? 0;
+	if ( status !== 0 || counts.passed === 0 ) failedSuites.push( `${suite.name} (exit ${status}, ${counts.passed} passed)` );
+}
+
+/** Run a suite's command with `env` added; resolves { status, stdout, stderr }. */
+function spawnSuite( suite, env ) {
 	return new Promise( ( resolve ) => {
-		const begun = Date.now();
-		const child = spawn( suite.command, suite.args, { cwd: REPO, stdio: [ 'ignore', 'pipe', 'pipe' ] } );
+		const child = spawn( suite.command, suite.args, { cwd: REPO, stdio: [ 'ignore', 'pipe', 'pipe' ], env: { ...process.env, ...env } } );
 		let stdout = '';
 		let stderr = '';
 		child.stdout.setEncoding( 'utf8' ).on( 'data', ( chunk ) => ( stdout += chunk ) );
 		child.stderr.setEncoding( 'utf8' ).on( 'data', ( chunk ) => ( stderr += chunk ) );
 		child.on( 'error', ( error ) => ( stderr += `could not start ${suite.command}: ${error.message}\n` ) );
-		child.on( 'close', ( status ) => {
-			const seconds = ( ( Date.now() - begun ) / 1000 ).toFixed( 0 );
-			console.log( `\n==> ${suite.name} tests (${seconds} s)` );
-			process.stdout.write( stdout );
-			process.stderr.write( stderr );
-			const counts = countResults( suite.name, stdout );
-			tally.passed += counts.passed;
-			tally.failed += counts.failed;
-			tally.skipped += counts.skipped;
-			tally.todo += counts.todo ?? 0;
-			if ( status !== 0 || counts.passed === 0 ) failedSuites.push( `${suite.name} (exit ${status}, ${counts.passed} passed)` );
-			resolve();
-		} );
+		child.on( 'close', ( status ) => resolve( { status, stdout, stderr } ) );
 	} );
 }
 
@@ -64,7 +94,15 @@ async function runLane( lane ) {
 }
 
 const byName = Object.fromEntries( suites.map( ( suite ) => [ suite.name, suite ] ) );
-if ( process.env.GLASSHEAD_TEST_LANES === '1' ) {
+const named = process.argv.slice( 2 );
+const unknown = named.filter( ( name ) => ! byName[ name ] );
+if ( unknown.length ) {
+	console.error( `no suite named ${ unknown.join( ', ' ) }: the suites are ${ Object.keys( byName ).join( ', ' ) }` );
+	process.exit( 2 );
+}
+if ( named.length ) {
+	await runLane( named.map( ( name ) => byName[ name ] ) );
+} else if ( process.env.GLASSHEAD_TEST_LANES === '1' ) {
 	await runLane( suites );
 } else {
 	const lanes = [ [ byName.lint, byName.python ], [ byName.javascript, byName[ 'end-to-end' ] ] ].map( runLane );
