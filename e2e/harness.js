@@ -92,7 +92,8 @@ export async function startServer( { timeoutMs = 60_000, own = false } = {} ) {
 	const port = await freePort();
 	// A database of its own, so the run neither touches nor races with a developer's database.
 	const scratch = mkdtempSync( join( tmpdir(), 'glasshead-e2e-' ) );
-	const databaseUrl = process.env.GLASSHEAD_E2E_DATABASE_URL ?? `sqlite:///${ join( scratch, 'e2e.sqlite3' ) }`;
+	const named = own ? null : process.env.GLASSHEAD_E2E_DATABASE_URL;
+	const databaseUrl = named ?? `sqlite:///${ join( scratch, 'e2e.sqlite3' ) }`;
 	const child = spawn( python, [ '-m', 'uvicorn', 'glasshead.api.app:app', '--host', '127.0.0.1', '--port', String( port ), '--log-level', 'warning' ], {
 		cwd: REPO,
 		stdio: [ 'ignore', 'pipe', 'pipe' ],
