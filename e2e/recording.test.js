@@ -211,6 +211,28 @@ describe( 'keeping the sound of a child\'s attempts', { timeout: 900_000 }, () =
 
 	} );
 
+	test( 'the clinician deletes a kept sound after a second press, and only that sound goes', async () => {
+
+		const [ record ] = ( await api( clinician, 'GET', `practice?child_id=${ ada.id }` ) ).body.records;
+		const row = clinicianPage.locator( `tr[data-practice="${ record.id }"]` );
+		const remove = row.getByRole( 'button', { name: /^Delete the sound of the go of / } );
+		const box = await remove.boundingBox();
+		assert.ok( box.height >= TOUCH_PX, `the delete button is ${ box.height } px high` );
+		await remove.click();
+		// The first press only asks; "Keep it" leaves the sound where it was.
+		await row.getByRole( 'button', { name: /^Keep the sound of the go of / } ).click();
+		assert.equal( ( await api( clinician, 'GET', `practice/${ record.id }/audio` ) ).status, 200 );
+		await remove.click();
+		await row.getByRole( 'button', { name: /^Yes, delete the sound of the go of / } ).click();
+		await row.getByRole( 'status' ).filter( { hasText: 'Sound deleted.' } ).waitFor( { timeout: 30_000 } );
+		assert.deepEqual( ( await child() ).sound.deleted, [ record.id ] );
+		assert.equal( ( await api( clinician, 'GET', `practice/${ record.id }/audio` ) ).status, 404 );
+		const records = ( await api( clinician, 'GET', `practice?child_id=${ ada.id }` ) ).body.records;
+		assert.deepEqual( records.filter( ( r ) => r.id === record.id ).map( ( r ) => r.has_audio ), [ false ], 'the try stays, without its sound' );
+		assert.deepEqual( clinicianPage.problems, [] );
+
+	} );
+
 	test( 'a sound the server does not take is said in plain words, and the try itself stays saved', async () => {
 
 		const failing = `**/api/v1/practice/*/audio`;
