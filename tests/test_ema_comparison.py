@@ -4,6 +4,7 @@ the four real HPRC recordings and the command that prints it."""
 
 import dataclasses
 import json
+import os
 import subprocess
 import sys
 
@@ -226,3 +227,12 @@ def test_the_command_prints_the_tables_or_json_and_names_a_bad_file(tmp_path, bu
     done = subprocess.run(command + [str(broken)], capture_output=True, text=True, check=False)
     assert done.returncode == 2
     assert str(broken) in done.stderr or broken.name in done.stderr
+
+
+def test_without_built_assets_the_command_says_what_to_run(tmp_path):
+    env = {**os.environ, "GLASSHEAD_ASSETS_DIR": str(tmp_path / "none")}
+    done = subprocess.run([sys.executable, "-m", "glasshead.cli", "compare-ema",
+                           str(hprc_csv(BIRCH[0]))], capture_output=True, text=True,
+                          check=False, env=env)
+    assert done.returncode == 3, done.stderr
+    assert "glasshead build" in done.stderr and "phoneme" in done.stderr, done.stderr
