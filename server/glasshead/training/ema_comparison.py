@@ -32,12 +32,15 @@ Figures, per recording:
 import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
-from glasshead.ema import EmaRecording, project_axes
+from glasshead.asset_store import AssetStore
+from glasshead.ema import EmaRecording, project_axes, read_ema
 from glasshead.ema.labels import PAUSE
+from glasshead.flesh_point_assets import flesh_point_rig
 from glasshead.geometry.flesh_points import FleshPointRig
 from glasshead.phonemes import lookup
 from glasshead.speech import coarticulation
@@ -339,8 +342,6 @@ def summarise(reports: Sequence[dict]) -> dict:
 
 def hprc_recordings(data_dir) -> list:
     """The ``*_ema.csv`` files of ``data_dir/ema/hprc``, in name order (the default input)."""
-    from pathlib import Path
-
     folder = Path(data_dir) / "ema" / "hprc"
     paths = sorted(folder.glob("*_ema.csv"))
     if not paths:
@@ -351,10 +352,6 @@ def hprc_recordings(data_dir) -> list:
 def run(paths: Sequence, assets_dir) -> dict:
     """Read the EMA files at ``paths`` (any format ``ema.read_ema`` knows, labels beside them)
     and compare the head of the built assets in ``assets_dir`` with them."""
-    from glasshead.asset_store import AssetStore
-    from glasshead.ema import read_ema
-    from glasshead.flesh_point_assets import flesh_point_rig
-
     recordings = [read_ema(path) for path in paths]
     store = AssetStore(assets_dir)
     return compare(recordings, store.get("phoneme_targets"), flesh_point_rig(store))
