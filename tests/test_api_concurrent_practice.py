@@ -13,8 +13,8 @@ from server_process import API, ServerProcess
 
 WORKERS = 2
 CHILDREN = 10
-#: Practice records written in all, from 8 threads (bounded: about 10 s on two busy cores).
-RECORDS = 300
+#: Practice records written in all, from 8 threads (bounded: about 7 s on two busy cores).
+RECORDS = 200
 
 
 def database_url(setting: str, tmp_path, postgres_server_factory) -> str:

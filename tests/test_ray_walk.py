@@ -13,7 +13,7 @@ from glasshead.geometry.mesh_topology import triangle_adjacency
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.settings import get_settings
 
-POSES = 50
+POSES = 20
 RAYS = 1000
 
 
