@@ -12,8 +12,9 @@ How a measured target is made (``target_fits.measured_target``):
 1. Coronal: the rig's edge heights from VTL's side elevations, which the mid-sagittal outline
    cannot show: front edges from TS3 (tip), middle from TS2, back from TS1, each clipped to the
    targets' range (``TARGET_CORONAL_RANGES``, ``vtl_mapping.coronal_from_vtl``).
-2. Jaw from VTL's JA, lips from LP, LD and JX, the velum by nasality
-   (``fitting.vtl_mapping``).
+2. Jaw by the sound's class in mm at the incisors (``pipeline.jaw_openings``: vowels by height,
+   alveolars VTL's JA within 2 to 5 mm, others VTL's JA), lips from LP, LD and JX, the velum by
+   nasality (``fitting.vtl_mapping``).
 3. The sagittal parameters (but ``HELD_IN_TARGETS``) fitted to the shape's outline
    (``target_fits.outline_fit``) with the coronal values and the jaw held, refitted with a
    heavier volume weight while the volume is off.
@@ -45,6 +46,7 @@ from glasshead.constants import (
     EPG_LAYOUT_FILE,
     FACE_RIG_FILE,
     FACE_RIG_LIP_PARAMETERS,
+    LANDMARKS_FILE,
     PHONEME_TARGETS_FILE,
     PHONEME_TARGETS_FORMAT_VERSION,
     TONGUE_RIG_FILE,
@@ -64,7 +66,7 @@ from glasshead.fitting import (
     vtl_mapping,
 )
 from glasshead.geometry import midsagittal, tongue_surface
-from glasshead.pipeline import target_contact, target_fits, target_realism
+from glasshead.pipeline import jaw_openings, target_contact, target_fits, target_realism
 from glasshead.pipeline.outputs import current_output, write_json
 from glasshead.pipeline.target_contact import (
     EPG_WEIGHT_OF_GOAL,
@@ -93,10 +95,10 @@ MAIN_CONTEXT = "a"
 #: The modules whose code shapes the output; their text is part of the cache key.
 CODE = (phoneme_inventory, fit2d, objective2d, optimizer, epg_classes, synthetic,
         objective_epg, fit_contact, tongue_surface, epg_contacts, vtl_mapping, midsagittal,
-        target_fits, target_contact, target_realism)
+        target_fits, target_contact, target_realism, jaw_openings)
 #: Built files read, and the data file.
 INPUT_FILES = (TONGUE_RIG_FILE, VTL_OBSERVATIONS_FILE, COLLISION_TABLES_FILE, EPG_LAYOUT_FILE,
-               FACE_RIG_FILE, VELUM_RIG_FILE)
+               FACE_RIG_FILE, VELUM_RIG_FILE, LANDMARKS_FILE)
 
 # --- Reasoning-based targets ----------------------------------------------------------------------
 

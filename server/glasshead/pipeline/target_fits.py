@@ -2,7 +2,8 @@
 target: steps 1 to 3 of ``pipeline.phoneme_targets`` (docs/targets.md).
 
 The outline fit (``outline_fit``) moves the sagittal parameters but ``HELD_IN_TARGETS``, with
-the coronal edge heights and the jaw set from VTL (``fitting.vtl_mapping``) and held; when the
+the coronal edge heights set from VTL (``fitting.vtl_mapping``) and the jaw by the sound's class
+(``pipeline.jaw_openings``), both held; when the
 tongue's volume ends more than ``VOLUME_REFIT_PCT`` from rest the fit is repeated from its
 result with the volume weight ten times heavier, up to ``VOLUME_REFITS`` times. The contact fit
 that may follow is ``pipeline.target_contact``'s, as is the measured target, which adds the lips
@@ -17,6 +18,7 @@ from glasshead.constants import (
     COLLISION_TABLES_FILE,
     EPG_LAYOUT_FILE,
     FACE_RIG_FILE,
+    LANDMARKS_FILE,
     TONGUE_RIG_FILE,
     VELUM_PARAMETER,
     VELUM_RIG_FILE,
@@ -31,6 +33,7 @@ from glasshead.fitting import fit2d, vtl_mapping
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.geometry.collision_format import decode_collision_tables
 from glasshead.geometry.tongue_surface import TongueRig
+from glasshead.pipeline.jaw_openings import JawOpenings
 
 #: The real EPG recording the realism checks read (under the reference data directory).
 ENGASSIM = "epg/emur-engassim.json"
@@ -76,6 +79,10 @@ class Context:
         self.velum_table = {p["name"]: p for p in velum["parameters"]}
         observations = json.loads((assets_dir / VTL_OBSERVATIONS_FILE).read_text())
         self.shapes = {s["name"]: s for s in observations["shapes"]}
+        landmarks = json.loads((assets_dir / LANDMARKS_FILE).read_text())["landmarks"]
+        incisor = next(m["position"] for m in landmarks if m["name"] == "lower_incisor_edge")
+        jaw_spec = self.rig.parameters[self.rig.jaw["parameter"]]
+        self.jaw_openings = JawOpenings(self.rig.jaw, jaw_spec, incisor)
         self.classes: dict = {}
         if data_dir is not None:
             from glasshead.epg.formats import parse_emur_json
@@ -100,7 +107,8 @@ def outline_fit(ctx: Context, shape_name: str) -> tuple[fit2d.FitReport, dict]:
     """The 2D fit of one JD3 shape (steps 1-3 of the module docstring) and its report."""
     rig, shape = ctx.rig, ctx.shapes[shape_name]
     base = rig.neutral.copy()
-    base[rig.jaw_parameter] = vtl_mapping.jaw_opening_from_vtl(shape, rig)
+    base[rig.jaw_parameter] = ctx.jaw_openings.for_shape(
+        shape_name, vtl_mapping.jaw_opening_from_vtl(shape, rig))
     for name, value in vtl_mapping.coronal_from_vtl(
             rig, shape["settings"], TARGET_CORONAL_RANGES["edge_height"]).items():
         base[rig.parameter_names.index(name)] = value

@@ -8,19 +8,21 @@ every 110 samples at 44,100 Hz (2.49 ms). ``reference_tracks`` carries those sta
 rigs' parameters by the mapping the phoneme targets carry VTL's stored shapes with
 (``fitting.vtl_mapping``, docs/targets.md):
 
-- jaw: ``vtl_mapping.jaw_opening`` (-2 - JA); lips: ``vtl_mapping.lips_from_vtl`` (LP, LD, JX);
-  both per frame, exactly as for a shape;
+- lips: ``vtl_mapping.lips_from_vtl`` (LP, LD, JX) at the mapped jaw, per frame, as for a
+  shape;
 - velum: VO from -0.1 cm^2 (closed, VTL's rest) to 0.5 cm^2 (the opening VTL's rules give a
   nasal's velic gesture) onto 0..1 (``vtl_mapping.velum_from_vo``). The targets do not read VO
   (every JD3 shape holds it closed) and set 1 for nasals, which is what this gives at a nasal's
   velic target;
-- tongue: a full 2D fit per frame (0.5-1 s each, 100 per second of speech) is too slow to train
-  on, so each tongue parameter is a linear function of VTL's tongue, jaw and hyoid parameters,
+- tongue and jaw: a full 2D fit per frame (0.5-1 s each, 100 per second of speech) is too slow
+  to train on, so each tongue parameter and the jaw is a linear function of VTL's tongue, jaw and
+  hyoid parameters,
   learned by ridge regression from the shapes the targets are fitted to, with the targets' own
   fitted values (``TongueMap``): a VTL state equal to a stored shape maps onto that phoneme's
   target to within the regression's residual, so what remains between the reference and our
   tracks is timing, which is what the coarticulation constants are to learn. Its leave-one-out
-  error is reported.
+  error is reported. The jaw is mapped so, not from JA alone, because the targets open it by the
+  sound's class (``pipeline.jaw_openings``), far wider than JD3's JA does.
 
 The VTL speaker is German (JD3): /w/ and American /ɹ/ have no gesture of their own, and its
 diphthongs glide to /e/ and /o/ (aI: a then e) where ours glide to /ɪ/ and /ʊ/, so
@@ -114,7 +116,7 @@ def vtl_states(phones: list[dict]) -> np.ndarray:
 
 @dataclass
 class TongueMap:
-    """Tongue parameters (without the jaw) as a linear function of VTL's ``TONGUE_INPUTS``:
+    """Tongue parameters and the jaw as a linear function of VTL's ``TONGUE_INPUTS``:
     ``values = clip(mean + ((x - x_mean) / x_scale) @ weights, lower, upper)``."""
 
     names: list[str]
@@ -169,8 +171,7 @@ def fit_tongue_map(targets: dict, observations: dict, rig_parameters: dict) -> T
     relative to each parameter's range."""
     shapes = {s["name"]: s for s in observations["shapes"]}
     pairs = shape_pairs(targets)
-    jaw = "jaw_opening"
-    names = [n for n in targets["parameters"]["tongue"] if n != jaw]
+    names = list(targets["parameters"]["tongue"])
     x = np.array([[shapes[s]["params"][k] for k in TONGUE_INPUTS] for s in pairs])
     y = np.array([[values[n] for n in names] for values in pairs.values()])
     x_mean, x_scale = x.mean(axis=0), x.std(axis=0)
@@ -206,7 +207,6 @@ class ReferenceMapping:
         self.lip_table = {p["name"]: p for p in read(FACE_RIG_FILE)["parameters"]}
         self.velum_table = {p["name"]: p for p in read(VELUM_RIG_FILE)["parameters"]}
         self.ranges = {**self.tongue_parameters, **self.lip_table, **self.velum_table}
-        self.jaw_spec = self.tongue_parameters["jaw_opening"]
         self.tongue = fit_tongue_map(self.targets, read(VTL_OBSERVATIONS_FILE),
                                      self.tongue_parameters)
         self.names = [*self.targets["parameters"]["tongue"], *self.targets["parameters"]["lips"],
@@ -218,8 +218,7 @@ class ReferenceMapping:
         column = lambda name: states[:, index[name]]  # noqa: E731
         out = dict(zip(self.tongue.names, self.tongue(
             np.stack([column(k) for k in TONGUE_INPUTS], axis=1)).T, strict=True))
-        jaw = vtl_mapping.jaw_opening(column("JA"), self.jaw_spec)
-        out["jaw_opening"] = jaw
+        jaw = out["jaw_opening"]
         lips = [vtl_mapping.lips_from_vtl(
             {"lips": {"LP": lp * vtl.CM_TO_MM, "LD": ld * vtl.CM_TO_MM},
              "jaw": {"JX": jx * vtl.CM_TO_MM}}, float(j), self.lip_table)
