@@ -3,11 +3,11 @@ target: steps 1 to 3 of ``pipeline.phoneme_targets`` (docs/targets.md).
 
 The outline fit (``outline_fit``) moves the sagittal parameters but ``HELD_IN_TARGETS``, with
 the coronal edge heights set from VTL (``fitting.vtl_mapping``) and the jaw by the sound's class
-(``pipeline.jaw_openings``), both held; when the
-tongue's volume ends more than ``VOLUME_REFIT_PCT`` from rest the fit is repeated from its
-result with the volume weight ten times heavier, up to ``VOLUME_REFITS`` times. The contact fit
-that may follow is ``pipeline.target_contact``'s, as is the measured target, which adds the lips
-from VTL and the velum by nasality (``velum_value``).
+(``pipeline.jaw_openings``), both held; when the tongue's volume ends more than
+``VOLUME_REFIT_PCT`` from rest the fit is repeated from its result with the volume weight ten
+times heavier, up to ``VOLUME_REFITS`` times. The contact fit that may follow is
+``pipeline.target_contact``'s, as is the measured target, which adds the lips from VTL and the
+velum by nasality (``velum_value``).
 """
 
 import json
@@ -32,6 +32,7 @@ from glasshead.epg.sequence import rows_to_strings
 from glasshead.fitting import fit2d, vtl_mapping
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.geometry.collision_format import decode_collision_tables
+from glasshead.geometry.flesh_points import INCISOR_LANDMARKS
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline.jaw_openings import JawOpenings
 
@@ -80,7 +81,8 @@ class Context:
         observations = json.loads((assets_dir / VTL_OBSERVATIONS_FILE).read_text())
         self.shapes = {s["name"]: s for s in observations["shapes"]}
         landmarks = json.loads((assets_dir / LANDMARKS_FILE).read_text())["landmarks"]
-        incisor = next(m["position"] for m in landmarks if m["name"] == "lower_incisor_edge")
+        edge = INCISOR_LANDMARKS["lower_incisor"]  # the flesh points' lower incisor, at rest
+        incisor = next(m["position"] for m in landmarks if m["name"] == edge)
         jaw_spec = self.rig.parameters[self.rig.jaw["parameter"]]
         self.jaw_openings = JawOpenings(self.rig.jaw, jaw_spec, incisor)
         self.classes: dict = {}

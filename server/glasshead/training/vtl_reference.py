@@ -14,13 +14,12 @@ rigs' parameters by the mapping the phoneme targets carry VTL's stored shapes wi
   nasal's velic gesture) onto 0..1 (``vtl_mapping.velum_from_vo``). The targets do not read VO
   (every JD3 shape holds it closed) and set 1 for nasals, which is what this gives at a nasal's
   velic target;
-- tongue and jaw: a full 2D fit per frame (0.5-1 s each, 100 per second of speech) is too slow
-  to train on, so each tongue parameter and the jaw is a linear function of VTL's tongue, jaw and
-  hyoid parameters,
-  learned by ridge regression from the shapes the targets are fitted to, with the targets' own
-  fitted values (``TongueMap``): a VTL state equal to a stored shape maps onto that phoneme's
-  target to within the regression's residual, so what remains between the reference and our
-  tracks is timing, which is what the coarticulation constants are to learn. Its leave-one-out
+- tongue and jaw: a full 2D fit per frame (0.5-1 s each, 100 per second of speech) is too slow to
+  train on, so each tongue parameter and the jaw is a linear function of VTL's tongue, jaw and
+  hyoid parameters, learned by ridge regression from the shapes the targets are fitted to, with the
+  targets' own fitted values (``TongueMap``): a VTL state equal to a stored shape maps onto that
+  phoneme's target to within the regression's residual, so what remains between the reference and
+  our tracks is timing, which is what the coarticulation constants are to learn. Its leave-one-out
   error is reported. The jaw is mapped so, not from JA alone, because the targets open it by the
   sound's class (``pipeline.jaw_openings``), far wider than JD3's JA does.
 
