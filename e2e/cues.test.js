@@ -45,8 +45,9 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 		await waitForStill( page );
 		const state = await readDebug( page );
-		const { nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } = state.cues;
-		assert.deepEqual( state.cues, { visible: false, voicing: true, nasal: true, oral: true, turbulence: false, nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } );
+		const { nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX, air, voicingShown } = state.cues;
+		assert.deepEqual( state.cues, { visible: false, voicing: true, nasal: true, oral: true, turbulence: false, voicingShown, air, nasalStrength, oralStopped, oralStopMm, oralReachMm, oralFrontX } );
+		assert.equal( air.glottisMm2, 5, 'no phoneme chosen: the glottis of a vowel' );
 		assert.equal( await button( 'Voicing' ).isVisible(), false, 'the cue switches show with the layer' );
 		await page.waitForTimeout( 1000 );
 		assert.equal( ( await readDebug( page ) ).frames, state.frames, 'no frames while nothing moves' );
@@ -127,6 +128,32 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 		await button( 'Oral airflow' ).click();
 		assert.equal( ( await readDebug( page ) ).cues.turbulence, false, 'no turbulence without the oral flow' );
 		await button( 'Oral airflow' ).click();
+
+	} );
+
+	test( 'the targets of /s ʃ f θ/ hiss, those of /m n t/ do not, and /m/ sends its air out of the nose', async () => {
+
+		await setParam( 'velum_opening', 'Velum opening', 0 );
+		const seen = {};
+		for ( const symbol of [ 'S', 'SH', 'F', 'TH', 'M', 'N', 'T' ] ) {
+
+			await page.getByRole( 'combobox', { name: 'Phoneme target' } ).selectOption( symbol );
+			await page.waitForFunction( ( s ) => window.glasshead.phonemeTarget.symbol === s && window.glasshead.phonemeTarget.state === 'target', symbol );
+			await settle( page );
+			const { cues: state, constriction } = await readDebug( page );
+			seen[ symbol ] = { width: constriction.widthMm, place: constriction.place, turbulence: state.turbulence, stopped: state.oralStopped, ...state.air, voicing: state.voicingShown };
+			if ( symbol === 'S' ) await saveScreenshot( page, 'cues-target-s' );
+
+		}
+
+		console.log( `# cues of the targets: ${ JSON.stringify( seen ) }` );
+		for ( const symbol of [ 'S', 'SH', 'F', 'TH' ] ) assert.equal( seen[ symbol ].turbulence, true, `/${ symbol }/ hisses: ${ JSON.stringify( seen[ symbol ] ) }` );
+		for ( const symbol of [ 'M', 'N', 'T' ] ) assert.equal( seen[ symbol ].turbulence, false, `/${ symbol }/ is silent: ${ JSON.stringify( seen[ symbol ] ) }` );
+		assert.equal( seen.S.glottisMm2 > seen.M.glottisMm2, true, 'the glottis is open for /s/' );
+		assert.deepEqual( [ seen.S.voicing, seen.M.voicing ], [ false, true ], 'the voice sounds for /m/, not for /s/' );
+		// /m/: no air out of the lips, all of it through the nose.
+		assert.equal( seen.M.stopped, true, `/m/: ${ JSON.stringify( seen.M ) }` );
+		assert.ok( seen.M.nasalFlow > 10 * seen.M.oralFlow, `/m/: ${ JSON.stringify( seen.M ) }` );
 
 	} );
 

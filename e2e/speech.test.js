@@ -198,7 +198,7 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 				input.value = String( f );
 				input.dispatchEvent( new Event( 'input', { bubbles: true } ) );
 				const g = window.glasshead;
-				out.push( { time: g.speech.time, frame: g.speech.frame, phone: g.speech.phone?.symbol ?? null, tipY: g.tongue.tip[ 1 ], lipGap: g.lipGap, velum: g.velum?.opening ?? g.params.velum_opening, rows: g.epg.rows, voiced: g.speech.voiced } );
+				out.push( { time: g.speech.time, frame: g.speech.frame, phone: g.speech.phone?.symbol ?? null, tipY: g.tongue.tip[ 1 ], lipGap: g.lipGap, velum: g.velum?.opening ?? g.params.velum_opening, rows: g.epg.rows, voiced: g.speech.voiced, air: g.cues.air } );
 
 			}
 
@@ -242,6 +242,30 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 			...phonesOf( utterance.phones, [ 'T', 'K', 'P' ] ).filter( ( phone ) => middle( phone ).voiced !== false ),
 		].map( ( phone ) => `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 2 ) } s` );
 		assert.deepEqual( wrong, [] );
+
+	} );
+
+	test( 'the cue layer\'s air: the glottis opens for /t k p/; stops and nasals hold the mouth shut, and a nasal\'s air leaves by the nose', () => {
+
+		const wrong = [];
+		for ( const phone of phonesOf( utterance.phones, [ 'T', 'K', 'P', 'D', 'B', 'M', 'N', 'NG' ] ) ) {
+
+			const voiceless = [ 'T', 'K', 'P' ].includes( phone.symbol );
+			for ( const { time, air } of within( samples, phone ) ) {
+
+				if ( voiceless !== ( air.glottisMm2 === 20 ) || air.oralAreaMm2 !== 0 || air.oralFlow !== 0 ) wrong.push( `/${ phone.symbol }/ at ${ time.toFixed( 3 ) } s: ${ JSON.stringify( air ) }` );
+
+			}
+
+			const nasalFlow = Math.max( ...within( samples, phone ).map( ( s ) => s.air.nasalFlow ) );
+			if ( [ 'M', 'N', 'NG' ].includes( phone.symbol ) && ! ( nasalFlow > 100 ) ) wrong.push( `/${ phone.symbol }/ at ${ phone.start_s.toFixed( 3 ) } s: at most ${ nasalFlow } cm3/s by the nose` );
+
+		}
+
+		assert.deepEqual( wrong, [] );
+		// A vowel's mouth is open, and the air goes out of it.
+		const vowels = phonesOf( utterance.phones, [ 'EH', 'AE', 'IH' ] ).flatMap( ( phone ) => within( samples, phone ) );
+		assert.ok( vowels.length > 0 && vowels.every( ( s ) => s.air.oralFlow > 100 && s.air.glottisMm2 === 5 ), JSON.stringify( vowels.map( ( s ) => s.air ) ) );
 
 	} );
 

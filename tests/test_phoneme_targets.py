@@ -302,7 +302,12 @@ def test_the_list_and_each_target_are_served(client):
     assert listed.status_code == 200
     body = listed.json()
     assert body["count"] == 39 and body["phonemes"][0]["arpabet"] == "AA"
-    assert {"arpabet", "ipa", "kind", "examples", "source"} <= set(body["phonemes"][0])
+    assert {"arpabet", "ipa", "kind", "voiced", "manner", "examples", "source"} <= set(
+        body["phonemes"][0])
+    by_symbol = {p["arpabet"]: p for p in body["phonemes"]}
+    # The cue layer sets the glottis from these: open for /s/, half open for /z/.
+    assert (by_symbol["S"]["voiced"], by_symbol["S"]["manner"]) == (False, "fricative")
+    assert (by_symbol["Z"]["voiced"], by_symbol["M"]["manner"]) == (True, "nasal")
     for symbol in ("T", "t", "ah1", "Ah0", "%CA%83", "ʃ", "tʃ"):
         response = client.get(f"/api/v1/phonemes/{symbol}")
         assert response.status_code == 200, symbol

@@ -1,11 +1,14 @@
-// The cues' kernels (web/src/core/cues.js): nasal strength from the port's area, turbulence from
-// the constriction's width, the air's paths, the particle layouts and a closure stopping the flow.
+// The cues' kernels (web/src/core/cues.js): nasal strength from the port's area, the air through
+// the tract and its turbulence from the constriction's, the glottis's and the port's areas, the
+// air's paths, the particle layouts and a closure stopping the flow.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import {
-	CLOSURE_WIDTH_MM, EXIT_MM, NASAL_FULL_AREA_MM2, NASAL_PASSAGE, STOP_MARGIN_MM, TURBULENCE_WIDTH_MM, arcLengthAt, createPath,
-	hash01, isClosure, layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength, oralPath, pointAlong, turbulenceStrength,
+	CLOSURE_WIDTH_MM, EXIT_MM, FRICATIVE_CHANNEL_MM2, GLOTTIS_OPEN_MM2, GLOTTIS_VOICED_MM2, GLOTTIS_VOICED_OBSTRUENT_MM2, NASAL_FULL_AREA_MM2,
+	NASAL_PASSAGE, REFERENCE_FLOW_CM3S, STOP_MARGIN_MM, TURBULENCE_FLOOR_DB, arcLengthAt, areaFromWidth, constrictionAirflow, constrictionAreaFor,
+	createPath, glottisAreaFor, hash01, layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength, oralPath, pointAlong,
+	tractFlows, turbulenceLevelDb, turbulenceStrength,
 } from '../../web/src/core/cues.js';
 import { fewestGarbageCollections } from './support/garbage.js';
 
@@ -28,15 +31,98 @@ test( 'a raised velum (no port) gives no nasal flow; it grows with the area up t
 
 } );
 
-test( 'a constriction of 2 mm or wider is not turbulent; narrower ones are, more as they close', () => {
+test( 'the area grows with the width as A = 1.5 d^1.5 (cm), and a closure has none', () => {
 
-	assert.equal( turbulenceStrength( TURBULENCE_WIDTH_MM ), 0 );
-	assert.equal( turbulenceStrength( 8 ), 0 );
-	assert.equal( turbulenceStrength( Infinity ), 0 );
+	assert.ok( Math.abs( areaFromWidth( 10 ) - 150 ) < 1e-9, '1 cm wide: 1.5 cm²' );
+	assert.ok( Math.abs( areaFromWidth( 2.73 ) - 21.4 ) < 0.05 );
+	for ( const closed of [ 0, CLOSURE_WIDTH_MM, - 1, NaN ] ) assert.equal( areaFromWidth( closed ), 0, String( closed ) );
+	assert.equal( areaFromWidth( Infinity ), Infinity );
+
+} );
+
+test( 'the flow through the glottis and the tract follows Bernoulli orifices in series, split by area', () => {
+
+	const flows = {};
+	// One orifice of 10 mm² behind a glottis so wide that it costs nothing: U = A sqrt(2 P / rho).
+	tractFlows( 1e9, 10, 0, flows );
+	assert.ok( Math.abs( flows.total - 10 * Math.sqrt( 2 * 800 / 1.14 ) ) < 1e-6 );
+	// The reference /s/: a 10 mm² groove behind an open glottis, about 335 cm³/s (Stevens: 300 to 500).
+	assert.ok( REFERENCE_FLOW_CM3S > 300 && REFERENCE_FLOW_CM3S < 400, String( REFERENCE_FLOW_CM3S ) );
+	// The mouth and the nose share the air as their areas.
+	tractFlows( GLOTTIS_VOICED_MM2, 30, 90, flows );
+	assert.ok( Math.abs( flows.oral / flows.total - 0.25 ) < 1e-12 && Math.abs( flows.oral + flows.nasal - flows.total ) < 1e-9 );
+	// Nothing flows through a closed glottis or a sealed tract.
+	assert.equal( tractFlows( 0, 30, 0, flows ).total, 0 );
+	assert.equal( tractFlows( GLOTTIS_OPEN_MM2, 0, 0, flows ).total, 0 );
+
+} );
+
+test( 'the glottis is open for voiceless sounds, half open for voiced obstruents, as in a vowel otherwise', () => {
+
+	assert.equal( glottisAreaFor( { voiced: false, manner: 'fricative' } ), GLOTTIS_OPEN_MM2 );
+	assert.equal( glottisAreaFor( { voiced: false, manner: 'stop' } ), GLOTTIS_OPEN_MM2 );
+	assert.equal( glottisAreaFor( { voiced: true, manner: 'fricative' } ), GLOTTIS_VOICED_OBSTRUENT_MM2 );
+	assert.equal( glottisAreaFor( { voiced: true, manner: 'nasal' } ), GLOTTIS_VOICED_MM2 );
+	assert.equal( glottisAreaFor( { voiced: true, manner: 'open' } ), GLOTTIS_VOICED_MM2 );
+	assert.equal( glottisAreaFor( null ), GLOTTIS_VOICED_MM2 );
+
+} );
+
+test( 'the noise is 0 dB for the reference /s/, falls with the flow and rises as the same flow narrows', () => {
+
+	assert.ok( Math.abs( turbulenceLevelDb( REFERENCE_FLOW_CM3S, 10 ) ) < 1e-9 );
+	assert.ok( Math.abs( turbulenceLevelDb( REFERENCE_FLOW_CM3S / 2, 10 ) - 20 * 3 * Math.log10( 0.5 ) ) < 1e-9 );
+	assert.ok( turbulenceLevelDb( 100, 5 ) > turbulenceLevelDb( 100, 10 ) );
+	assert.equal( turbulenceLevelDb( 0, 10 ), - Infinity );
+	assert.equal( turbulenceLevelDb( 100, 0 ), - Infinity );
+	assert.equal( turbulenceStrength( TURBULENCE_FLOOR_DB ), 0 );
+	assert.equal( turbulenceStrength( - Infinity ), 0 );
 	assert.equal( turbulenceStrength( NaN ), 0 );
-	assert.ok( turbulenceStrength( 1.9 ) > 0.35 );
-	assert.ok( turbulenceStrength( 0.5 ) > turbulenceStrength( 1.5 ) );
+	assert.ok( turbulenceStrength( TURBULENCE_FLOOR_DB + 1 ) > 0.35 );
 	assert.equal( turbulenceStrength( 0 ), 1 );
+	assert.equal( turbulenceStrength( 12 ), 1 );
+
+} );
+
+test( 'the manner says what the width cannot: stops and nasals are closed, fricatives keep a channel', () => {
+
+	assert.equal( constrictionAreaFor( 0.97, 'stop' ), 0 );
+	assert.equal( constrictionAreaFor( 0.97, 'nasal' ), 0 );
+	assert.equal( constrictionAreaFor( 0, 'fricative' ), FRICATIVE_CHANNEL_MM2 );
+	assert.equal( constrictionAreaFor( 0.02, 'affricate' ), FRICATIVE_CHANNEL_MM2 );
+	assert.equal( constrictionAreaFor( 2.73, 'fricative' ), areaFromWidth( 2.73 ) );
+	assert.equal( constrictionAreaFor( 0.97, null ), areaFromWidth( 0.97 ) );
+	assert.equal( constrictionAreaFor( 4, 'close' ), areaFromWidth( 4 ) );
+
+} );
+
+test( 'fricatives hiss and vowels, nasals and closures do not', () => {
+
+	const air = {};
+	const at = ( width, port, sound ) => ( { ...constrictionAirflow( width, port, sound, air ) } );
+	// /s/ at its 2.73 mm groove, voiceless: loud. /z/, the same groove with the folds vibrating: softer, still heard.
+	const s = at( 2.73, 0, { voiced: false, manner: 'fricative' } ), z = at( 2.73, 0, { voiced: true, manner: 'fricative' } );
+	assert.ok( s.turbulence > 0.8 && s.passes && s.glottisMm2 === GLOTTIS_OPEN_MM2, JSON.stringify( s ) );
+	assert.ok( z.turbulence > 0 && z.levelDb < s.levelDb - 6, JSON.stringify( z ) );
+	// /ʃ/ whose section touches at the midline still hisses through its channel.
+	assert.ok( at( 0, 0, { voiced: false, manner: 'fricative' } ).turbulence > 0.5 );
+	// An open vowel and a close one (4 mm): air flows out of the lips, no hiss.
+	for ( const width of [ 10, 4 ] ) {
+
+		const vowel = at( width, 0, { voiced: true, manner: 'close' } );
+		assert.ok( vowel.passes && vowel.turbulence === 0 && vowel.oral > 100, JSON.stringify( vowel ) );
+
+	}
+
+	// Lips 0.78 mm apart beside the open port, with no phoneme named: the air leaves by the nose.
+	const lips = at( 0.78, 90, null );
+	assert.ok( ! lips.passes && lips.turbulence === 0 && lips.nasal > 0.9 * lips.total, JSON.stringify( lips ) );
+	// The same lips with the port shut: a bilabial fricative, it hisses.
+	assert.ok( at( 0.78, 0, null ).turbulence > 0 );
+	// /m/ and /t/, whatever gap the section keeps: closed, so the air goes out of the nose or not at all.
+	const m = at( 0.78, 90, { voiced: true, manner: 'nasal' } ), t = at( 0.97, 0, { voiced: false, manner: 'stop' } );
+	assert.ok( ! m.passes && m.oral === 0 && m.nasal > 100 && m.turbulence === 0, JSON.stringify( m ) );
+	assert.ok( ! t.passes && t.total === 0 && t.turbulence === 0, JSON.stringify( t ) );
 
 } );
 
@@ -101,16 +187,6 @@ test( 'flow particles lie on their path within the spread, head bright and trail
 
 	// Particle 0 moved speed * time along the path (its head, 15 mm from the start, is inside).
 	assert.ok( Math.abs( positions[ 0 ] - 15 ) < 1e-4 );
-
-} );
-
-test( 'a width of 0.0 mm is a closure; a narrow gap, no constriction or an unknown width is not', () => {
-
-	assert.equal( isClosure( 0 ), true );
-	assert.equal( isClosure( CLOSURE_WIDTH_MM ), true );
-	assert.equal( isClosure( 0.3 ), false );
-	assert.equal( isClosure( Infinity ), false );
-	assert.equal( isClosure( NaN ), false );
 
 } );
 
@@ -223,6 +299,8 @@ test( 'the per-frame layouts allocate nothing', async () => {
 	// The options are made once and updated, as scene/CueLayer.js does.
 	const flow = { count: 30, trail: 6, time: 0, speed: 70, spacingMm: 1.8, spreadMm: 2, stopMm: Infinity, reachMm: 0 };
 	const swirl = { count: 40, time: 0, strength: 0.8, radiusMm: 5 };
+	const air = { glottisMm2: 0, areaMm2: 0, total: 0, oral: 0, nasal: 0, levelDb: 0, turbulence: 0, passes: true };
+	const sound = { voiced: false, manner: 'fricative' };
 	assert.equal( await fewestGarbageCollections( () => {
 
 		for ( let k = 0; k < 20000; k ++ ) {
@@ -232,6 +310,7 @@ test( 'the per-frame layouts allocate nothing', async () => {
 			layoutFlow( path, flow, positions, colors, 0, 4, 3 );
 			layoutSwirl( 0, 0, swirl, positions, colors, 0, 4, 3 );
 			layoutRings( k / 60, 3, 0.75, 3, 15, rings );
+			constrictionAirflow( ( k % 50 ) / 10, k % 3 ? 0 : 90, k % 2 ? sound : null, air );
 
 		}
 

@@ -1,14 +1,48 @@
 // The cues a child can see, as pure numbers: the strength of the nasal flow from the nasal
-// port's area, the strength of the turbulence from the constriction's width, the paths the air
-// takes in the mid-sagittal plane (from the glottis along the tract's midline out of the lips;
-// up the pharynx, through the nasal port and out of the nose) and where each particle, trail dot
-// and swirl dot stands at a time. Paths are built once (allocating); the per-frame layouts write
-// into given arrays and allocate nothing. Drawing is scene/CueLayer.js.
+// port's area; the air through the tract and the turbulence it makes at the narrowest
+// constriction, from the constriction's area, the glottis's and the nasal port's (aerodynamics
+// below); the paths the air takes in the mid-sagittal plane (from the glottis along the tract's
+// midline out of the lips; up the pharynx, through the nasal port and out of the nose) and where
+// each particle, trail dot and swirl dot stands at a time. Paths are built once (allocating); the
+// per-frame layouts write into given arrays and allocate nothing. Drawing is scene/CueLayer.js.
+//
+// Aerodynamics (Stevens 1971, "Airflow and turbulence noise for fricative and stop consonants:
+// static considerations", JASA 50; Stevens 1998, Acoustic Phonetics, ch. 2 and 8): the lungs
+// push at SUBGLOTTAL_PRESSURE_PA through the glottis and then through the oral constriction and
+// the nasal port side by side; each narrowing is an orifice whose pressure drop is
+// rho U^2 / (2 A^2). The turbulence noise made at the oral constriction grows as U^3 A^-2.5; it is
+// given in dB against a voiceless /s/ (a 0.1 cm^2 groove behind an open glottis). The
+// constriction's area comes from its mid-sagittal width by the power law A = alpha d^beta of
+// area-function studies (Heinz and Stevens 1964; Soquet et al. 2002 compare the published
+// coefficients, about 1.3 to 2 for alpha and 1.2 to 1.6 for beta in the oral cavity).
+//
+// The sound's manner says what the constriction is, where the drawn section cannot: a stop or a
+// nasal holds a closure (the rig does not press tissue together, so its section may keep a gap
+// of a millimetre), and a fricative's channel is never shut (where the section shows contact the
+// air finds the gaps between the teeth and beside the midline), at least FRICATIVE_CHANNEL_MM2.
 
-/** Below this constriction width (mm) the oral flow is turbulent (fricatives: about 1 mm). */
-export const TURBULENCE_WIDTH_MM = 2;
 /** Nasal port area (mm²) of a full-strength nasal flow: the fully lowered velum's port, 102 mm². */
 export const NASAL_FULL_AREA_MM2 = 100;
+/** The lungs' pressure below the glottis in speech at a comfortable level: 8 cm H2O, in Pa. */
+export const SUBGLOTTAL_PRESSURE_PA = 800;
+/** Density of the warm, moist air in the tract, kg/m³. */
+export const AIR_DENSITY = 1.14;
+/** The glottis's mean area (mm²) while the folds vibrate, and held open for a voiceless sound. */
+export const GLOTTIS_VOICED_MM2 = 5;
+export const GLOTTIS_OPEN_MM2 = 20;
+/** A voiced stop or fricative keeps the folds vibrating with the glottis half open, mm². */
+export const GLOTTIS_VOICED_OBSTRUENT_MM2 = 10;
+/** A = alpha d^beta, A in cm² and d in cm: the oral cavity's law (see above). */
+export const AREA_ALPHA = 1.5;
+export const AREA_BETA = 1.5;
+/** The narrowest channel of a fricative, mm² (0.05 cm², the narrow end of Stevens's fricatives). */
+export const FRICATIVE_CHANNEL_MM2 = 5;
+/** The reference of the noise level: a voiceless /s/'s groove, mm². */
+export const REFERENCE_GROOVE_MM2 = 10;
+/** Turbulence noise this many dB under the reference /s/ or less is not shown. */
+export const TURBULENCE_FLOOR_DB = - 30;
+/** The oral flow passes the constriction when it carries at least this share of the air. */
+export const ORAL_PASS_SHARE = 0.1;
 /** How far the oral path goes on beyond the lips, and the nasal one beyond the nostrils (mm). */
 export const EXIT_MM = 22;
 /** A constriction this narrow (mm) or narrower is a closure: what the diagram shows as 0.0 mm. */
@@ -31,19 +65,113 @@ export function nasalStrength( areaMm2 ) {
 
 }
 
-/** 0 for a constriction of TURBULENCE_WIDTH_MM or wider; from 0.35 to 1 as it narrows to closure. */
-export function turbulenceStrength( widthMm ) {
+const OBSTRUENTS = new Set( [ 'stop', 'fricative', 'affricate' ] );
+const CLOSURES = new Set( [ 'stop', 'nasal' ] );
+const CHANNELS = new Set( [ 'fricative', 'affricate' ] );
 
-	if ( ! ( widthMm < TURBULENCE_WIDTH_MM ) ) return 0;
-	const narrow = 1 - Math.max( 0, widthMm ) / TURBULENCE_WIDTH_MM;
-	return 0.35 + 0.65 * narrow;
+/**
+ * The glottis's area (mm²) for a phoneme's features ({ voiced, manner }, as GET /phonemes gives
+ * them): open for a voiceless sound, half open for a voiced obstruent, as in voicing otherwise
+ * (and with no phoneme).
+ */
+export function glottisAreaFor( features ) {
+
+	if ( ! features ) return GLOTTIS_VOICED_MM2;
+	if ( features.voiced === false ) return GLOTTIS_OPEN_MM2;
+	return OBSTRUENTS.has( features.manner ) ? GLOTTIS_VOICED_OBSTRUENT_MM2 : GLOTTIS_VOICED_MM2;
 
 }
 
-/** Whether a constriction of this width (mm) closes the tract (no width, or none found: open). */
-export function isClosure( widthMm ) {
+/** The cross-section area (mm²) of a constriction of mid-sagittal width widthMm (0 when closed). */
+export function areaFromWidth( widthMm ) {
 
-	return widthMm <= CLOSURE_WIDTH_MM;
+	if ( ! ( widthMm > CLOSURE_WIDTH_MM ) ) return 0;
+	return 100 * AREA_ALPHA * Math.pow( widthMm / 10, AREA_BETA );
+
+}
+
+/**
+ * The oral constriction's area (mm²) for a sound of manner `manner` (null: none, as on the
+ * workbench's sliders) at mid-sagittal width widthMm: closed for a stop or a nasal, at least
+ * FRICATIVE_CHANNEL_MM2 for a fricative or an affricate's release, from the width otherwise.
+ */
+export function constrictionAreaFor( widthMm, manner ) {
+
+	if ( CLOSURES.has( manner ) ) return 0;
+	const area = areaFromWidth( widthMm );
+	return CHANNELS.has( manner ) ? Math.max( FRICATIVE_CHANNEL_MM2, area ) : area;
+
+}
+
+/**
+ * The air through the tract (cm³/s) from the glottis's, the oral constriction's and the nasal
+ * port's areas (mm²), at SUBGLOTTAL_PRESSURE_PA: the glottis in series with the mouth and the
+ * nose, which share the pressure left after it, so that the flow divides as their areas. Writes
+ * total, oral and nasal into target and returns it; allocates nothing.
+ */
+export function tractFlows( glottisMm2, oralMm2, nasalMm2, target ) {
+
+	const outlet = Math.max( 0, oralMm2 ) + Math.max( 0, nasalMm2 );
+	const glottis = Math.max( 0, glottisMm2 );
+	let total = 0;
+	if ( outlet > 0 && glottis > 0 ) {
+
+		// Orifices in series: 1 / A_eff² = 1 / A_glottis² + 1 / A_outlet²; the air crosses A_eff
+		// at the speed the whole pressure drop gives. mm² times m/s is cm³/s.
+		const effectiveMm2 = 1 / Math.sqrt( 1 / ( glottis * glottis ) + 1 / ( outlet * outlet ) );
+		total = effectiveMm2 * Math.sqrt( 2 * SUBGLOTTAL_PRESSURE_PA / AIR_DENSITY );
+
+	}
+
+	target.total = total;
+	target.oral = outlet > 0 ? total * Math.max( 0, oralMm2 ) / outlet : 0;
+	target.nasal = total - target.oral;
+	return target;
+
+}
+
+/** The reference /s/'s flow, cm³/s (about 335). */
+export const REFERENCE_FLOW_CM3S = tractFlows( GLOTTIS_OPEN_MM2, REFERENCE_GROOVE_MM2, 0, {} ).oral;
+
+/**
+ * The level (dB) of the turbulence noise a flow of U cm³/s makes through an area of A mm²,
+ * against the reference voiceless /s/ (U³ A^-2.5; -Infinity without flow).
+ */
+export function turbulenceLevelDb( flowCm3s, areaMm2 ) {
+
+	if ( ! ( flowCm3s > 0 && areaMm2 > 0 ) ) return - Infinity;
+	return 20 * ( 3 * Math.log10( flowCm3s / REFERENCE_FLOW_CM3S ) - 2.5 * Math.log10( areaMm2 / REFERENCE_GROOVE_MM2 ) );
+
+}
+
+/** 0 at or below TURBULENCE_FLOOR_DB; from 0.35 up to 1 as the noise rises to the reference /s/. */
+export function turbulenceStrength( levelDb ) {
+
+	if ( ! ( levelDb > TURBULENCE_FLOOR_DB ) ) return 0;
+	return 0.35 + 0.65 * Math.min( 1, ( levelDb - TURBULENCE_FLOOR_DB ) / - TURBULENCE_FLOOR_DB );
+
+}
+
+/**
+ * What the air does at a constriction of mid-sagittal width widthMm, with the nasal port open
+ * portMm2, for a sound with the phoneme features `sound` ({ voiced, manner }, or null for none):
+ * writes into target the glottisMm2 and areaMm2 used, the flows (total, oral, nasal, cm³/s),
+ * levelDb (the turbulence noise against the reference /s/), turbulence (the strength shown, 0 for
+ * none) and passes (whether the oral flow gets past the constriction: it is closed, or so much
+ * narrower than the open port that the air goes out of the nose). Returns target; allocates
+ * nothing.
+ */
+export function constrictionAirflow( widthMm, portMm2, sound, target ) {
+
+	const glottis = glottisAreaFor( sound );
+	const area = constrictionAreaFor( widthMm, sound?.manner ?? null );
+	tractFlows( glottis, area, portMm2, target );
+	target.glottisMm2 = glottis;
+	target.areaMm2 = area;
+	target.passes = target.total > 0 && target.oral >= ORAL_PASS_SHARE * target.total;
+	target.levelDb = target.passes ? turbulenceLevelDb( target.oral, area ) : - Infinity;
+	target.turbulence = turbulenceStrength( target.levelDb );
+	return target;
 
 }
 

@@ -3,9 +3,11 @@
 //   - voicing: golden rings widening from the glottis and a glow there that buzzes;
 //   - oral airflow: blue dots with fading trails streaming from the glottis along the tract's
 //     midline and out of the lips; when the narrowest constriction is closed (the tongue against
-//     the palate, the lips together), they gather behind the closure and none passes it;
-//   - turbulence: an orange swirl of jittering dots at the narrowest constriction, when it is
-//     narrower than TURBULENCE_WIDTH_MM but open (with the oral flow);
+//     the palate, the lips together) or the air goes out of the nose instead (a nasal's open
+//     port beside a sealed mouth), they gather behind it and none passes it;
+//   - turbulence: an orange swirl of jittering dots at the narrowest constriction, when the air
+//     through it is loud enough to hiss (core/cues.js constrictionAirflow: its area, the glottis's
+//     and the nasal port's give the flow, and the flow and the area the noise);
 //   - nasal airflow: magenta dots streaming up the pharynx, through the nasal port and out of the
 //     nose, as many and as fast as the port's area allows (none when the velum is raised).
 // The layouts are core/cues.js; nothing is allocated per frame. Drawn over everything (no depth
@@ -16,7 +18,8 @@ import {
 	NormalBlending, PlaneGeometry, Points, PointsMaterial, RingGeometry,
 } from 'three';
 import {
-	arcLengthAt, isClosure, layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength, oralPath, turbulenceStrength,
+	arcLengthAt, constrictionAirflow, layoutFlow, layoutRings, layoutSwirl, nasalPath, nasalStrength,
+	oralPath,
 } from '../core/cues.js';
 import { CONSTRICTION_FLOOR, CONSTRICTION_FOUND, CONSTRICTION_ROOF, CONSTRICTION_WIDTH } from '../core/constriction.js';
 
@@ -40,12 +43,16 @@ export class CueLayer {
 	 *   nasal port (x y, mm, from GET /anatomy/landmarks), the tract's midline from the lips
 	 *   (tractMidline), the live constriction result (core/constriction.js layout) and the nasal
 	 *   port's current area (mm²); `voiced()` whether the voice sounds now (a speech player's
-	 *   voicing track; always, by default, as on the workbench)
+	 *   voicing track, or the workbench's phoneme target; always, by default); `sound()` the phoneme features
+	 *   ({ voiced, manner }, GET /phonemes) of the sound made now, or null for none: they set the
+	 *   glottis and say whether the constriction is a closure or a channel (core/cues.js)
 	 */
-	constructor( { glottis, port, midline, constriction = null, portArea = () => 0, voiced = () => true } ) {
+	constructor( { glottis, port, midline, constriction = null, portArea = () => 0, voiced = () => true, sound = () => null } ) {
 
 		this.glottis = glottis;
 		this.voiced = voiced;
+		this.sound = sound;
+		this.air = { glottisMm2: 0, areaMm2: 0, total: 0, oral: 0, nasal: 0, levelDb: - Infinity, turbulence: 0, passes: true };
 		this.constriction = constriction;
 		this.portArea = portArea;
 		this.oralPath = oralPath( midline, glottis );
@@ -133,9 +140,11 @@ export class CueLayer {
 		const nasal = nasalStrength( area );
 		const r = this.constriction;
 		const width = r && r[ CONSTRICTION_FOUND ] ? r[ CONSTRICTION_WIDTH ] : Infinity;
-		// A closure stops the oral flow there: no air passes, so no turbulence either.
-		const closed = isClosure( width );
-		const turbulence = closed ? 0 : turbulenceStrength( width );
+		// A closure, or a mouth so much narrower than the open port that the air leaves by the
+		// nose, stops the oral flow there; no air passes, so no turbulence either.
+		const air = constrictionAirflow( width, area, this.sound(), this.air );
+		const closed = ! air.passes;
+		const turbulence = air.turbulence;
 		this.shown.nasalStrength = nasal;
 		this.shown.turbulenceStrength = turbulence;
 		this.shown.turbulence = c.visible && c.oral && turbulence > 0;
@@ -211,6 +220,13 @@ export class CueLayer {
 		return {
 			visible: c.visible, voicing: c.voicing, nasal: c.nasal, oral: c.oral,
 			turbulence: this.shown.turbulence,
+			voicingShown: this.voicing.visible,
+			// The aerodynamics behind it: areas mm², flows cm³/s, the noise in dB re a voiceless /s/.
+			air: {
+				glottisMm2: round2( this.air.glottisMm2 ), oralAreaMm2: round2( this.air.areaMm2 ),
+				oralFlow: round2( this.air.oral ), nasalFlow: round2( this.air.nasal ),
+				noiseDb: Number.isFinite( this.air.levelDb ) ? round2( this.air.levelDb ) : null,
+			},
 			nasalStrength: Math.round( this.shown.nasalStrength * 1000 ) / 1000,
 			oralStopped: this.shown.oralStopped,
 			oralStopMm: round2( this.shown.oralStopMm ),

@@ -26,6 +26,10 @@ class PhonemeSummary(BaseModel):
     arpabet: str
     ipa: str
     kind: str = Field(description="vowel, diphthong or consonant")
+    voiced: bool = Field(description="whether the folds vibrate (the glottis is held open when "
+                                     "not)")
+    manner: str = Field(description="consonants: stop, fricative, affricate, nasal, lateral, "
+                                    "approximant; vowels: their height")
     examples: list[str]
     source: SourceSummary
     url: str
@@ -67,7 +71,9 @@ def _targets(assets) -> dict:
 
 def _summary(target: dict) -> dict:
     source = target["source"]
+    features = target["features"]
     return {"arpabet": target["arpabet"], "ipa": target["ipa"], "kind": target["kind"],
+            "voiced": features["voiced"], "manner": features["manner"],
             "examples": target["examples"],
             "source": {"kind": source.get("kind"), "shapes": source.get("shapes", []),
                        "rms_mm": source.get("rms_mm")},

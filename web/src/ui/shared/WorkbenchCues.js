@@ -27,9 +27,10 @@ export class WorkbenchCues {
 	 * @param {{ viewer: object, articulation: object, diagram: object, landmarks: object|null }}
 	 *   parts the workbench's viewer, articulation (its state and velum), DiagramSection (its
 	 *   midline and live constriction) and GET /anatomy/landmarks (the glottis and the nasal port);
-	 *   `voiced()` whether the voice sounds now (default: always)
+	 *   `voiced()` whether the voice sounds now (default: always); `sound()` the features of the
+	 *   phoneme made now (CueLayer's; default: none)
 	 */
-	constructor( { viewer, articulation, diagram, landmarks, voiced = () => true } ) {
+	constructor( { viewer, articulation, diagram, landmarks, voiced = () => true, sound = undefined } ) {
 
 		this.viewer = viewer;
 		this.unregister = [];
@@ -39,7 +40,7 @@ export class WorkbenchCues {
 		const velum = articulation.velum ?? null;
 		this.layer = new CueLayer( {
 			glottis, port: landmark( landmarks, 'nasal_port' ), midline: diagram.midline.points,
-			constriction: diagram.result, portArea: () => velum?.portArea ?? 0, voiced,
+			constriction: diagram.result, portArea: () => velum?.portArea ?? 0, voiced, sound,
 		} );
 		this.layer.set( CUE_DEFAULTS );
 		viewer.scene.add( this.layer.group );

@@ -1,8 +1,10 @@
 // The speech player's panels beside the head: the 2D diagram of the vocal tract (redrawn with
 // every recompute of the articulation, so it follows the clock), the cue switches (the workbench's
-// WorkbenchCues, driving the cue layer in the 3D scene) and the dominance plot.
+// WorkbenchCues, driving the cue layer in the 3D scene, with the glottis of the phone being
+// said) and the dominance plot.
 
 import { DiagramSection } from '../../scene/DiagramSection.js';
+import { loadPhonemeList } from '../shared/loaders.js';
 import { h } from '../shared/dom.js';
 import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 import { drawDiagram } from '../shared/DiagramPanel.js';
@@ -23,8 +25,8 @@ function canvas( [ width, height ], ariaLabel ) {
 
 export class SpeechPanels {
 
-	/** @param {{ head: object, viewer: object, articulation: object, landmarks: object|null }} parts */
-	constructor( { head, viewer, articulation, landmarks } ) {
+	/** @param {{ head: object, viewer: object, articulation: object, landmarks: object|null, api?: object }} parts */
+	constructor( { head, viewer, articulation, landmarks, api } ) {
 
 		this.unregister = [];
 		this.diagramCanvas = canvas( DIAGRAM_SIZE, 'Diagram: the vocal tract cut at the mid-sagittal plane' );
@@ -34,7 +36,14 @@ export class SpeechPanels {
 		this.drawDiagram();
 		/** Whether the voice sounds at the clock's time (the utterance's voicing cue), set by the player. */
 		this.voiced = true;
-		this.cues = new WorkbenchCues( { viewer, articulation, diagram: this.diagram, landmarks, voiced: () => this.voiced } );
+		/** The ARPAbet symbol of the phone at the clock's time (null in none), set by the player. */
+		this.phoneSymbol = null;
+		this.featuresBySymbol = new Map();
+		this.loadFeatures( api );
+		this.cues = new WorkbenchCues( {
+			viewer, articulation, diagram: this.diagram, landmarks, voiced: () => this.voiced,
+			sound: () => this.featuresBySymbol.get( this.phoneSymbol ) ?? null,
+		} );
 		this.cues.element.className = 'sp-buttons';
 		this.dominance = new DominancePlot( canvas( DOMINANCE_SIZE, 'Dominance of each phoneme over time for the chosen parameter' ), articulation.state );
 		const section = ( title, ...content ) => h( 'section', { className: 'sp-section' }, h( 'h2', { className: 'sp-heading' }, title ), ...content );
@@ -43,6 +52,22 @@ export class SpeechPanels {
 			section( 'Air and voice', this.cues.element ),
 			section( 'Dominance', this.dominance.element ),
 		];
+
+	}
+
+	/** Each phoneme's voicing and manner, from GET /phonemes, for the cues' air (none until then). */
+	async loadFeatures( api ) {
+
+		try {
+
+			const body = await loadPhonemeList( { api } );
+			for ( const { arpabet, voiced, manner } of body?.phonemes ?? [] ) this.featuresBySymbol.set( arpabet, { voiced, manner } );
+
+		} catch ( error ) {
+
+			console.warn( `Glasshead: the cues' air ignores the phones; the phonemes did not load: ${ error.message }` );
+
+		}
 
 	}
 

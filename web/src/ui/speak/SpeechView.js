@@ -131,7 +131,7 @@ export class SpeechView extends View {
 		this.onUnmount( () => this.articulation.dispose() );
 		this.epg = await ( await import( '../shared/HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } );
 		if ( ! this.viewer ) return;
-		this.panels = new SpeechPanels( { head: this.head, viewer: this.viewer, articulation: this.articulation, landmarks: this.landmarks } );
+		this.panels = new SpeechPanels( { head: this.head, viewer: this.viewer, articulation: this.articulation, landmarks: this.landmarks, api: this.api } );
 		this.onUnmount( () => this.panels.dispose() );
 		this.dominance = this.panels.dominance;
 		this.side.append( ...this.panels.sections );
@@ -232,6 +232,7 @@ export class SpeechView extends View {
 		}
 
 		this.phone = phoneIndexAt( u.phones, t );
+		this.panels.phoneSymbol = u.phones[ this.phone ]?.symbol ?? null;
 		// The voice buzzes at the glottis only while the utterance is voiced (its voicing cue).
 		const voicing = u.cues?.voicing;
 		this.panels.voiced = voicing ? voicing[ Math.min( Math.max( Math.round( t * u.rate_hz ), 0 ), voicing.length - 1 ) ] > VOICED : true;

@@ -269,6 +269,7 @@ export function mountObservationPanels( view ) {
 
 	const { api, articulation, viewer, head } = view;
 	const phonemes = new PhonemeChooser( { api, state: articulation.state } );
+	view.phonemeChooser = phonemes; // the cues read the chosen phoneme's glottis
 	const observation = new ObservationPanel( {
 		api, articulation, viewer, head, sagittal: view.sagittalCanvas, redrawSagittal: () => view.drawPanels(),
 	} );

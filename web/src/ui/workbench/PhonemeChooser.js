@@ -57,8 +57,15 @@ export class PhonemeTargetControl {
 		this.current = null; // while the state changes, no target is named (and none is 'edited')
 		const ignored = assignParams( this.state, target.params );
 		this.appliedVersion = this.state.version;
-		this.current = { symbol: target.arpabet ?? symbol, ipa: target.ipa ?? null, label: phonemeLabel( target ), ignored, source: target.source ?? null };
+		this.current = { symbol: target.arpabet ?? symbol, ipa: target.ipa ?? null, label: phonemeLabel( target ), ignored, source: target.source ?? null, features: target.features ?? null };
 		return target;
+
+	}
+
+	/** The phoneme features ({ voiced, manner, ... }) of the target the sliders show, else null. */
+	shownFeatures() {
+
+		return this.current && this.state.version === this.appliedVersion ? this.current.features : null;
 
 	}
 

@@ -238,8 +238,14 @@ export class WorkbenchView extends View {
 		this.panelDraws = 0;
 		this.onUnmount( articulation.onCorrected( () => this.drawPanels() ) );
 		this.drawPanels();
-		// After the panels' hook, so that the cues read this frame's constriction.
-		this.cues = new WorkbenchCues( { viewer: this.viewer, articulation, diagram: this.diagram, landmarks: this.landmarks } );
+		// After the panels' hook, so that the cues read this frame's constriction. The voice and
+		// the air are the chosen phoneme target's while the sliders show it (voiced or not, its
+		// glottis, its closure or channel); a voiced sound with no phoneme otherwise.
+		const sound = () => this.phonemeChooser?.control.shownFeatures() ?? null;
+		this.cues = new WorkbenchCues( {
+			viewer: this.viewer, articulation, diagram: this.diagram, landmarks: this.landmarks,
+			sound, voiced: () => sound()?.voiced ?? true,
+		} );
 		this.onUnmount( () => this.cues.dispose() );
 		this.side.querySelector( '[aria-label="View"]' ).after( this.cues.element );
 		this.onUnmount( mountObservationPanels( this ) ); // its hook after the panels': it draws over them
