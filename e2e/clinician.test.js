@@ -10,7 +10,7 @@ import assert from 'node:assert/strict';
 import { join, resolve } from 'node:path';
 import { describe, test } from 'node:test';
 import { apiSession, authHeaders, openSignedIn, signIn } from './accounts.js';
-import { openPage, readDebug, REPO, SCREENSHOT_DIR, serverAndBrowser, settle } from './harness.js';
+import { openPage, readDebug, REPO, saveScreenshot, SCREENSHOT_DIR, serverAndBrowser, settle } from './harness.js';
 
 const DATA_DIR = process.env.GLASSHEAD_DATA_DIR ?? resolve( REPO, '..', 'shared', 'data' );
 const EMUR = join( DATA_DIR, 'epg', 'emur-engassim.json' );
@@ -257,6 +257,27 @@ describe( 'the clinician view', { timeout: 300_000 }, () => {
 		assert.equal( box.overflow, 'ellipsis' );
 		assert.ok( box.scroll > box.client, 'the name is longer than its card and cut' );
 		assert.ok( box.height < 30, `the caption stays on one line (${ box.height } px)` );
+
+	} );
+
+	test( 'the head saying the take\'s own phones on its timing is scored phone by phone', async () => {
+
+		const id = recordingIds[ 0 ]; // bescan, s->k
+		await openClinician( `#/clinician?target=said:${ id }&recording=${ id }` );
+		await page.waitForFunction( () => window.glasshead.clinician.phones !== null, null, { timeout: 90_000, polling: 200 } );
+		const state = await clinician();
+		assert.equal( state.error, null );
+		assert.equal( state.target.frames, state.recording.frames, 'one frame of the head per frame of the take' );
+		assert.deepEqual( state.phones.map( ( p ) => p.symbol ), [ 'S', 'K' ] );
+		assert.equal( state.phones.reduce( ( sum, p ) => sum + p.frames, 0 ), state.recording.frames );
+		assert.equal( state.target3d, null );
+		assert.match( await page.locator( 'figcaption', { hasText: 'Target on the palate' } ).textContent(), /shown for a target of one pose/ );
+		const said = ( await api( 'POST', `/epg/recordings/${ id }/coarticulated`, {} ) ).body;
+		const report = ( await api( 'POST', `/epg/recordings/${ id }/compare`, { reference: { frames: said.frames, t_s: said.t_s, phones: said.phones } } ) ).body;
+		for ( const [ k, phone ] of state.phones.entries() ) assert.ok( Math.abs( phone.mean_kappa - report.phones[ k ].mean_kappa ) <= 1e-12 );
+		const line = await page.locator( 'figure', { hasText: 'Agreement' } ).getByText( /^Per phone:/ ).textContent();
+		assert.match( line, /^Per phone: \/s\/ κ −?\d\.\d\d \(\d+ frames\) · \/k\/ κ −?\d\.\d\d \(\d+ frames\); mean over the phones κ −?\d\.\d\d$/ );
+		await saveScreenshot( page, 'clinician-said-1366' );
 
 	} );
 

@@ -72,7 +72,7 @@ test( 'a fit that is not done has no target, and says why', async () => {
 test( 'the fitted targets are the chooser\'s third source, named fit:<id>', () => {
 
 	const sources = targetSources( { api: fakeApi( ROUTES ).api } );
-	assert.deepEqual( sources.map( ( s ) => [ s.kind, s.title ] ), [ [ 'pose', 'Saved poses' ], [ 'phoneme', 'Phoneme targets' ], [ 'fit', 'Fitted targets' ] ] );
+	assert.deepEqual( sources.map( ( s ) => [ s.kind, s.title ] ), [ [ 'pose', 'Saved poses' ], [ 'phoneme', 'Phoneme targets' ], [ 'fit', 'Fitted targets' ], [ 'said', 'Said as in a recording' ] ] );
 	assert.equal( fitDescription( { kind: 'surface', report: null } ), 'surface fit' );
 
 } );

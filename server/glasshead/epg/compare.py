@@ -176,3 +176,25 @@ def compare(frames, t_s, ref_frames, ref_t_s=None) -> Comparison:
         kappa=kappa,
         contact_agreement=contact,
     )
+
+
+def phone_scores(comparison: Comparison, spans) -> tuple[list[dict], dict]:
+    """Per phone (``spans``: (symbol, start_s, end_s) on the recording's clock, from its first
+    frame): its frames and the means of agreement, kappa and contact agreement over them (None
+    without frames); and the means over the phones that have frames, with their count."""
+    relative = comparison.t_s - comparison.t_s[0]
+    rows = []
+    for symbol, start, end in spans:
+        inside = (relative >= start - 1e-9) & (relative < end - 1e-9)
+        n = int(inside.sum())
+        rows.append({"symbol": symbol, "start_s": float(start), "end_s": float(end), "frames": n,
+                     **{key: float(values[inside].mean()) if n else None
+                        for key, values in (("mean_agreement", comparison.agreement),
+                                            ("mean_kappa", comparison.kappa),
+                                            ("mean_contact_agreement",
+                                             comparison.contact_agreement))}})
+    scored = [r for r in rows if r["frames"]]
+    overall: dict = {key: float(np.mean([r[key] for r in scored])) if scored else None
+                     for key in ("mean_agreement", "mean_kappa", "mean_contact_agreement")}
+    overall["phones_scored"] = len(scored)
+    return rows, overall

@@ -54,6 +54,13 @@ class RecordingReference(BaseModel):
     recording_id: int = Field(ge=1, le=MAX_ID)
 
 
+class PhoneSpan(BaseModel):
+    symbol: str = Field(max_length=20, description="the phone, as the reference names it")
+    ipa: str | None = Field(None, max_length=20, description="its IPA, given back as sent")
+    start_s: float = Field(description="seconds from the recording's first frame")
+    end_s: float
+
+
 class FramesReference(BaseModel):
     label: str = Field("target", max_length=200,
                        description="what the frames show; defaults to the pose's name")
@@ -66,6 +73,11 @@ class FramesReference(BaseModel):
     t_s: list[float] | None = Field(
         None, description="frame times, seconds; needed when there are 2 or more frames and "
                           "not one per recording frame")
+    phones: list[PhoneSpan] | None = Field(
+        None, max_length=200,
+        description="the phones the frames say, on the recording's clock (as "
+                    "POST /epg/recordings/{id}/coarticulated gives them): the report then scores "
+                    "each phone's frames")
 
 
 class CompareRequest(BaseModel):
@@ -77,6 +89,17 @@ class CompareRequest(BaseModel):
              "11000011"]]}},
         {"reference": {"recording_id": 1}}]})
     reference: RecordingReference | FramesReference
+
+
+class PhoneScore(BaseModel):
+    symbol: str
+    ipa: str | None
+    start_s: float
+    end_s: float
+    frames: int
+    mean_agreement: float | None
+    mean_kappa: float | None
+    mean_contact_agreement: float | None
 
 
 class ComparisonReport(BaseModel):
@@ -96,7 +119,11 @@ class ComparisonReport(BaseModel):
     recording_indices: dict[str, list[float]]
     reference_indices: dict[str, list[float]]
     index_difference: dict[str, list[float]] = Field(description="recording minus reference")
-    summary: dict
+    phones: list[PhoneScore] | None = Field(
+        None, description="with a reference's phones: each phone's frames and their mean "
+                          "agreement, kappa and contact agreement (null without frames)")
+    summary: dict = Field(description="means over the frames; with phones, also `phones`: the "
+                                      "means over the phones that have frames")
 
 
 def resolve_reference(session: Session, reference) -> tuple[str, np.ndarray, np.ndarray | None]:
@@ -179,6 +206,13 @@ def comparison_json(assets: AssetStore, payload: tuple) -> bytes:
         sequence, label, _, result = run_comparison(session, recording_id, request)
     per_electrode = [[None if np.isnan(v) else float(v) for v in row]
                      for row in result.electrode_agreement]
+    summary, phones = result.summary(), None
+    spans = getattr(request.reference, "phones", None)
+    if spans is not None:
+        phones, summary["phones"] = epg_compare.phone_scores(
+            result, [(p.symbol, p.start_s, p.end_s) for p in spans])
+        for score, span in zip(phones, spans, strict=True):
+            score["ipa"] = span.ipa
     return ComparisonReport(
         recording_id=recording_id, reference_label=label, t_s=sequence.t_s.tolist(),
         reference_frame=result.reference_frame.tolist(), agreement=result.agreement.tolist(),
@@ -188,7 +222,7 @@ def comparison_json(assets: AssetStore, payload: tuple) -> bytes:
         recording_indices=_lists(result.recording_indices),
         reference_indices=_lists(result.reference_indices),
         index_difference=_lists(result.index_difference),
-        summary=result.summary()).model_dump_json().encode()
+        phones=phones, summary=summary).model_dump_json().encode()
 
 
 def comparison_svg(assets: AssetStore, payload: tuple) -> bytes:

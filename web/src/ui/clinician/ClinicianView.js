@@ -216,10 +216,22 @@ export class ClinicianView extends View {
 
 	}
 
-	/** The target's tongue and electrodes in 3D (targets with parameters; one static frame). */
+	/**
+	 * The target's tongue and electrodes in 3D (targets with parameters; one static frame). A
+	 * target of many poses (the head saying a recording's phones) leaves the view empty and says so.
+	 */
 	async showTarget3d( target ) {
 
-		if ( ! target.params ) return;
+		if ( ! target.params ) {
+
+			this.palate3d?.dispose();
+			this.palate3d = null;
+			this.state.target3d = null;
+			this.caption3d.textContent = 'Target on the palate: shown for a target of one pose';
+			return;
+
+		}
+
 		try {
 
 			this.palate3d ??= new TargetPalate3D( this.stage3d, { api: this.api } );

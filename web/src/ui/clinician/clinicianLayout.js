@@ -82,6 +82,7 @@ export function clinicianLayout( actions, { importBox = null } = {} ) {
 	ui.targetCaption = h( 'span', { className: 'cv-sub' }, 'none chosen' );
 	ui.recordingCaption = h( 'span', { className: 'cv-sub' }, 'none chosen' );
 	ui.agreementCaption = h( 'span', { className: 'cv-sub cv-figures' }, 'choose both' );
+	ui.phoneScores = h( 'p', { className: 'cv-note cv-figures', hidden: '' } );
 	const card = ( title, caption, palatogram, ...more ) => h( 'figure', { className: 'cv-card cv-narrow' }, h( 'figcaption', {}, title, caption ), palatogram.element, ...more );
 	ui.table = h( 'table', { className: 'cv-table', 'aria-label': 'EPG indices of this frame' } );
 	ui.stage3d = h( 'div', { className: 'cv-stage3d', role: 'img', 'aria-label': 'The target on the 3D palate: electrodes as dots, contacted ones as squares' } );
@@ -90,7 +91,7 @@ export function clinicianLayout( actions, { importBox = null } = {} ) {
 		h( 'figure', { className: 'cv-card cv-wide' }, ui.caption3d, ui.stage3d ),
 		card( 'Target (synthetic)', ui.targetCaption, ui.targetPalatogram ),
 		card( 'Recording (real)', ui.recordingCaption, ui.recordingPalatogram ),
-		card( 'Agreement', ui.agreementCaption, ui.agreementPalatogram, h( 'p', { className: 'cv-note' }, AGREEMENT_EXPLANATION ) ) );
+		card( 'Agreement', ui.agreementCaption, ui.agreementPalatogram, ui.phoneScores, h( 'p', { className: 'cv-note' }, AGREEMENT_EXPLANATION ) ) );
 	ui.plot = new IndexPlot( { width: 640, height: 270 } );
 	ui.strip = new PalatogramStrip( { width: 760, height: 92, onSelect: ( i ) => actions.setFrame( i ) } );
 	ui.stripCaption = h( 'figcaption', {}, 'Over time (click a frame)' );

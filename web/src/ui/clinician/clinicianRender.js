@@ -8,7 +8,7 @@ import { h } from '../shared/dom.js';
 import { indexRows, plotTracks } from './clinicianFrames.js';
 import { setCaption } from './clinicianLayout.js';
 import { formatIndexValue } from './clinicianReport.js';
-import { agreementText, DIFFERENCE_HEADING, indexLabel } from './clinicianText.js';
+import { agreementText, DIFFERENCE_HEADING, indexLabel, phoneScoresText } from './clinicianText.js';
 
 /** The indices of the table, in its order. */
 export const TABLE_INDICES = Object.freeze( [ 'percent', 'cog', 'anteriority', 'centrality', 'dorsopalatal', 'alveolar_percent', 'palatal_percent', 'velar_percent' ] );
@@ -31,6 +31,9 @@ export function renderClinician( ui, state, { count, times, targetFrame } ) {
 	ui.targetPalatogram.set( target ? target.frames : null, { offset: Math.max( 0, targetFrame ) * EPG_CELLS } );
 	setCaption( ui.recordingCaption, recording ? recording.title : 'none chosen' );
 	ui.recordingPalatogram.set( recording ? recording.frames : null, { offset: frame * EPG_CELLS } );
+	const phones = phoneScoresText( comparison );
+	ui.phoneScores.hidden = phones === null;
+	ui.phoneScores.textContent = phones ?? '';
 	if ( comparison ) {
 
 		setCaption( ui.agreementCaption, agreementText( comparison, frame ) );

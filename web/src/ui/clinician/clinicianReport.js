@@ -20,6 +20,8 @@ export function clinicianReport( state, { frames, targetFrame, squares, imported
 		meanAgreement: comparison ? comparison.summary.mean_agreement : null,
 		kappa: comparison?.kappa ? comparison.kappa[ frame ] : null,
 		meanKappa: comparison?.kappa ? comparison.summary.mean_kappa : null,
+		// Per phone, when the target says the recording's phones (POST .../coarticulated).
+		phones: comparison?.phones ?? null,
 		imported,
 	};
 

@@ -74,3 +74,17 @@ export function agreementText( comparison, frame ) {
 	return `κ ${ kappa( comparison.kappa[ frame ] ) } (mean ${ kappa( comparison.summary.mean_kappa ) }) · ${ raw }`;
 
 }
+
+/**
+ * Under the agreement card, for a target that says the recording's phones: kappa per phone over
+ * its frames, and the mean over the phones (null when the comparison has no phones).
+ */
+export function phoneScoresText( comparison ) {
+
+	const phones = comparison?.phones;
+	if ( ! phones?.length ) return null;
+	const kappa = ( value ) => ( Number.isFinite( value ) ? value.toFixed( 2 ).replace( '-', '−' ) : '–' );
+	const each = phones.map( ( p ) => `/${ p.ipa ?? p.symbol }/ κ ${ kappa( p.mean_kappa ) } (${ p.frames } frames)` );
+	return `Per phone: ${ each.join( ' · ' ) }; mean over the phones κ ${ kappa( comparison.summary.phones?.mean_kappa ) }`;
+
+}

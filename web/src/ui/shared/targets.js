@@ -11,6 +11,9 @@
 //                              R1 first), their times (null for one static frame), and what to
 //                              send as the `reference` of POST /epg/recordings/{id}/compare
 //
+// A target may also say a recording's own phones on its timing (CoarticulatedTargets): many frames
+// with their times, and the phones, so that the comparison scores each phone's frames.
+//
 // Targets are named `${kind}:${id}` in the view's URL (#/clinician?target=pose:3), so a new
 // source needs no change to the view: add an object with these members to TARGET_SOURCES.
 
@@ -153,10 +156,56 @@ export class FittedTargets {
 
 }
 
+/**
+ * The head saying a labelled recording's own phones on its timing (POST
+ * /epg/recordings/{id}/coarticulated, docs/epg.md): one frame per frame of the recording, with
+ * their times and the phones, so that comparing that recording with it scores each phone's frames
+ * against the same phone. Ids are the recordings' ids ('said:12'); recordings without a label
+ * ('s->k') are not listed.
+ */
+export class CoarticulatedTargets {
+
+	/** @param {{ api?: object }} options the HTTP client the recordings are read through */
+	constructor( { api = pageApi } = {} ) {
+
+		this.kind = 'said';
+		this.title = 'Said as in a recording';
+		this.api = api;
+
+	}
+
+	async list() {
+
+		const body = await this.api.get( 'epg/recordings?limit=1000' );
+		return body.recordings.filter( ( r ) => typeof r.meta?.label === 'string' && r.meta.label.trim() ).map( ( r ) => ( {
+			id: String( r.id ),
+			label: `${ r.name.replace( '->', '→' ) }, said by the head`,
+			description: 'its own phones, coarticulated on its timing',
+		} ) );
+
+	}
+
+	async frames( id ) {
+
+		const said = await this.api.post( `epg/recordings/${ encodeURIComponent( id ) }/coarticulated`, {} );
+		const phones = said.phones.map( ( { symbol, ipa, start_s, end_s } ) => ( { symbol, ipa, start_s, end_s } ) );
+		return {
+			label: said.label,
+			rows: said.frames,
+			t_s: said.t_s,
+			params: null, // many poses: the 3D palate shows static targets only
+			phones: said.phones,
+			reference: { label: said.label, frames: said.frames, t_s: said.t_s, phones },
+		};
+
+	}
+
+}
+
 /** Every source of targets, in the order the chooser lists them. */
 export function targetSources( options ) {
 
-	return [ new SavedPoseTargets( options ), new PhonemeTargets( options ), new FittedTargets( options ) ];
+	return [ new SavedPoseTargets( options ), new PhonemeTargets( options ), new FittedTargets( options ), new CoarticulatedTargets( options ) ];
 
 }
 
