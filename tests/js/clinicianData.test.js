@@ -29,7 +29,7 @@ function fakeApi( routes ) {
 }
 
 const ROUTES = {
-	'GET epg/recordings?limit=1000': () => [ 200, { total: 1, recordings: [ { id: 7, name: 'tata', n_frames: 2, frame_rate_hz: 99.6 } ] } ],
+	'GET epg/recordings?limit=1000': () => [ 200, { total: 1, recordings: [ { id: 7, name: 'tata', n_frames: 2, frame_rate_hz: 99.6, meta: { label: 't->a' } } ] } ],
 	'GET poses?limit=1000': () => [ 200, { poses: [ { id: 3, name: 'alveolar stop' } ] } ],
 	'GET poses/3': () => [ 200, { id: 3, name: 'alveolar stop', params: { tip_height: 6 } } ],
 	'POST epg/contacts': () => [ 200, { rows: FRONT } ],
@@ -49,6 +49,7 @@ test( 'the choices list the recordings and each source\'s targets by name', asyn
 		{ title: 'Saved poses', targets: [ { value: 'pose:3', label: 'alveolar stop' } ] },
 		{ title: 'Phoneme targets', targets: [ { value: 'phoneme:T', label: '/t/ T as in "tie"' } ] },
 		{ title: 'Fitted targets', targets: [ { value: 'fit:12', label: 'my /t/' } ] },
+		{ title: 'Said as in a recording', targets: [ { value: 'said:7', label: 'tata, said by the head' } ] },
 	] );
 	assert.equal( choices.empty, false );
 	assert.equal( recordingLabel( { name: 'x', n_frames: 1 } ), 'x (1 frames)' );
