@@ -131,11 +131,11 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 
 	} );
 
-	test( 'the targets of /s ʃ f θ/ hiss, those of /m n t/ do not, and /m/ sends its air out of the nose', async () => {
+	test( 'the targets of /s ʃ f θ/ hiss, those of /m n t/ do not, /p b m/ close the lips, and /m/ sends its air out of the nose', async () => {
 
 		await setParam( 'velum_opening', 'Velum opening', 0 );
 		const seen = {};
-		for ( const symbol of [ 'S', 'SH', 'F', 'TH', 'M', 'N', 'T' ] ) {
+		for ( const symbol of [ 'S', 'SH', 'F', 'TH', 'M', 'N', 'T', 'P', 'B' ] ) {
 
 			await page.getByRole( 'combobox', { name: 'Phoneme target' } ).selectOption( symbol );
 			await page.waitForFunction( ( s ) => window.glasshead.phonemeTarget.symbol === s && window.glasshead.phonemeTarget.state === 'target', symbol );
@@ -149,6 +149,8 @@ describe( 'the cues', { timeout: 240_000 }, () => {
 		console.log( `# cues of the targets: ${ JSON.stringify( seen ) }` );
 		for ( const symbol of [ 'S', 'SH', 'F', 'TH' ] ) assert.equal( seen[ symbol ].turbulence, true, `/${ symbol }/ hisses: ${ JSON.stringify( seen[ symbol ] ) }` );
 		for ( const symbol of [ 'M', 'N', 'T' ] ) assert.equal( seen[ symbol ].turbulence, false, `/${ symbol }/ is silent: ${ JSON.stringify( seen[ symbol ] ) }` );
+		// /p b m/ close the lips: their mid-sagittal sections meet (the diagram's 0.0 mm).
+		for ( const symbol of [ 'P', 'B', 'M' ] ) assert.ok( seen[ symbol ].place === 'bilabial' && seen[ symbol ].width <= 0.05, `/${ symbol }/: ${ JSON.stringify( seen[ symbol ] ) }` );
 		assert.equal( seen.S.glottisMm2 > seen.M.glottisMm2, true, 'the glottis is open for /s/' );
 		assert.deepEqual( [ seen.S.voicing, seen.M.voicing ], [ false, true ], 'the voice sounds for /m/, not for /s/' );
 		// /m/: no air out of the lips, all of it through the nose.

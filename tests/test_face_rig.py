@@ -33,7 +33,9 @@ REST_AGREEMENT, POSED_AGREEMENT = 0.5, -0.5
 #: 0.09 mm.
 TEETH_DEPTH_MM = 0.3
 #: Closed lips: gap at the midline, and deepest lower-lip vertex inside the upper lip, mm.
-CLOSED_GAP_MM, CLOSED_OVERLAP_MM = 0.5, 1.5
+# Closed lips press 1 mm past level so that their mid-sagittal sections meet (docs/face-rig.md):
+# they sink into each other by up to 1.6 mm (upper lip raised 4 mm, jaw 7.5 degrees).
+CLOSED_GAP_MM, CLOSED_OVERLAP_MM = 0.5, 2.0
 
 
 #: Share of the rays over the lips (0.5 mm apart, seen from the front) on which the skin may lie

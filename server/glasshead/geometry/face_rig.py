@@ -25,7 +25,8 @@ Points whose weight and field coefficients are all 0 (most of the head shell and
 do not move at all: the real-time twin skips them.
 
 ``lip_opening`` is the share of the lips' natural gap (the gap the jaw and the shape parameters
-leave) that is kept: 1 leaves the lips as the jaw takes them, 0 closes them (/p b m/).
+leave) that is kept: 1 leaves the lips as the jaw takes them, 0 closes them (/p b m/) and presses
+them ``field.lip_press_mm`` past level, so that their sections meet (``closure_target``).
 """
 
 import numpy as np
@@ -234,6 +235,14 @@ def lip_gap(upper_points, upper_edges, lower_points, lower_edges):
     return max(0.0, float(upper_y - lower_y)), float(upper_y), float(lower_y)
 
 
+def closure_target(opening, natural_gap, press):
+    """The vertical gap the closure aims at, mm: the kept gap g = ``opening`` x ``natural_gap``,
+    less a press that reaches ``press`` at ``opening`` 0 (closed lips press past level, so that
+    their mid-sagittal sections meet) and fades as g grows to ``press`` or ``opening`` to 1."""
+    kept = opening * natural_gap
+    return kept - press * (1.0 - opening) * max(0.0, 1.0 - kept / press)
+
+
 def solve_closure(upper, lower, target_gap, iterations):
     """Vertical closure amount c (mm) making the measured gap equal ``target_gap``.
 
@@ -338,7 +347,7 @@ def pose_face(rig, prepared, params, jaw_pose):
     up, low = prepared["upper_lip"], prepared["lower_lip"]
     pu, pl = posed["upper_lip"], posed["lower_lip"]
     natural_gap, _, _ = lip_gap(pu, up["midline_edges"], pl, low["midline_edges"])
-    target = values["lip_opening"] * natural_gap
+    target = closure_target(values["lip_opening"], natural_gap, field["lip_press_mm"])
     closure = np.zeros(3)
     if natural_gap > 0.0 and target < natural_gap:
         share = 1.0 - values["lip_opening"]

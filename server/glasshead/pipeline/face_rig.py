@@ -70,6 +70,12 @@ TUCK_DIRECTION = (-0.5, 0.87, 0.0)
 #: Share of a closure taken by the upper lip; the lower lip, carried by the jaw, does the rest.
 CLOSURE_UPPER_SHARE = 0.35
 CLOSURE_ITERATIONS = 12
+#: How far closed lips (lip_opening 0: /p b m/) press past touching, mm. The gap is measured
+#: vertically, between the upper lip's lowest midline point and the lower lip's highest, which
+#: lie about 3.6 mm apart front to back: level with each other, the lips' mid-sagittal sections
+#: are still 0.78 mm apart (/m/). Pressed 1 mm, as lips are in a bilabial closure, they meet
+#: (0.03 mm at /m/'s jaw, 0.01 at 5 and 10 degrees); pressed further, they cross.
+LIP_PRESS_MM = 1.0
 #: Rest vertices per mesh stored as probes (evenly spread through the vertex list).
 PROBES = 8
 
@@ -127,6 +133,7 @@ def lip_field(centre, half_width):
         "tuck_direction": unit(TUCK_DIRECTION),
         "closure_upper_share": CLOSURE_UPPER_SHARE,
         "closure_iterations": CLOSURE_ITERATIONS,
+        "lip_press_mm": LIP_PRESS_MM,
     }
 
 

@@ -176,6 +176,18 @@ function prepareMesh( name, spec, rest, field ) {
 }
 
 /**
+ * The vertical gap the closure aims at, mm: the kept gap g = opening x natural, less a press that
+ * reaches `press` at opening 0 (closed lips press past level, so that their mid-sagittal sections
+ * meet) and fades as g grows to `press` or the opening to 1 (closure_target in face_rig.py).
+ */
+export function closureTarget( opening, natural, press ) {
+
+	const kept = opening * natural;
+	return kept - press * ( 1 - opening ) * Math.max( 0, 1 - kept / press );
+
+}
+
+/**
  * Lip values in FACE_RIG_LIP_PARAMETERS order from an object of named values (neutral when absent),
  * refusing a value that is not a finite number within its range.
  * @param {object} rig from createFaceRig()
@@ -309,7 +321,7 @@ export function poseFace( rig, values, pose, out ) {
 	measureGap( rig, up.work, low.work, GAP_NATURAL );
 	const natural = rig.gaps[ GAP_NATURAL ];
 	const opening = values[ OPENING ];
-	const target = opening * natural;
+	const target = closureTarget( opening, natural, field.lip_press_mm );
 	const closure = rig.closure;
 	closure.fill( 0 );
 	if ( natural > 0 && target < natural ) {
