@@ -146,6 +146,29 @@ def test_the_contact_fits_meet_the_realism_rules(built, targets):
     assert realism["passed"] >= 7 and realism["passed_before_contact_fit"] <= 2
 
 
+def test_sh_zh_keep_a_postalveolar_groove_in_every_context_as_published_descriptions_say(
+        targets):
+    """/ʃ ʒ/ used to close R1-R3 across (no groove). Fitted to the pattern published EPG
+    describes, the middle four columns stay free in R1-R4 between side contacts in R2-R5, and
+    the groove is wider than /s/'s (which keeps columns 3 and 6 touched in a front row)."""
+    for symbol in ("SH", "ZH"):
+        grids = [grid(targets[symbol])] + [
+            np.array([[int(c) for c in row] for row in context["epg"]["rows"]])
+            for context in targets[symbol]["contexts"].values()]
+        for g in grids:
+            assert g[:4, 2:6].sum() <= 1, g
+            assert g[1:5, 0].sum() >= 3 and g[1:5, 7].sum() >= 3, g
+    s = grid(targets["S"])
+    assert s[:4, [2, 5]].sum() > grid(targets["SH"])[:4, [2, 5]].sum()
+    assert targets["SH"]["source"]["contact"]["goal"] == "rule: postalveolar groove"
+
+
+def test_each_target_says_what_its_palatogram_was_fitted_to(targets):
+    assert {targets[s]["epg_basis"] for s in ("T", "S", "K")} == {"real EPG"}
+    assert {targets[s]["epg_basis"] for s in ("SH", "ZH", "IY")} == {"published descriptions"}
+    assert {targets[s]["epg_basis"] for s in ("L", "R", "AA")} == {"not fitted"}
+
+
 def test_k_g_ng_close_a_back_row_in_every_context_fitted_to_the_real_frames_that_do(built,
                                                                                     targets):
     """Most real /k g/ frames close behind the palate's last row, so the class's majority has no

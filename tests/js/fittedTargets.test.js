@@ -4,7 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
 import { createApi } from '../../web/src/api.js';
-import { FittedTargets, fitDescription, targetSources } from '../../web/src/ui/shared/targets.js';
+import { epgBasisText, FittedTargets, fitDescription, targetSources } from '../../web/src/ui/shared/targets.js';
 
 const FRONT = [ '01111110', '11000011', '00000000', '00000000', '00000000', '00000000', '00000000', '00000000' ];
 const PARAMS = { tip_height: 4.5, jaw_opening: 0, lip_opening: 1, velum_opening: 0.76 };
@@ -74,5 +74,14 @@ test( 'the fitted targets are the chooser\'s third source, named fit:<id>', () =
 	const sources = targetSources( { api: fakeApi( ROUTES ).api } );
 	assert.deepEqual( sources.map( ( s ) => [ s.kind, s.title ] ), [ [ 'pose', 'Saved poses' ], [ 'phoneme', 'Phoneme targets' ], [ 'fit', 'Fitted targets' ], [ 'said', 'Said as in a recording' ] ] );
 	assert.equal( fitDescription( { kind: 'surface', report: null } ), 'surface fit' );
+
+} );
+
+test( 'a phoneme target says what its palatogram was fitted to', () => {
+
+	assert.equal( epgBasisText( 'real EPG' ), '; palatogram fitted to real EPG' );
+	assert.equal( epgBasisText( 'published descriptions' ), '; palatogram estimated from published descriptions' );
+	assert.equal( epgBasisText( 'not fitted' ), '; palatogram not fitted' );
+	assert.equal( epgBasisText( undefined ), '' );
 
 } );

@@ -278,8 +278,17 @@ def build_targets(ctx: Context) -> tuple[list[dict], dict]:
         t = targets[p.arpabet]
         out.append({"arpabet": p.arpabet, "ipa": p.ipa, "kind": p.kind,
                     "examples": list(p.examples), "features": _features(p),
-                    "velum": "lowered" if p.velum_lowered else "raised", **t})
+                    "velum": "lowered" if p.velum_lowered else "raised",
+                    "epg_basis": epg_basis(t["source"].get("contact")), **t})
     return out, grids
+
+
+def epg_basis(contact: dict | None) -> str:
+    """What a target's palatogram was fitted to: "real EPG" (an engassim class), "published
+    descriptions" (a rule goal written from them) or "not fitted" (the 2D fit's contacts)."""
+    if not contact:
+        return "not fitted"
+    return "real EPG" if contact.get("goal_frames") else "published descriptions"
 
 
 def build_phoneme_targets(assets_dir, data_dir, out_path=None, force=False):

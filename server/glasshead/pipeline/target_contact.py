@@ -1,13 +1,13 @@
 """Contact fits of the phoneme targets: step 4 of ``pipeline.phoneme_targets`` (docs/targets.md).
 
 The shapes of the consonants of the three real EPG classes (/t d n/, /s z/, /k g ŋ/, every
-context) and /i/ are fitted again with the outline and an EPG error together
+context), /ʃ ʒ/ and /i/ are fitted again with the outline and an EPG error together
 (``fitting.fit_contact``): toward the class's real majority pattern (``epg.classes``), weighted
 per electrode by how clear its majority is (for /k g ŋ/ the majority of the real frames that
-close a back row, ``RULE_FRAMES_OF_GOAL``), or for /i/ toward the pattern its realism rule
-describes (``RULE_GOALS``). ``tongue_fit`` is a shape's whole tongue: the 2D fit
-(``target_fits.outline_fit``) and, for a shape with a goal (``contact_goal``), the contact fit
-from it; ``measured_target`` adds the lips and the velum.
+close a back row, ``RULE_FRAMES_OF_GOAL``), or for /ʃ ʒ/ and /i/ toward the pattern published
+descriptions and the realism rule give (``RULE_GOALS``). ``tongue_fit`` is a shape's whole
+tongue: the 2D fit (``target_fits.outline_fit``) and, for a shape with a goal
+(``contact_goal``), the contact fit from it; ``measured_target`` adds the lips and the velum.
 """
 
 import numpy as np
@@ -31,14 +31,24 @@ from glasshead.pipeline.target_fits import (
 #: touched in R2-R8, the middle four (3-6) free in every row; columns 2 and 7, and R1's outer
 #: electrodes (columns 2 and 7), are what the rule leaves open (weight 0). /a/ ("little or no
 #: contact") is left to the 2D fit, which meets it.
+#: /ʃ ʒ/ (JD3's postalveolar fricative), which engassim has no frames of: published EPG of
+#: English /ʃ/ shows a groove wider than /s/'s and further back, with lateral contact along the
+#: sides and little contact in the front row (Hardcastle, Gibbon and Jones 1991; Gibbon and
+#: Nicolaidis 1999). Wanted: the outer columns touched in R2-R5, the middle four columns free in
+#: R1-R4; columns 2 and 7 of R2-R5, R1's outer electrodes and R6-R8 left open.
 RULE_GOALS = {
     "i": ("rule: sides only", "contact at the sides only: outer columns touched in R2-R8, the "
                               "middle four columns free; columns 2 and 7 left open"),
+    "tt-postalveolar-fricative": (
+        "rule: postalveolar groove",
+        "published descriptions of English /ʃ/: a groove wider than /s/'s and further back, "
+        "outer columns touched in R2-R5, the middle four columns free in R1-R4"),
 }
 #: The coronal groups each goal frees (``fit_contact.CORONAL_GROUPS``): the groove only for the
 #: sibilants, whose real frames keep the middle columns open in the front rows.
 CORONAL_OF_GOAL = {
     "alveolar_fricative": fit_contact.CORONAL_GROUPS,
+    "rule: postalveolar groove": fit_contact.CORONAL_GROUPS,
     "velar_stop": fit_contact.CORONAL_GROUPS,
 }
 CORONAL_DEFAULT = ("width", "edge_height", "side_bulge")
@@ -83,13 +93,20 @@ FRONTED_ROWS_OF_GOAL: dict[str, dict[str, tuple[int, ...]]] = {"velar_stop": {"i
 #: gone (R7 ``11100111``). Asked at 1 deg more open, the closure holds in running speech.
 JAW_SLACK_OF_GOAL = {"velar_stop": 1.0}
 def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
-    """(wanted, weights), (8, 8) each, of a ``RULE_GOALS`` shape (see there)."""
-    if shape_name != "i":
-        raise KeyError(shape_name)
+    """(wanted, weights), (8, 8) each, of a ``RULE_GOALS`` shape or shape stem (see there)."""
+    stem = shape_name.split("(")[0]
     wanted = np.zeros((8, 8), dtype=np.uint8)
     weights = epg_classes.ELECTRODES.astype(np.float64)
-    wanted[1:, [0, 7]] = 1
-    weights[:, [1, 6]] = 0.0
+    if stem == "i":
+        wanted[1:, [0, 7]] = 1
+        weights[:, [1, 6]] = 0.0
+    elif stem == "tt-postalveolar-fricative":
+        wanted[1:5, [0, 7]] = 1
+        weights[1:5, [1, 6]] = 0.0
+        weights[0, [1, 6]] = 0.0
+        weights[5:] = 0.0
+    else:
+        raise KeyError(shape_name)
     return wanted, weights
 
 
@@ -124,10 +141,10 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
                     "weights": weights, "frames": int(len(frames)),
                     "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT),
                     "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(context or "")}
-    if shape_name in RULE_GOALS:
-        wanted, weights = rule_pattern(shape_name)
-        return {"name": RULE_GOALS[shape_name][0], "wanted": wanted, "weights": weights,
-                "rule": RULE_GOALS[shape_name][1], "epg_weight": fit_contact.EPG_WEIGHT}
+    if stem in RULE_GOALS:
+        wanted, weights = rule_pattern(stem)
+        return {"name": RULE_GOALS[stem][0], "wanted": wanted, "weights": weights,
+                "rule": RULE_GOALS[stem][1], "epg_weight": fit_contact.EPG_WEIGHT}
     return None
 
 

@@ -1,6 +1,6 @@
 """The realism rules of the phoneme targets' synthetic EPG (docs/targets.md, "Realism"): one
-rule per phoneme of the five the real EPG speaks for, and each EPG class's agreement with its
-phonemes' patterns, before and after the contact fits."""
+rule per phoneme the real EPG or published descriptions speak for, and each EPG class's
+agreement with its phonemes' patterns, before and after the contact fits."""
 
 import numpy as np
 
@@ -15,6 +15,14 @@ def _sides_only(grid) -> bool:
     return epg_classes.side_contact(grid) and middle <= 2
 
 
+def _postalveolar_groove(grid) -> bool:
+    """Sides touched in R2-R5 (the outer column in at least 3 of the 4 rows, each side) and the
+    middle four columns free in R1-R4 (at most one electrode)."""
+    grid = np.asarray(grid).astype(bool)
+    sides = grid[1:5, 0].sum() >= 3 and grid[1:5, 7].sum() >= 3
+    return bool(sides and grid[:4, 2:6].sum() <= 1)
+
+
 def _little_contact(grid) -> bool:
     return int(np.asarray(grid).sum()) <= 6
 
@@ -25,6 +33,9 @@ RULES = (
     (("S", "Z"), "contact along the sides with a central groove open in the front rows",
      epg_classes.central_groove),
     (("K", "G"), "complete closure across a back row", epg_classes.back_closure),
+    (("SH", "ZH"), "a groove wider than /s/'s and further back: sides touched in R2-R5, the "
+                   "middle four columns free in R1-R4 (published descriptions)",
+     _postalveolar_groove),
     (("IY",), "contact at the sides only (outer columns in most rows, at most 2 of the middle "
               "four columns' electrodes)", _sides_only),
     (("AA",), "little or no contact (at most 6 electrodes)", _little_contact),
@@ -36,7 +47,7 @@ def _grid(rows) -> np.ndarray:
 
 
 def realism(grids: dict, classes: dict, before: dict | None = None) -> dict:
-    """The five rules per phoneme, and each EPG class's agreement with its phonemes' patterns;
+    """The rules per phoneme, and each EPG class's agreement with its phonemes' patterns;
     ``before``: the 2D fits' grids of the contact-fitted targets (by symbol), reported beside.
     Each class also says how many of its own real frames pass its rule."""
     before = before or {}

@@ -32,6 +32,8 @@ class PhonemeSummary(BaseModel):
                                     "approximant; vowels: their height")
     examples: list[str]
     source: SourceSummary
+    epg_basis: str = Field(description="what the palatogram was fitted to: real EPG, published "
+                                       "descriptions, or not fitted")
     url: str
 
 
@@ -62,6 +64,9 @@ class PhonemeTarget(BaseModel):
                                        "context (params, fit, volume, epg)")
     source: dict = Field(description="the JD3 shape(s) and fit error, or the reasoning")
     volume_change_pct: float = Field(description="the tongue's volume against rest, percent")
+    epg_basis: str = Field(description="what the palatogram was fitted to: real EPG (the "
+                                       "engassim frames of its class), published descriptions, "
+                                       "or not fitted (the outline fit's contacts)")
     epg: EpgPattern
 
 
@@ -77,6 +82,7 @@ def _summary(target: dict) -> dict:
             "examples": target["examples"],
             "source": {"kind": source.get("kind"), "shapes": source.get("shapes", []),
                        "rms_mm": source.get("rms_mm")},
+            "epg_basis": target["epg_basis"],
             "url": f"/api/v1/phonemes/{target['arpabet']}"}
 
 

@@ -55,6 +55,16 @@ export class SavedPoseTargets {
 
 }
 
+/** What a phoneme target's palatogram was fitted to, as a clause ('' when the server does not say). */
+export function epgBasisText( basis ) {
+
+	if ( basis === 'real EPG' ) return '; palatogram fitted to real EPG';
+	if ( basis === 'published descriptions' ) return '; palatogram estimated from published descriptions';
+	if ( basis === 'not fitted' ) return '; palatogram not fitted';
+	return '';
+
+}
+
 /** How a phoneme is listed: its IPA in slashes, its ARPAbet symbol and an example word. */
 export function phonemeLabel( phoneme ) {
 
@@ -85,7 +95,7 @@ export class PhonemeTargets {
 		return body.phonemes.map( ( phoneme ) => ( {
 			id: phoneme.arpabet,
 			label: phonemeLabel( phoneme ),
-			description: phoneme.source?.shapes?.length ? `fitted to ${ phoneme.source.shapes.join( ', ' ) }` : 'from phonetic reasoning',
+			description: `${ phoneme.source?.shapes?.length ? `fitted to ${ phoneme.source.shapes.join( ', ' ) }` : 'from phonetic reasoning' }${ epgBasisText( phoneme.epg_basis ) }`,
 		} ) );
 
 	}

@@ -11,7 +11,7 @@ import { registerDebug } from '../../debug.js';
 import { h } from '../shared/dom.js';
 import { loadPhonemeList, loadPhonemeTarget } from '../shared/loaders.js';
 import { assignParams } from './ObservationControl.js';
-import { phonemeLabel } from '../shared/targets.js';
+import { epgBasisText, phonemeLabel } from '../shared/targets.js';
 
 export class PhonemeTargetControl {
 
@@ -57,7 +57,7 @@ export class PhonemeTargetControl {
 		this.current = null; // while the state changes, no target is named (and none is 'edited')
 		const ignored = assignParams( this.state, target.params );
 		this.appliedVersion = this.state.version;
-		this.current = { symbol: target.arpabet ?? symbol, ipa: target.ipa ?? null, label: phonemeLabel( target ), ignored, source: target.source ?? null, features: target.features ?? null };
+		this.current = { symbol: target.arpabet ?? symbol, ipa: target.ipa ?? null, label: phonemeLabel( target ), ignored, source: target.source ?? null, features: target.features ?? null, epgBasis: target.epg_basis ?? null };
 		return target;
 
 	}
@@ -162,7 +162,7 @@ export class PhonemeChooser {
 
 		}
 
-		const how = sourceText( this.control.current.source );
+		const how = `${ sourceText( this.control.current.source ) }${ epgBasisText( this.control.current.epgBasis ) }`;
 		this.status.textContent = report.state === 'target' ? `Showing ${ report.label }, ${ how }.` : `${ report.label }, edited since.`;
 		if ( report.state === 'edited' && this.select.value !== '' ) this.select.value = '';
 
