@@ -163,10 +163,24 @@ def test_sh_zh_keep_a_postalveolar_groove_in_every_context_as_published_descript
     assert targets["SH"]["source"]["contact"]["goal"] == "rule: postalveolar groove"
 
 
+def test_l_touches_the_ridge_with_free_sides_and_ch_jh_close_behind_t(targets):
+    """/l/ had no contact at all, /tʃ dʒ/ none either: fitted to what published EPG describes,
+    /l/ touches R1-R2 in the middle with its sides free behind, /tʃ dʒ/ close R2 across with
+    contact along both sides, with less contact in R1 than /t/'s."""
+    lateral = grid(targets["L"])
+    assert max(lateral[0, 2:6].sum(), lateral[1, 2:6].sum()) >= 3, lateral
+    assert lateral[2:, [0, 1, 6, 7]].sum() <= 2, lateral
+    for symbol in ("CH", "JH"):
+        g = grid(targets[symbol])
+        assert g[1:3].all(axis=1).any() and obs.side_contact(g), g
+        assert g[0].sum() < grid(targets["T"])[0].sum(), g
+
+
 def test_each_target_says_what_its_palatogram_was_fitted_to(targets):
     assert {targets[s]["epg_basis"] for s in ("T", "S", "K")} == {"real EPG"}
-    assert {targets[s]["epg_basis"] for s in ("SH", "ZH", "IY")} == {"published descriptions"}
-    assert {targets[s]["epg_basis"] for s in ("L", "R", "AA")} == {"not fitted"}
+    assert {targets[s]["epg_basis"] for s in ("SH", "ZH", "IY", "L", "CH", "JH")} == {
+        "published descriptions"}
+    assert {targets[s]["epg_basis"] for s in ("R", "AA", "F")} == {"not fitted"}
 
 
 def test_k_g_ng_close_a_back_row_in_every_context_fitted_to_the_real_frames_that_do(built,

@@ -1,10 +1,10 @@
 """Contact fits of the phoneme targets: step 4 of ``pipeline.phoneme_targets`` (docs/targets.md).
 
 The shapes of the consonants of the three real EPG classes (/t d n/, /s z/, /k g ŋ/, every
-context), /ʃ ʒ/ and /i/ are fitted again with the outline and an EPG error together
+context), /ʃ ʒ/, /l/, /tʃ dʒ/ and /i/ are fitted again with the outline and an EPG error together
 (``fitting.fit_contact``): toward the class's real majority pattern (``epg.classes``), weighted
 per electrode by how clear its majority is (for /k g ŋ/ the majority of the real frames that
-close a back row, ``RULE_FRAMES_OF_GOAL``), or for /ʃ ʒ/ and /i/ toward the pattern published
+close a back row, ``RULE_FRAMES_OF_GOAL``), or for the others toward the pattern published
 descriptions and the realism rule give (``RULE_GOALS``). ``tongue_fit`` is a shape's whole
 tongue: the 2D fit (``target_fits.outline_fit``) and, for a shape with a goal
 (``contact_goal``), the contact fit from it; ``measured_target`` adds the lips and the velum.
@@ -43,6 +43,15 @@ RULE_GOALS = {
         "rule: postalveolar groove",
         "published descriptions of English /ʃ/: a groove wider than /s/'s and further back, "
         "outer columns touched in R2-R5, the middle four columns free in R1-R4"),
+    "tt-alveolar-lateral": (
+        "rule: alveolar lateral",
+        "published descriptions of English /l/: the tip on the alveolar ridge (the middle four "
+        "columns of R1-R2 touched) with the sides free behind it for the air (no contact in "
+        "columns 1, 2, 7 and 8 of R3-R8)"),
+    "tt-postalveolar-closure": (
+        "rule: postalveolar closure",
+        "published descriptions of English /tʃ dʒ/: a complete closure across R2 and R3, "
+        "further back than /t/'s, with contact along both sides (outer columns of R4-R8)"),
 }
 #: The coronal groups each goal frees (``fit_contact.CORONAL_GROUPS``): the groove only for the
 #: sibilants, whose real frames keep the middle columns open in the front rows.
@@ -67,7 +76,7 @@ RULE_FRAMES_OF_GOAL = {"velar_stop": epg_classes.back_closure}
 #: row closes only when the dorsum reaches it across its whole width, against the volume bound
 #: and JD3's outline; at 30 the velar fits stopped with R8's middle electrodes about 0.5 mm out
 #: of reach (/k/(a) and /k/(u): R8 ``11100111``), at 100 they close it.
-EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0}
+EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0, "rule: postalveolar closure": 100.0}
 #: mm, by goal and vowel context: the wanted contacts aimed this far past their electrodes, into
 #: the palate (the uncorrected tongue), instead of ``fit_contact.MARGIN_MM`` short of the contact
 #: tolerance: a stop must keep its closure when the pose moves a little. Fitted to reach R8 only
@@ -105,6 +114,17 @@ def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
         weights[1:5, [1, 6]] = 0.0
         weights[0, [1, 6]] = 0.0
         weights[5:] = 0.0
+    elif stem == "tt-alveolar-lateral":
+        weights[:] = 0.0
+        wanted[:2, 2:6] = 1
+        weights[:2, 2:6] = 1.0
+        weights[2:, [0, 1, 6, 7]] = 1.0
+    elif stem == "tt-postalveolar-closure":
+        weights[:] = 0.0
+        wanted[1:3] = 1
+        weights[1:3] = 1.0
+        wanted[3:, [0, 7]] = 1
+        weights[3:, [0, 7]] = 1.0
     else:
         raise KeyError(shape_name)
     return wanted, weights
@@ -143,8 +163,10 @@ def contact_goal(ctx: Context, shape_name: str) -> dict | None:
                     "penetration_mm": PENETRATION_OF_GOAL.get(name, {}).get(context or "")}
     if stem in RULE_GOALS:
         wanted, weights = rule_pattern(stem)
-        return {"name": RULE_GOALS[stem][0], "wanted": wanted, "weights": weights,
-                "rule": RULE_GOALS[stem][1], "epg_weight": fit_contact.EPG_WEIGHT}
+        name = RULE_GOALS[stem][0]
+        return {"name": name, "wanted": wanted, "weights": weights,
+                "rule": RULE_GOALS[stem][1],
+                "epg_weight": EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT)}
     return None
 
 

@@ -23,6 +23,20 @@ def _postalveolar_groove(grid) -> bool:
     return bool(sides and grid[:4, 2:6].sum() <= 1)
 
 
+def _alveolar_lateral(grid) -> bool:
+    """The middle four columns of R1 or R2 touched (at least 3 of them) and the sides free
+    behind (at most 2 electrodes in columns 1, 2, 7 and 8 of R3-R8)."""
+    grid = np.asarray(grid).astype(bool)
+    front = max(grid[0, 2:6].sum(), grid[1, 2:6].sum()) >= 3
+    return bool(front and grid[2:, [0, 1, 6, 7]].sum() <= 2)
+
+
+def _postalveolar_closure(grid) -> bool:
+    """A complete row across R2 or R3 and contact along both sides."""
+    grid = np.asarray(grid).astype(bool)
+    return bool(grid[1:3].all(axis=1).any() and epg_classes.side_contact(grid))
+
+
 def _little_contact(grid) -> bool:
     return int(np.asarray(grid).sum()) <= 6
 
@@ -36,6 +50,10 @@ RULES = (
     (("SH", "ZH"), "a groove wider than /s/'s and further back: sides touched in R2-R5, the "
                    "middle four columns free in R1-R4 (published descriptions)",
      _postalveolar_groove),
+    (("L",), "the tip on the alveolar ridge (3 of the middle four columns of R1 or R2) with the "
+             "sides free behind it (published descriptions)", _alveolar_lateral),
+    (("CH", "JH"), "a complete closure across R2 or R3 with contact along both sides "
+                   "(published descriptions)", _postalveolar_closure),
     (("IY",), "contact at the sides only (outer columns in most rows, at most 2 of the middle "
               "four columns' electrodes)", _sides_only),
     (("AA",), "little or no contact (at most 6 electrodes)", _little_contact),
