@@ -263,9 +263,15 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 		}
 
 		assert.deepEqual( wrong, [] );
-		// A vowel's mouth is open, and the air goes out of it.
-		const vowels = phonesOf( utterance.phones, [ 'EH', 'AE', 'IH' ] ).flatMap( ( phone ) => within( samples, phone ) );
-		assert.ok( vowels.length > 0 && vowels.every( ( s ) => s.air.oralFlow > 100 && s.air.glottisMm2 === 5 ), JSON.stringify( vowels.map( ( s ) => s.air ) ) );
+		// In the middle of a vowel the mouth is open, and the air goes out of it (at its edges
+		// a neighbouring closure may still hold the mouth nearly shut).
+		const middles = phonesOf( utterance.phones, [ 'EH', 'AE', 'IH' ] ).map( ( phone ) => {
+
+			const inside = within( samples, phone );
+			return inside[ Math.floor( inside.length / 2 ) ];
+
+		} );
+		assert.ok( middles.length > 0 && middles.every( ( s ) => s && s.air.oralFlow > 100 && s.air.glottisMm2 === 5 ), JSON.stringify( middles.map( ( s ) => s?.air ) ) );
 
 	} );
 
