@@ -124,3 +124,12 @@ def test_a_recording_without_a_label_asks_for_its_phones_and_a_missing_one_is_40
     assert missing.status_code == 404
     unknown = client.post(f"{API}/epg/recordings/{rid}/coarticulated", json={"voice": "x"})
     assert unknown.status_code == 422
+
+
+def test_a_recording_spanning_more_than_a_minute_is_refused_before_any_work(client):
+    rows = ["0" * 8] * 8
+    rid = upload(client, {"label": "s->k", "frames": [{"t_ms": t, "rows": rows}
+                                                      for t in (0.0, 5.0, 90_000.0)]})
+    response = client.post(f"{API}/epg/recordings/{rid}/coarticulated", json={})
+    assert response.status_code == 422
+    assert "at most 60 s" in response.json()["detail"], response.text

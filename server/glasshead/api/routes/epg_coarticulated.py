@@ -27,8 +27,10 @@ from glasshead.store.users import User
 router = APIRouter(tags=["epg recordings"])
 
 Clinician = Annotated[User, Depends(require_role("clinician", "admin"))]
-#: Most frames a recording may have to be said by the head (60 s at 200 Hz).
+#: Most frames a recording may have to be said by the head (60 s at 200 Hz), and most seconds
+#: it may span: the head's tracks are made at the recording's rate over its whole span.
 MAX_SAID_FRAMES = 12_000
+MAX_SAID_SECONDS = 60.0
 
 
 class CoarticulateRequest(BaseModel):
@@ -86,6 +88,11 @@ def coarticulated_json(assets: AssetStore, payload: tuple) -> bytes:
             f"{MAX_SAID_FRAMES} (60 s at 200 Hz): import the segment to compare on its own"))
     relative = sequence.t_s - sequence.t_s[0]
     period = phone_epg.frame_period(sequence.t_s, sequence.frame_rate_hz)
+    if relative[-1] + period > MAX_SAID_SECONDS or relative[-1] / period > MAX_SAID_FRAMES:
+        raise HTTPException(status_code=422, detail=(
+            f"the recording spans {relative[-1]:.1f} s at {1.0 / period:g} frames a second; the "
+            f"head says at most {MAX_SAID_SECONDS:g} s and {MAX_SAID_FRAMES} frames: import the "
+            f"segment to compare on its own"))
     try:
         symbols = request.phones if request.phones is not None else \
             phone_epg.phones_from_label(sequence.meta.get("label"))
