@@ -111,7 +111,6 @@ class FleshPointRig:
     def __init__(self, tongue: TongueRig, face_definition: dict,
                  lip_rest: Mapping[str, npt.ArrayLike], landmarks: dict):
         self.tongue = tongue
-        self._tongue_index = {name: k for k, name in enumerate(tongue.parameter_names)}
         self._lip_ranges = {p["name"]: (p["min"], p["max"]) for p in face_definition["parameters"]}
         self.anchors = tongue_anchors(tongue)
         self.face = dict(face_definition, teeth=teeth_tables(face_definition["teeth"]))
@@ -127,12 +126,7 @@ class FleshPointRig:
         """{name: (3,) float64 mm} for one frame's parameters (tongue, jaw and lip values by
         name; missing ones neutral, others ignored; each clipped to its range)."""
         rig = self.tongue
-        values = rig.neutral.copy()
-        for name, value in params.items():
-            if name in self._tongue_index:
-                values[self._tongue_index[name]] = value
-        # clipped to the ranges: a coarticulated track can pass a bound by a rounding
-        values = np.clip(values, rig.minimum, rig.maximum)
+        values = rig.values_clipped(params)
         pose = jaw_pose(values[rig.jaw_parameter], rig.jaw)
         points = dict(zip(TONGUE_SENSOR_ARC_MM,
                           tongue_points(midline_outline(rig, values), self.anchors),

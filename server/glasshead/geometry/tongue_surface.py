@@ -168,6 +168,16 @@ class TongueRig:
 
     # --- parameters ---------------------------------------------------------------------------
 
+    def values_clipped(self, params: Mapping[str, float]) -> Floats:
+        """(P,) float64 values of a frame of parameter tracks: names the rig does not know
+        ignored, missing ones neutral, each clipped to its range (a coarticulated track, a
+        weighted mean of targets in range, can pass a bound by a rounding)."""
+        values = self.neutral.copy()
+        for name, value in params.items():
+            if name in self._index:
+                values[self._index[name]] = value
+        return np.clip(values, self.minimum, self.maximum)
+
     def values_from(self, params: Mapping[str, float] | None = None) -> Floats:
         """(P,) float64 parameter values from a name -> value mapping; missing names are neutral.
 

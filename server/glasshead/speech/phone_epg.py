@@ -142,18 +142,12 @@ def synthetic_frames(segments: Sequence[PhoneSegment], relative_t: np.ndarray, p
     phones = [{"symbol": s.symbol, "start_s": s.start_s, "end_s": s.end_s} for s in segments]
     rate_hz = 1.0 / period_s
     arrays = coarticulate_arrays(phones, targets, rate_hz=rate_hz)
-    tongue = [(i, name) for i, name in enumerate(arrays["names"])
-              if name in set(rig.parameter_names)]
-    # A weighted mean of targets in range may step a rounding error past a range's end.
-    ranges = {name: (rig.parameters[name]["min"], rig.parameters[name]["max"])
-              for _, name in tongue}
-    tracks = arrays["tracks"]
+    names, tracks = arrays["names"], arrays["tracks"]
     last = tracks.shape[1] - 1
     out = np.zeros((len(relative_t), 8, 8), dtype=np.uint8)
     for k, t in enumerate(relative_t):
         frame = min(last, max(0, int(round(float(t) * rate_hz))))
-        values = rig.values_from({name: float(np.clip(tracks[i, frame], *ranges[name]))
-                                  for i, name in tongue})
+        values = rig.values_clipped(dict(zip(names, tracks[:, frame], strict=True)))
         out[k] = synthetic_frame(rig, values, tables, probes).grid
     return out
 

@@ -18,11 +18,12 @@ from glasshead.api.deps import AssetsDep, ComputeDep
 from glasshead.api.params import split_params
 from glasshead.asset_store import AssetStore
 from glasshead.constants import COLLISION_MAX_VERTICES, EPG_LAYOUT_FORMAT_VERSION
-from glasshead.epg.contacts import contact_grid, electrode_contacts, probes_from_layout
+from glasshead.epg.contacts import contact_grid, electrode_contacts
 from glasshead.epg.indices import INDEX_SLOTS, epg_indices
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.epg.synthetic import synthetic_frame
 from glasshead.geometry.tongue_surface import ParameterError
+from glasshead.probe_assets import layout_probes
 
 router = APIRouter(tags=["epg"])
 
@@ -97,12 +98,6 @@ class ContactsResponse(BaseModel):
                                                "and corrected against the palate")
 
 
-def _probes(assets: AssetStore, grid: str):
-    """The contact probes of a grid, made once per version of the layout."""
-    return assets.derived("epg_layout", ("probes", grid),
-                          lambda layout: probes_from_layout(layout["grids"][grid]))
-
-
 @router.get("/epg/layout", operation_id="getEpgLayout", response_model=Layout)
 def epg_layout(assets: AssetsDep,
                grid: Annotated[GridName, Query(description="which electrode grid")]
@@ -131,7 +126,7 @@ def contacts_json(assets: AssetStore, request: ContactsRequest) -> bytes:
 
 
 def _contacts(assets: AssetStore, request: ContactsRequest) -> ContactsResponse:
-    probes = _probes(assets, request.grid)
+    probes = layout_probes(assets, request.grid)
     collision = None
     if request.params is not None:
         rig = assets.get("tongue_rig")

@@ -19,7 +19,7 @@ from glasshead.api.deps import ComputeDep
 from glasshead.api.lookups import RecordId, get_record
 from glasshead.api.ownership import recording_for
 from glasshead.asset_store import AssetStore
-from glasshead.epg.contacts import probes_from_layout
+from glasshead.probe_assets import layout_probes
 from glasshead.speech import phone_epg
 from glasshead.store.db import database_url, engine_for, get_engine
 from glasshead.store.users import User
@@ -82,17 +82,14 @@ def coarticulated_json(assets: AssetStore, payload: tuple) -> bytes:
     url, recording_id, request = payload
     with Session(engine_for(url)) as session:
         sequence = get_record(session, recording_id).to_sequence()
-    if sequence.n_frames > MAX_SAID_FRAMES:
-        raise HTTPException(status_code=422, detail=(
-            f"the recording has {sequence.n_frames} frames; the head says at most "
-            f"{MAX_SAID_FRAMES} (60 s at 200 Hz): import the segment to compare on its own"))
     relative = sequence.t_s - sequence.t_s[0]
     period = phone_epg.frame_period(sequence.t_s, sequence.frame_rate_hz)
-    if relative[-1] + period > MAX_SAID_SECONDS or relative[-1] / period > MAX_SAID_FRAMES:
+    frames_made = max(sequence.n_frames, relative[-1] / period)  # the tracks span it at its rate
+    if relative[-1] + period > MAX_SAID_SECONDS or frames_made > MAX_SAID_FRAMES:
         raise HTTPException(status_code=422, detail=(
-            f"the recording spans {relative[-1]:.1f} s at {1.0 / period:g} frames a second; the "
-            f"head says at most {MAX_SAID_SECONDS:g} s and {MAX_SAID_FRAMES} frames: import the "
-            f"segment to compare on its own"))
+            f"the recording has {sequence.n_frames} frames over {relative[-1]:.1f} s at "
+            f"{1.0 / period:g} frames a second; the head says at most {MAX_SAID_SECONDS:g} s and "
+            f"{MAX_SAID_FRAMES} frames: import the segment to compare on its own"))
     try:
         symbols = request.phones if request.phones is not None else \
             phone_epg.phones_from_label(sequence.meta.get("label"))
@@ -101,8 +98,7 @@ def coarticulated_json(assets: AssetStore, payload: tuple) -> bytes:
                                                     request.boundaries_s)
     except phone_epg.PhoneSegmentError as error:
         raise HTTPException(status_code=422, detail=f"field {error.field}: {error}") from None
-    probes = assets.derived("epg_layout", ("probes", "reading62"),
-                            lambda layout: probes_from_layout(layout["grids"]["reading62"]))
+    probes = layout_probes(assets)
     frames = phone_epg.synthetic_frames(segments, relative, period,
                                         assets.get("phoneme_targets"), assets.get("tongue_rig"),
                                         assets.get("collision_tables"), probes)

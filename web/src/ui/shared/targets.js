@@ -198,14 +198,12 @@ export class CoarticulatedTargets {
 	async frames( id ) {
 
 		const said = await this.api.post( `epg/recordings/${ encodeURIComponent( id ) }/coarticulated`, {} );
-		const phones = said.phones.map( ( { symbol, ipa, start_s, end_s } ) => ( { symbol, ipa, start_s, end_s } ) );
 		return {
 			label: said.label,
 			rows: said.frames,
 			t_s: said.t_s,
 			params: null, // many poses: the 3D palate shows static targets only
-			phones: said.phones,
-			reference: { label: said.label, frames: said.frames, t_s: said.t_s, phones },
+			reference: { label: said.label, frames: said.frames, t_s: said.t_s, phones: said.phones },
 		};
 
 	}
