@@ -22,10 +22,15 @@ TIMEOUT_S = 90.0
 MAX_EVALS = 400
 
 
+def vtl_outline(built_assets, name: str) -> np.ndarray:
+    """JD3's tongue outline of the shape ``name`` from the built VTL observations."""
+    shapes = json.loads((built_assets / "vtl-observations.json").read_text())["shapes"]
+    return np.array(next(s for s in shapes if s["name"] == name)["tongue_outline"])
+
+
 @pytest.fixture(scope="module")
 def outline(built_assets):
-    shapes = json.loads((built_assets / "vtl-observations.json").read_text())["shapes"]
-    return np.array(next(s for s in shapes if s["name"] == "a")["tongue_outline"])
+    return vtl_outline(built_assets, "a")
 
 
 @pytest.fixture

@@ -71,3 +71,37 @@ def test_an_unknown_kind_is_refused_by_the_command_line(tmp_path, capsys):
     with pytest.raises(SystemExit) as stopped:
         main(["fit", str(tmp_path / "x.csv"), "--kind", "ultrasound"])
     assert stopped.value.code == 2 and "--kind" in capsys.readouterr().err
+
+
+def test_a_combined_fit_takes_its_parts_and_weights_and_reports_each_term(
+        contour_file, tmp_path, capsys):
+    path, _ = contour_file
+    sensors = tmp_path / "jaw.csv"
+    sensors.write_text("point,x_mm,y_mm\nlower_incisor,24.5,-9.5\n")
+    assert main(["fit", "--kind", "combined", "--contour", str(path), "--ema", str(sensors),
+                 "--weight", "ema=3", "--max-evals", "300"]) == 0
+    out, err = capsys.readouterr()
+    result = json.loads(out)
+    assert result["name"] == "i.csv + jaw.csv" and result["method"] == "bobyqa"
+    assert result["source"]["options"] == {"weights": {"ema": 3.0}}
+    terms = result["report"]["terms"]
+    assert terms["contour"]["weight"] == 1.0 and terms["ema"]["weight"] == 30.0
+    assert terms["ema"]["errors_mm"]["lower_incisor"] < 1.0
+    assert "combined fit: RMS" in err
+
+
+def test_combined_parts_or_weights_that_do_not_fit_exit_3_naming_them(contour_file, tmp_path,
+                                                                      capsys):
+    path, _ = contour_file
+    assert main(["fit", "--kind", "combined", "--contour", str(path)]) == 3
+    assert "at least two" in capsys.readouterr().err
+    sensors = tmp_path / "s.csv"
+    sensors.write_text("TT,20,10\n")
+    assert main(["fit", "--kind", "combined", "--contour", str(path), "--ema", str(sensors),
+                 "--weight", "epg=2"]) == 3
+    assert "--weight 'epg=2'" in capsys.readouterr().err
+    assert main(["fit", str(path), "--kind", "contour", "--ema", str(sensors)]) == 3
+    assert "takes one FILE" in capsys.readouterr().err
+    assert main(["fit", "--kind", "combined", "--contour", str(tmp_path / "none.csv"),
+                 "--ema", str(sensors)]) == 2
+    assert "no such file" in capsys.readouterr().err

@@ -70,6 +70,47 @@ class ProgressBar:
             self.stream.flush()
 
 
+def _read_fit_files(args):
+    """(the observation, the files' names, the weights) of ``glasshead fit``'s files; raises
+    FileNotFoundError naming a missing file, ``uploads.ObservationError`` for a bad one."""
+    from glasshead import uploads
+
+    def read(path: Path, kind: str) -> bytes:
+        if not path.is_file():
+            raise FileNotFoundError(f"no such file: {path}")
+        with path.open("rb") as handle:  # never more than the kind's limit and one byte
+            return handle.read(uploads.MAX_BYTES[kind] + 1)
+
+    parts = {kind: getattr(args, kind) for kind in uploads.COMBINED_PARTS
+             if getattr(args, kind, None)}
+    if args.kind != "combined":
+        if args.file is None or parts or args.weight:
+            raise uploads.ObservationError(f"a {args.kind} fit takes one FILE, without "
+                                           "--contour, --epg, --ema or --weight")
+        path = Path(args.file)
+        observation = uploads.read_observation(args.kind, read(path, args.kind), path.name,
+                                               frame=args.frame)
+        return observation, path.name, {}
+    if args.file is not None:
+        raise uploads.ObservationError("a combined fit takes --contour, --epg and --ema, two "
+                                       "or more, not FILE")
+    weights = {}
+    for item in args.weight or ():
+        part, _, value = item.partition("=")
+        try:
+            weights[part] = float(value)
+        except ValueError:
+            raise uploads.ObservationError(f"--weight {item!r}: expected PART=NUMBER, e.g. "
+                                           "ema=2") from None
+        if part not in parts or not 0 <= weights[part] <= 100:
+            raise uploads.ObservationError(f"--weight {item!r}: PART must be a file given "
+                                           "(contour, epg or ema), the weight 0 to 100")
+    contents: dict[str, tuple[bytes, str | None]] = {
+        kind: (read(Path(name), kind), Path(name).name) for kind, name in parts.items()}
+    observation = uploads.read_combined(contents, frame=args.frame, ema_frame=args.ema_frame)
+    return observation, " + ".join(name or "" for _, name in contents.values()), weights
+
+
 def fit(args):
     from glasshead import uploads
     from glasshead.asset_store import AssetStore, AssetUnavailableError
@@ -77,33 +118,33 @@ def fit(args):
     from glasshead.jobs.fit_job import fit_inputs, save_fit
 
     settings = get_settings()
-    path = Path(args.file)
-    if not path.is_file():
-        print(f"glasshead fit: no such file: {path}", file=sys.stderr)
-        return 2
-    with path.open("rb") as handle:  # never more than the kind's limit and one byte
-        content = handle.read(uploads.MAX_BYTES[args.kind] + 1)
+    path = args.file or "combined"
     try:
-        observation = uploads.read_observation(args.kind, content, path.name, frame=args.frame)
+        observation, file_names, weights = _read_fit_files(args)
         inputs = fit_inputs(AssetStore(settings.assets_dir))
+    except FileNotFoundError as error:
+        print(f"glasshead fit: {error}", file=sys.stderr)
+        return 2
     except uploads.ObservationError as error:
         print(f"glasshead fit: {path}: {error}", file=sys.stderr)
         return 3
     except AssetUnavailableError as error:
         print(f"glasshead fit: {error}", file=sys.stderr)
         return 2
-    method = args.method or authored.DEFAULT_METHOD[args.kind]
+    method = args.method or authored.default_method(args.kind, observation.points)
     bar = ProgressBar(sys.stderr)
     try:
         result = authored.fit_observation(inputs, args.kind, observation.points, method=method,
                                           max_evals=args.max_evals, progress=bar,
-                                          name=args.name or "")
+                                          name=args.name or "", weights=weights)
     except ValueError as error:
         bar.close(finished=False)
         print(f"glasshead fit: {path}: the fit failed: {error}", file=sys.stderr)
         return 4
     bar.close()
-    name = args.name or path.name
+    name = args.name or file_names
+    if weights:
+        observation.source["options"] = {"weights": weights}
     document = {"name": name, "kind": args.kind, "method": method, "source": observation.source,
                 **result}
     if args.save:
@@ -247,14 +288,24 @@ def main(argv=None):
     build_parser.set_defaults(handler=build)
     fit_parser = commands.add_parser(
         "fit", help="fit the tongue to a contour, a surface or EPG frames (docs/fits.md)")
-    fit_parser.add_argument("file", help="contour CSV, OBJ or PLY surface, or EPG recording")
-    fit_parser.add_argument("--kind", required=True, choices=("contour", "surface", "epg"))
+    fit_parser.add_argument("file", nargs="?", help="contour CSV, OBJ or PLY surface, EPG "
+                            "recording or flesh points (not for --kind combined)")
+    fit_parser.add_argument("--kind", required=True,
+                            choices=("contour", "surface", "epg", "ema", "combined"))
+    for part, what in (("contour", "a contour CSV"), ("epg", "an EPG recording"),
+                       ("ema", "flesh points, CSV or JSON")):
+        fit_parser.add_argument(f"--{part}", help=f"combined: {what}")
+    fit_parser.add_argument("--weight", action="append", metavar="PART=W",
+                            help="combined: a part's weight, 0 to 100 (default 1), e.g. ema=2")
+    fit_parser.add_argument("--ema-frame", type=int,
+                            help="combined: the frame of flesh-point tracks to fit")
     fit_parser.add_argument("--method", choices=("bobyqa", "praxis", "sbplx"),
                             help="the optimiser (default: bobyqa; sbplx for epg)")
     fit_parser.add_argument("--name", help="the target's name (default: the file's)")
     fit_parser.add_argument("--max-evals", type=int, help="cap on the fit's evaluations")
     fit_parser.add_argument("--frame", type=int,
-                            help="epg: fit this frame (0-based) instead of the majority")
+                            help="epg: fit this frame (0-based) instead of the majority; ema: "
+                                 "this frame of flesh-point tracks")
     fit_parser.add_argument("--out", help="write the result JSON here (default: stdout)")
     fit_parser.add_argument("--save", action="store_true",
                             help="store the result in the database as a fitted target")

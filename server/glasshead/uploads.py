@@ -1,6 +1,6 @@
 """Authors' observations as uploaded files, read and checked whole before anything is stored.
 
-Three kinds, each read into one float64 array in the project frame (mm):
+Four kinds of file, each read into one float64 array in the project frame (mm):
 
 - ``contour``: a mid-sagittal tongue contour as CSV, two columns ``x_mm,y_mm`` (an optional
   header line, ``#`` comments and blank lines allowed), root to tip, at least
@@ -11,7 +11,12 @@ Three kinds, each read into one float64 array in the project frame (mm):
   SSFF). The goal is the majority pattern of every frame of the file
   (``epg.classes.majority_pattern``), each electrode weighted by how clear its majority is
   (|2 p - 1|, p the share of frames that touch it, as the phoneme targets weigh a class), or one
-  frame chosen by its index (every electrode weighted 1) -> (2, 8, 8): wanted, weights.
+  frame chosen by its index (every electrode weighted 1) -> (2, 8, 8): wanted, weights;
+- ``ema``: one frame of flesh-point (EMA sensor) positions, CSV or JSON (``uploads_flesh``)
+  -> (k, 4) rows [point index, x, y, z or NaN].
+
+A ``combined`` observation is two or more of ``contour``, ``epg`` and ``ema`` together
+(``read_combined``), kept as a dict of their arrays by kind.
 
 Every problem raises ``ObservationError`` with the HTTP status the API answers (413 too large,
 415 not the kind's format, 422 a readable file with bad content) and a message that names it:
@@ -31,12 +36,16 @@ from glasshead.epg import formats
 from glasshead.epg.classes import ELECTRODES, majority_pattern
 from glasshead.epg.sequence import EpgFormatError
 from glasshead.fitting.fit3d import MIN_RAYS
+from glasshead.uploads_flesh import FleshPointError, read_flesh_points
 
-KINDS = ("contour", "surface", "epg")
+KINDS = ("contour", "surface", "epg", "ema")
+#: The kinds a ``combined`` fit takes together.
+COMBINED_PARTS = ("contour", "epg", "ema")
 MIB = 1024 * 1024
 #: Largest upload of each kind, bytes: a surface of about 200,000 vertices as OBJ; a contour or
 #: EPG file far larger than any real one (2 MiB of EPG CSV is about 14,000 frames).
-MAX_BYTES = {"contour": 2 * MIB, "surface": 8 * MIB, "epg": 2 * MIB}
+MAX_BYTES = {"contour": 2 * MIB, "surface": 8 * MIB, "epg": 2 * MIB, "ema": 2 * MIB}
+MAX_BYTES["combined"] = sum(MAX_BYTES[part] for part in COMBINED_PARTS)
 MIN_CONTOUR_POINTS = 5
 #: mm. A contour shorter than this leaves too few rays for the 2D error (1 mm apart).
 MIN_CONTOUR_LENGTH_MM = 10.0
@@ -62,12 +71,14 @@ class Observation:
     ``source``: what else the file said (file name, format, counts)."""
 
     kind: str
-    points: np.ndarray
+    points: np.ndarray | dict[str, np.ndarray]
     source: dict = field(default_factory=dict)
 
 
 def size_limit_message(kind: str) -> str:
-    return f"field file: larger than the {MAX_BYTES[kind] // MIB} MiB limit for a {kind} upload"
+    article = "an" if kind[0] in "aeiou" else "a"
+    return (f"field file: larger than the {MAX_BYTES[kind] // MIB} MiB limit for {article} "
+            f"{kind} upload")
 
 
 def read_observation(kind: str, content: bytes, filename: str | None = None, *,
@@ -79,8 +90,8 @@ def read_observation(kind: str, content: bytes, filename: str | None = None, *,
         raise ObservationError(size_limit_message(kind), status=413)
     if not content.strip():
         raise ObservationError("field file: the file is empty")
-    if frame is not None and kind != "epg":
-        raise ObservationError("field frame: only an epg upload has frames")
+    if frame is not None and kind not in ("epg", "ema"):
+        raise ObservationError("field frame: only an epg or ema upload has frames")
     source = {"filename": filename or None, "bytes": len(content)}
     if kind == "contour":
         points = read_contour(content)
@@ -88,10 +99,50 @@ def read_observation(kind: str, content: bytes, filename: str | None = None, *,
     elif kind == "surface":
         points, fmt = read_surface(content, filename)
         source.update(format=fmt, vertices=len(points))
-    else:
+    elif kind == "epg":
         points, details = read_epg(content, filename, frame)
         source.update(details)
+    else:
+        try:
+            points, details = read_flesh_points(content, frame, FRAME_LIMIT_MM)
+        except FleshPointError as error:
+            raise ObservationError(str(error), error.status) from None
+        source.update(details)
     return Observation(kind, points, source)
+
+
+def read_combined(parts: dict[str, tuple[bytes, str | None]], *, frame: int | None = None,
+                  ema_frame: int | None = None) -> Observation:
+    """Read two or more observations fitted together: ``parts`` {kind: (content, file name)}
+    of ``COMBINED_PARTS``; ``frame`` chooses the EPG frame, ``ema_frame`` the flesh points'.
+    Each part's problem is named with its field (``epg_file: ...``)."""
+    unknown = [kind for kind in parts if kind not in COMBINED_PARTS]
+    if unknown:
+        raise ObservationError(f"a combined fit takes {', '.join(COMBINED_PARTS)}, not "
+                               f"{', '.join(unknown)}")
+    if len(parts) < 2:
+        raise ObservationError("a combined fit needs at least two of contour_file, epg_file "
+                               "and ema_file (one alone is a fit of its own kind)")
+    if frame is not None and "epg" not in parts:
+        raise ObservationError("field frame: it chooses an EPG frame, and there is no epg_file")
+    if ema_frame is not None and "ema" not in parts:
+        raise ObservationError("field ema_frame: there is no ema_file")
+    points: dict[str, np.ndarray] = {}
+    source: dict = {"parts": {}}
+    for kind in COMBINED_PARTS:
+        if kind not in parts:
+            continue
+        content, filename = parts[kind]
+        try:
+            part = read_observation(kind, content, filename,
+                                    frame=frame if kind == "epg" else
+                                    ema_frame if kind == "ema" else None)
+        except ObservationError as error:
+            problem = str(error).removeprefix("field file: ")
+            raise ObservationError(f"{kind}_file: {problem}", error.status) from None
+        points[kind] = np.asarray(part.points, dtype=np.float64)
+        source["parts"][kind] = part.source
+    return Observation("combined", points, source)
 
 
 def _text(content: bytes, what: str) -> str:

@@ -5,6 +5,9 @@ What each kind fits (``fit_observation``):
 - ``contour``: ``fit2d.fit_outline``, the 14 sagittal parameters from the neutral tongue, the
   jaw and the coronal parameters held neutral (a mid-sagittal contour cannot show them);
 - ``surface``: ``fit3d.fit_surface`` to the surface's vertices;
+- ``ema`` (one frame of flesh points) and ``combined`` (two or more of a contour, EPG frames and
+  flesh points, each with its weight): ``fit_measured.fit_measured``, whose report adds
+  ``terms``, each measurement's weight and error;
 - ``epg``: the contact fit (``fit_contact.ContactObjective``: the sagittal parameters, the jaw
   closing only and the coronal groups of every section) toward the wanted pattern, with the rest
   tongue's own mid-sagittal outline (``rest_outline``) as the outline term: an EPG frame says
@@ -38,15 +41,19 @@ from glasshead.epg import synthetic
 from glasshead.epg.classes import ELECTRODES, agreement
 from glasshead.epg.contacts import Probes, probes_from_layout
 from glasshead.epg.sequence import rows_to_strings
-from glasshead.fitting import fit2d, fit_contact
+from glasshead.fitting import fit2d, fit_contact, fit_measured
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.fitting.objective_epg import EpgObjective
 from glasshead.fitting.optimizer import METHODS, minimize
+from glasshead.geometry.flesh_points import FleshPointRig
 from glasshead.geometry.tongue_surface import TongueRig
+from glasshead.uploads_flesh import points_by_name
 
-DEFAULT_METHOD = {"contour": "bobyqa", "surface": "bobyqa", "epg": "sbplx"}
+#: By kind; a combined fit with EPG frames takes subplex, as an EPG fit does (``default_method``).
+DEFAULT_METHOD = {"contour": "bobyqa", "surface": "bobyqa", "epg": "sbplx", "ema": "bobyqa",
+                  "combined": "bobyqa"}
 #: Evaluations a fit may spend when the upload names no cap.
-MAX_EVALS = {"contour": fit2d.MAX_EVALS, "epg": 1500}
+MAX_EVALS = {"contour": fit2d.MAX_EVALS, "epg": 1500, "ema": 1500, "combined": 2000}
 #: progress(evaluations, best_error, fraction of the evaluation budget spent)
 Progress = Callable[[int, float, float], None]
 
@@ -61,18 +68,40 @@ class FitInputs:
     probes: Probes
     tables: object
     others: dict[str, float]
+    #: The flesh points, for the ``ema`` and ``combined`` kinds (None: those kinds fail).
+    flesh: FleshPointRig | None = None
 
     @classmethod
     def from_assets(cls, rig: TongueRig, epg_layout: dict, collision_tables,
-                    face_rig: dict, velum_rig: dict) -> "FitInputs":
+                    face_rig: dict, velum_rig: dict,
+                    flesh: FleshPointRig | None = None) -> "FitInputs":
         """The inputs from loaded assets: the tongue rig, the EPG layout document (its
-        ``reading62`` grid), the decoded collision tables and the face and velum rig
-        definitions (their parameters' neutral values)."""
+        ``reading62`` grid), the decoded collision tables, the face and velum rig
+        definitions (their parameters' neutral values) and the flesh points' rig."""
         others = {spec["name"]: float(spec["neutral"])
                   for definition in (face_rig, velum_rig) for spec in definition["parameters"]}
         return cls(rig, MidSagittalSection(rig),
                    probes_from_layout(epg_layout["grids"]["reading62"]), collision_tables,
-                   others)
+                   others, flesh)
+
+
+def default_method(kind: str, points=None) -> str:
+    """The optimiser a fit of ``kind`` takes when the upload names none: subplex for any fit
+    with an EPG term (its hinge error is flat where BOBYQA's models stall)."""
+    if kind == "combined" and isinstance(points, dict) and "epg" in points:
+        return "sbplx"
+    return DEFAULT_METHOD[kind]
+
+
+def measurements_of(kind: str, points, weights: dict | None = None) -> fit_measured.Measurements:
+    """The ``Measurements`` of an ``ema`` observation ((k, 4) rows) or a ``combined`` one
+    ({kind: array}), with the upload's weights by kind."""
+    parts = {"ema": points} if kind == "ema" else dict(points)
+    epg = parts.get("epg")
+    return fit_measured.Measurements(
+        contour=parts.get("contour"), epg=None if epg is None else np.asarray(epg),
+        flesh=points_by_name(parts["ema"]) if "ema" in parts else None,
+        weights=dict(weights or {}))
 
 
 def rest_outline(section: MidSagittalSection, rig: TongueRig) -> np.ndarray:
@@ -94,12 +123,14 @@ def _budget(kind: str, max_evals: int | None) -> int | None:
     return MAX_EVALS[kind]
 
 
-def fit_observation(inputs: FitInputs, kind: str, points: np.ndarray, *,
+def fit_observation(inputs: FitInputs, kind: str, points, *,
                     method: str | None = None, max_evals: int | None = None,
-                    progress: Progress | None = None, name: str = "") -> dict:
-    """Fit one observation (``uploads.Observation.points`` of ``kind``); returns ``params``
-    (every rig parameter) and ``report`` (see the module docstring)."""
-    method = method or DEFAULT_METHOD[kind]
+                    progress: Progress | None = None, name: str = "",
+                    weights: dict | None = None) -> dict:
+    """Fit one observation (``uploads.Observation.points`` of ``kind``; ``weights`` by part for
+    a combined one); returns ``params`` (every rig parameter) and ``report`` (see the module
+    docstring)."""
+    method = method or default_method(kind, points)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of: {', '.join(METHODS)}")
     budget = _budget(kind, max_evals)
@@ -126,6 +157,12 @@ def fit_observation(inputs: FitInputs, kind: str, points: np.ndarray, *,
     elif kind == "epg":
         fit, report = fit_epg(inputs, points[0], points[1], method=method,
                               max_evals=budget, progress=step)
+    elif kind in ("ema", "combined"):
+        fitted, report = fit_measured.fit_measured(
+            inputs, measurements_of(kind, points, weights), rest_outline(inputs.section, rig),
+            method=method, max_evals=budget or MAX_EVALS[kind], progress=step)
+        return {"params": {**inputs.others, **{n: round(v, 6) for n, v in fitted.items()}},
+                "report": report}
     else:
         raise ValueError(f"unknown kind {kind!r}")
     params = {**{n: round(float(v), 6) for n, v in fit.params.items()}, **inputs.others}

@@ -231,6 +231,8 @@ class Objective2D:
 
     ``free``: names of the parameters the fit moves; every other parameter stays at ``base``
     (P,) values (default neutral). ``origin`` defaults to the hub posed at ``base``.
+    ``outline_weight`` scales the rays' term (rms^2) against the others (1 in every fit of one
+    outline; a combined fit weighs it against other measurements).
     ``__call__(x)`` (x: the free values) returns the objective (mm^2, see the module docstring);
     ``evaluations`` counts the calls.
     """
@@ -239,12 +241,14 @@ class Objective2D:
                  volume_weight=0.0, neutral_weight=0.0, volume_bound_pct=None,
                  volume_bound_weight=0.0, root_cut_deg=ROOT_CUT_DEG,
                  spacing_mm=SPACING_MM, section: MidSagittalSection | None = None,
-                 neutral_weights: Mapping[str, float] | None = None):
+                 neutral_weights: Mapping[str, float] | None = None, outline_weight=1.0):
         unknown = [name for name in free if name not in rig.parameters]
         if unknown or not free:
             raise ValueError(f"free parameters must be known rig parameters; got {list(free)}")
         if volume_weight < 0 or neutral_weight < 0 or volume_bound_weight < 0:
             raise ValueError("the volume and neutral weights cannot be negative")
+        if not outline_weight >= 0:
+            raise ValueError("the outline's weight cannot be negative")
         if volume_bound_pct is not None and not volume_bound_pct > 0:
             raise ValueError("the volume bound must be a positive percentage")
         self.rig = rig
@@ -261,6 +265,7 @@ class Objective2D:
                                                        spacing_mm=spacing_mm))
         self.volume_weight = float(volume_weight)
         self.neutral_weight = float(neutral_weight)
+        self.outline_weight = float(outline_weight)
         # The pull toward neutral per free parameter: neutral_weight unless named otherwise.
         weights = dict(neutral_weights or {})
         if any(w < 0 for w in weights.values()):
@@ -299,6 +304,8 @@ class Objective2D:
         values = self.values(x)
         posed = self.section.control_points(values)  # once, for the outline and the volume
         value = float(np.mean(self.rays.errors(self.section.outline(values, posed)) ** 2))
+        if self.outline_weight != 1.0:
+            value *= self.outline_weight
         bound_pct = self.volume_bound_pct if self.volume_bound_weight > 0 else None
         if self.volume_weight or bound_pct is not None:
             change = self.volume_change(x, exact=False, posed=posed)

@@ -125,21 +125,35 @@ class FleshPointRig:
     def frame(self, params: Mapping[str, float]) -> dict[str, Floats]:
         """{name: (3,) float64 mm} for one frame's parameters (tongue, jaw and lip values by
         name; missing ones neutral, others ignored; each clipped to its range)."""
+        lips = {k: float(v) for k, v in params.items() if k in self._lip_ranges}
+        return self.posed(self.tongue.values_clipped(params), lips)
+
+    def posed(self, values: npt.ArrayLike, lips: Mapping[str, float],
+              names: tuple[str, ...] = FLESH_POINT_NAMES) -> dict[str, Floats]:
+        """{name: (3,) float64 mm} of ``names`` for the tongue rig's ``values`` (P,) and the
+        lip parameters ``lips`` by name (missing ones neutral; each clipped to its range). The
+        lips are posed only when a lip point is asked for (what makes a frame cost 1.6 ms)."""
         rig = self.tongue
-        values = rig.values_clipped(params)
+        values = np.asarray(values, dtype=np.float64)
         pose = jaw_pose(values[rig.jaw_parameter], rig.jaw)
         points = dict(zip(TONGUE_SENSOR_ARC_MM,
                           tongue_points(midline_outline(rig, values), self.anchors),
                           strict=True))
         points["lower_incisor"] = apply_jaw_pose(self.incisors["lower_incisor"][None],
                                                  pose)[0]
-        lips = {k: min(max(float(v), self._lip_ranges[k][0]), self._lip_ranges[k][1])
-                for k, v in params.items() if k in self._lip_ranges}
-        posed, _ = face.pose_face(self.face, self.lips, lips, pose)
-        for name in face.LIP_MESHES:
-            points[name] = posed[name][self.lips[name]["reference_vertex"]]
+        if any(name in face.LIP_MESHES for name in names):
+            clipped = {k: min(max(float(v), self._lip_ranges[k][0]), self._lip_ranges[k][1])
+                       for k, v in lips.items()}
+            posed, _ = face.pose_face(self.face, self.lips, clipped, pose)
+            for name in face.LIP_MESHES:
+                points[name] = posed[name][self.lips[name]["reference_vertex"]]
         points["upper_incisor"] = self.incisors["upper_incisor"].copy()
-        return {name: points[name] for name in FLESH_POINT_NAMES}
+        return {name: points[name] for name in names}
+
+    @property
+    def lip_ranges(self) -> dict[str, tuple[float, float]]:
+        """{lip parameter: (min, max)} of the face rig."""
+        return dict(self._lip_ranges)
 
     def tracks(self, tracks: Mapping[str, npt.ArrayLike]) -> dict[str, Floats]:
         """{name: (n_frames, 3) float64 mm} for parameter tracks {name: (n_frames,) values}

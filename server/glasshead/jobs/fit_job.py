@@ -22,6 +22,7 @@ from sqlalchemy.orm import Session
 
 from glasshead.asset_store import AssetStore
 from glasshead.fitting.authored import FitInputs, fit_observation
+from glasshead.flesh_point_assets import flesh_point_rig
 from glasshead.jobs.compute import worker_store
 from glasshead.store.base import utc_now
 from glasshead.store.db import engine_for
@@ -40,7 +41,7 @@ def fit_inputs(store: AssetStore) -> FitInputs:
     file and ``glasshead build``, when one is missing or corrupt)."""
     return FitInputs.from_assets(store.get("tongue_rig"), store.get("epg_layout"),
                                  store.get("collision_tables"), store.get("face_rig"),
-                                 store.get("velum_rig").definition)
+                                 store.get("velum_rig").definition, flesh_point_rig(store))
 
 
 class ProgressWriter:
@@ -83,7 +84,8 @@ def run_job(database_url: str, assets_dir: str, job_id: int) -> str:
         try:
             result = fit_observation(fit_inputs(worker_store(assets_dir)), kind, points,
                                      method=method, max_evals=options.get("max_evals"),
-                                     progress=writer, name=name)
+                                     progress=writer, name=name,
+                                     weights=options.get("weights"))
         except JobDeletedError:
             session.rollback()
             return "deleted"
@@ -120,11 +122,13 @@ def save_fit(database_url: str, observation, result: dict, *, name: str, method:
     upgrade_to_head(engine)
     now = utc_now()
     report = result["report"]
+    options = dict(observation.source.get("options", {}))
+    if max_evals is not None:
+        options["max_evals"] = max_evals
     job = FitJob(name=name, kind=observation.kind, method=method, state="done",
                  progress={"evaluations": report["evaluations"], "best_error": None,
                            "fraction": 1.0},
-                 source={**observation.source,
-                         "options": {} if max_evals is None else {"max_evals": max_evals}},
+                 source={**observation.source, "options": options},
                  params=result["params"], report=report, started_at=now, finished_at=now)
     job.set_observation(observation.points)
     with Session(engine, expire_on_commit=False) as session:

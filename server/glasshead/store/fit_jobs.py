@@ -9,7 +9,9 @@ finished fit is a target: ``params`` holds a value for every articulation parame
 jaw, lips, velum), as a saved pose does.
 
 The observation is kept as one little-endian float64 blob (``observation_shape`` gives its
-shape): a contour (n, 2), a surface's vertices (k, 3) or a wanted EPG pattern (8, 8). A
+shape): a contour (n, 2), a surface's vertices (k, 3), a wanted EPG pattern and its weights
+(2, 8, 8) or flesh points (k, 4); a combined fit's parts one after another, ``observation_shape``
+then ``[[kind, shape], ...]`` in that order. A
 surface of a few hundred thousand vertices is a few megabytes this way, several times less than
 as JSON numbers, and the worker reads it back exactly.
 """
@@ -25,7 +27,7 @@ from glasshead.store.base import Base, Timestamped, UtcDateTime
 #: The states of a fit, in the order it passes through them (``failed`` may follow any).
 FIT_STATES = ("queued", "running", "done", "failed")
 #: The kinds of observation a fit takes.
-FIT_KINDS = ("contour", "surface", "epg")
+FIT_KINDS = ("contour", "surface", "epg", "ema", "combined")
 #: Layout of ``FitJob.observation``.
 OBSERVATION_DTYPE = np.dtype("<f8")
 
@@ -39,7 +41,7 @@ class FitJob(Timestamped, Base):
 
     id: Mapped[int] = mapped_column(Integer, primary_key=True)
     name: Mapped[str] = mapped_column(String(200))
-    #: contour, surface or epg (``FIT_KINDS``).
+    #: contour, surface, epg, ema or combined (``FIT_KINDS``).
     kind: Mapped[str] = mapped_column(String(20))
     #: The optimiser: bobyqa, praxis or sbplx.
     method: Mapped[str] = mapped_column(String(20))
@@ -63,11 +65,24 @@ class FitJob(Timestamped, Base):
     owner_id: Mapped[int | None] = mapped_column(
         ForeignKey("users.id", ondelete="SET NULL"), index=True)
 
-    def set_observation(self, points: np.ndarray) -> None:
+    def set_observation(self, points: np.ndarray | dict[str, np.ndarray]) -> None:
+        if isinstance(points, dict):
+            parts = {k: np.ascontiguousarray(v, dtype=OBSERVATION_DTYPE) for k, v in points.items()}
+            self.observation = b"".join(part.tobytes() for part in parts.values())
+            self.observation_shape = [[k, list(part.shape)] for k, part in parts.items()]
+            return
         points = np.ascontiguousarray(points, dtype=OBSERVATION_DTYPE)
         self.observation = points.tobytes()
         self.observation_shape = list(points.shape)
 
-    def get_observation(self) -> np.ndarray:
+    def get_observation(self) -> np.ndarray | dict[str, np.ndarray]:
         flat = np.frombuffer(self.observation, dtype=OBSERVATION_DTYPE).astype(np.float64)
-        return flat.reshape(self.observation_shape)
+        shape = self.observation_shape
+        if not shape or not isinstance(shape[0], list):
+            return flat.reshape(shape)
+        parts, start = {}, 0
+        for kind, part_shape in shape:
+            size = int(np.prod(part_shape))
+            parts[str(kind)] = flat[start:start + size].reshape(part_shape)
+            start += size
+        return parts

@@ -1,7 +1,10 @@
-"""Fits: an author's observation (a contour, a surface or EPG frames) fitted into a new target.
+"""Fits: an author's observation (a contour, a surface, EPG frames, flesh points, or several of
+them together) fitted into a new target.
 
 POST /fits takes a multipart upload (``file``, ``kind``, optional ``name``, ``method``,
-``max_evals`` and, for EPG, ``frame``), reads and checks it whole (``glasshead.uploads``: 413 past
+``max_evals`` and, for EPG or flesh-point tracks, ``frame``; a ``combined`` fit takes
+``contour_file``, ``epg_file`` and ``ema_file``, two or more, each with an optional weight),
+reads and checks it whole (``glasshead.uploads``: 413 past
 the kind's size limit, 415 not the kind's format, 422 bad content, each naming the problem; no
 row is stored), stores a ``queued`` job and answers 202 with it and its Location. The fit runs
 in a worker process of whichever server (``jobs.fit_runner``) takes it from the queue in the
@@ -16,6 +19,7 @@ clinicians and admins upload observations; a fit is deleted only by its uploader
 import asyncio
 import json
 from datetime import datetime
+from functools import partial
 from typing import Annotated, Literal
 
 from fastapi import (
@@ -39,10 +43,10 @@ from sqlalchemy.orm import Session
 from glasshead import uploads
 from glasshead.api import idempotency
 from glasshead.api.auth import SignedInUser, require_role
-from glasshead.api.examples import EMUR_EXAMPLE
+from glasshead.api.examples import EMUR_EXAMPLE, FLESH_POINTS_EXAMPLE
 from glasshead.api.lookups import Offset, RecordId
 from glasshead.api.ownership import check_owner
-from glasshead.fitting.authored import DEFAULT_METHOD
+from glasshead.fitting.authored import default_method
 from glasshead.jobs.fit_runner import FitRunner
 from glasshead.store.db import get_engine
 from glasshead.store.fit_jobs import FitJob
@@ -51,7 +55,7 @@ from glasshead.store.users import User
 
 router = APIRouter(tags=["fits"])
 
-Kind = Literal["contour", "surface", "epg"]
+Kind = Literal["contour", "surface", "epg", "ema", "combined"]
 Method = Literal["bobyqa", "praxis", "sbplx"]
 State = Literal["queued", "running", "done", "failed"]
 #: Seconds between looks at a job's row while streaming its events.
@@ -62,6 +66,8 @@ KEEP_ALIVE_S = 15.0
 RETRY_AFTER_S = 30
 #: Most evaluations an upload may ask a fit to spend.
 MAX_EVALS = 20000
+#: Largest weight a combined fit's part may have (a weight of 100 already silences the others).
+MAX_WEIGHT = 100.0
 _CHUNK = 64 * 1024
 
 
@@ -126,9 +132,13 @@ async def _read_limited(upload: UploadFile, kind: str) -> bytes:
 
 @router.post("/fits", operation_id="createFit", status_code=status.HTTP_202_ACCEPTED,
              response_model=FitOut,
-             openapi_extra={"requestBody": {"content": {"multipart/form-data": {"example": {
-                 "kind": "epg", "file": json.dumps(EMUR_EXAMPLE), "name": "bescan s->k",
-                 "method": "sbplx", "max_evals": 400}}}}},
+             openapi_extra={"requestBody": {"content": {"multipart/form-data": {"examples": {
+                 "epg": {"summary": "EPG frames", "value": {
+                     "kind": "epg", "file": json.dumps(EMUR_EXAMPLE), "name": "bescan s->k",
+                     "method": "sbplx", "max_evals": 400}},
+                 "combined": {"summary": "EPG frames and flesh points together", "value": {
+                     "kind": "combined", "epg_file": json.dumps(EMUR_EXAMPLE),
+                     "ema_file": FLESH_POINTS_EXAMPLE, "ema_weight": 2, "max_evals": 400}}}}}}},
              responses={413: {"description": "the file is past the kind's size limit"},
                         415: {"description": "the file is not in a format of the kind"},
                         503: {"description": "the queue is full; retry after Retry-After"}})
@@ -148,35 +158,97 @@ async def create_fit(
     max_evals: Annotated[int | None, Form(ge=10, le=MAX_EVALS,
                                           description="cap on the fit's evaluations")] = None,
     frame: Annotated[int | None, Form(ge=0, description="epg: fit this frame (0-based) "
-                                                        "instead of the majority")] = None,
+                                                        "instead of the majority; ema: this "
+                                                        "frame of flesh-point tracks")] = None,
+    contour_file: Annotated[UploadFile | None, File(
+        description="combined: a contour CSV")] = None,
+    epg_file: Annotated[UploadFile | None, File(
+        description="combined: an EPG recording")] = None,
+    ema_file: Annotated[UploadFile | None, File(
+        description="combined: flesh points, CSV or JSON")] = None,
+    contour_weight: Annotated[float | None, Form(ge=0, le=MAX_WEIGHT, description=(
+        "combined: the contour's weight (default 1)"))] = None,
+    epg_weight: Annotated[float | None, Form(ge=0, le=MAX_WEIGHT, description=(
+        "combined: the EPG frames' weight (default 1)"))] = None,
+    ema_weight: Annotated[float | None, Form(ge=0, le=MAX_WEIGHT, description=(
+        "combined: the flesh points' weight (default 1)"))] = None,
+    ema_frame: Annotated[int | None, Form(ge=0, description=(
+        "combined: the frame of flesh-point tracks to fit (default the first)"))] = None,
 ) -> FitJob:
-    """Queue a fit of one uploaded observation; 202 with the job, Location its URL. A retry
-    with the same ``Idempotency-Key`` gets the first answer and queues nothing new."""
+    """Queue a fit of one uploaded observation, or of several together (``combined``); 202
+    with the job, Location its URL. A retry with the same ``Idempotency-Key`` gets the first
+    answer and queues nothing new."""
     declared = request.headers.get("content-length", "")
-    if declared.isdigit() and int(declared) > uploads.MAX_BYTES[kind] + _CHUNK:
+    if declared.isdigit() and int(declared) > uploads.MAX_BYTES[kind] + 3 * _CHUNK:
         raise HTTPException(status_code=413, detail=uploads.size_limit_message(kind))
-    if file is None:
-        raise HTTPException(status_code=422, detail="field file: the upload has no file part")
-    content = await _read_limited(file, kind)
-    digest = idempotency.upload_digest(kind, content, file.filename, name, method, max_evals,
-                                       frame)
+    files = {"contour": contour_file, "epg": epg_file, "ema": ema_file}
+    weights = {part: w for part, w in (("contour", contour_weight), ("epg", epg_weight),
+                                       ("ema", ema_weight)) if w is not None}
+    _check_fields(kind, file, files, weights, ema_frame)
+    if kind == "combined":
+        given = {part: upload for part, upload in files.items() if upload is not None}
+        contents = {part: (await _read_limited(upload, part), upload.filename)
+                    for part, upload in given.items()}
+        digest = idempotency.upload_digest(kind, *[x for part, (content, filename) in
+                                                   contents.items()
+                                                   for x in (part, content, filename)],
+                                           json.dumps(weights, sort_keys=True), name, method,
+                                           max_evals, frame, ema_frame)
+        read = partial(uploads.read_combined, contents, frame=frame, ema_frame=ema_frame)
+        default_name = " + ".join(filename or part for part, (_, filename) in contents.items())
+    else:
+        assert file is not None
+        content = await _read_limited(file, kind)
+        digest = idempotency.upload_digest(kind, content, file.filename, name, method,
+                                           max_evals, frame)
+        read = partial(uploads.read_observation, kind, content, file.filename, frame=frame)
+        default_name = file.filename or f"{kind} fit"
     replayed = await run_in_threadpool(idempotency.replay, session, "createFit",
                                        idempotency_key, digest)
     if replayed is not None:
         return replayed
     try:
-        observation = await run_in_threadpool(uploads.read_observation, kind, content,
-                                               file.filename, frame=frame)
+        observation = await run_in_threadpool(read)
     except uploads.ObservationError as error:
         raise HTTPException(status_code=error.status, detail=str(error)) from None
+    if weights:
+        observation.source["weights"] = weights
     job = await run_in_threadpool(
-        _store, session, runner, observation, name or file.filename or f"{kind} fit", method,
+        _store, session, runner, observation, name or default_name, method,
         max_evals, idempotency_key, digest, user.id,
         lambda fit_id: str(request.url_for("get_fit", fit_id=fit_id).path))
     if isinstance(job, Response):  # the same key's first request committed meanwhile
         return job
     response.headers["Location"] = str(request.url_for("get_fit", fit_id=job.id).path)
     return job
+
+
+def _check_fields(kind: str, file: UploadFile | None, files: dict, weights: dict,
+                  ema_frame: int | None) -> None:
+    """422 for the fields ``kind`` does not take: a combined fit takes its parts' files, every
+    other kind one ``file``."""
+    def refuse(detail: str):
+        raise HTTPException(status_code=422, detail=detail)
+
+    if kind == "combined":
+        if file is not None:
+            refuse("field file: a combined fit takes contour_file, epg_file and ema_file, two "
+                   "or more, not file")
+        missing = [part for part, upload in files.items() if upload is None]
+        if len(missing) > 1:
+            refuse("a combined fit needs at least two of contour_file, epg_file and ema_file "
+                   "(one alone is a fit of its own kind)")
+        for part in weights:
+            if files[part] is None:
+                refuse(f"field {part}_weight: there is no {part}_file to weigh")
+        return
+    if file is None:
+        refuse("field file: the upload has no file part")
+    extra = [f"{part}_file" for part, upload in files.items() if upload is not None]
+    extra += [f"{part}_weight" for part in weights]
+    extra += ["ema_frame"] if ema_frame is not None else []
+    if extra:
+        refuse(f"field {extra[0]}: only a combined fit takes it (this is kind {kind})")
 
 
 def _store(session: Session, runner: FitRunner, observation: uploads.Observation, name: str,
@@ -186,11 +258,14 @@ def _store(session: Session, runner: FitRunner, observation: uploads.Observation
         raise HTTPException(status_code=503, headers={"Retry-After": str(RETRY_AFTER_S)},
                             detail=f"{runner.queue_limit} fits are already waiting; retry "
                                    "later")
-    options = {} if max_evals is None else {"max_evals": max_evals}
+    options: dict = {} if max_evals is None else {"max_evals": max_evals}
+    source = dict(observation.source)
+    if "weights" in source:
+        options["weights"] = source.pop("weights")
     job = FitJob(name=name.strip()[:200] or f"{observation.kind} fit", kind=observation.kind,
-                 method=method or DEFAULT_METHOD[observation.kind], state="queued",
-                 progress={"evaluations": 0, "best_error": None, "fraction": 0.0},
-                 source={**observation.source, "options": options}, owner_id=owner_id)
+                 method=method or default_method(observation.kind, observation.points),
+                 state="queued", progress={"evaluations": 0, "best_error": None, "fraction": 0.0},
+                 source={**source, "options": options}, owner_id=owner_id)
     job.set_observation(observation.points)
     session.add(job)
     session.flush()
