@@ -128,24 +128,26 @@ test( 'the head view poses only the parameters its rigs know, and only with fini
 
 } );
 
-test( 'the editor, privacy and lesson runner links show only while an author, an admin or a teacher is signed in, and are marked when on screen', () => {
+test( 'the editor, fit, privacy and lesson runner links show only while an author, a clinician, an admin or a teacher is signed in, and are marked when on screen', () => {
 
 	const win = fakeWindow( '#/author' );
 	const nav = new NavBar( { win } );
-	assert.deepEqual( nav.roleLinks.map( ( link ) => link.href ), [ '#/author', '#/admin', '#/teach' ] );
+	assert.deepEqual( nav.roleLinks.map( ( link ) => link.href ), [ '#/author', '#/fits', '#/admin', '#/teach' ] );
 	const shown = () => nav.roleItems.map( ( item ) => ! item.hidden );
-	assert.deepEqual( shown(), [ false, false, false ], 'nobody signed in' );
+	assert.deepEqual( shown(), [ false, false, false, false ], 'nobody signed in' );
 	const as = ( role ) => ( { kind: 'user', token: 't', user: { id: 1, username: role, display_name: role, role } } );
 	nav.showAccount( as( 'author' ) );
-	assert.deepEqual( shown(), [ true, false, false ] );
+	assert.deepEqual( shown(), [ true, true, false, false ] );
+	nav.showAccount( as( 'clinician' ) );
+	assert.deepEqual( shown(), [ false, true, false, false ] );
 	nav.showAccount( as( 'admin' ) );
-	assert.deepEqual( shown(), [ true, true, true ] );
+	assert.deepEqual( shown(), [ true, true, true, true ] );
 	nav.showAccount( as( 'teacher' ) );
-	assert.deepEqual( shown(), [ false, false, true ] );
+	assert.deepEqual( shown(), [ false, false, false, true ] );
 	nav.showAccount( { kind: 'child', token: 't', child: { id: 3 } } );
-	assert.deepEqual( shown(), [ false, false, false ] );
+	assert.deepEqual( shown(), [ false, false, false, false ] );
 	nav.mark( '/author' );
-	assert.deepEqual( nav.roleLinks.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ 'page', null, null ] );
+	assert.deepEqual( nav.roleLinks.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ 'page', null, null, null ] );
 	assert.deepEqual( nav.links.map( ( link ) => link.getAttribute( 'aria-current' ) ), [ null, null, null, null, null ] );
 
 } );

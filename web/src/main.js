@@ -1,7 +1,7 @@
 // Entry point: the debug object, the view registry and the router.
 //
 // Each view has its folder under ui/ (head, workbench, speak, listen, clinician, lessons, practice,
-// author, admin, signin) with the modules only it uses; what two or more views use is in ui/shared. Every
+// author, fits, admin, signin) with the modules only it uses; what two or more views use is in ui/shared. Every
 // view extends ui/shared/View.js (mounting, clean-ups, the 3D stage) and loads through api.js.
 // To add a view, register its path with a function that mounts it and returns { unmount() }:
 //   router.register( '/workbench', async ( container ) => ( await import( './ui/workbench/WorkbenchView.js' ) ).mountWorkbenchView( container ) );
@@ -32,6 +32,7 @@ router.register( '/teach', async ( container ) => ( await import( './ui/lessons/
 router.register( '/practice', async ( container ) => ( await import( './ui/practice/ChildPractice.js' ) ).mountChildPractice( container ), { title: 'Glasshead: practise' } );
 router.register( '/author', async ( container ) => ( await import( './ui/author/LessonEditor.js' ) ).mountLessonEditor( container ), { title: 'Glasshead: write lessons' } );
 router.register( '/listen', async ( container ) => ( await import( './ui/listen/ListenView.js' ) ).mountListenView( container ), { title: 'Glasshead: listen' } );
+router.register( '/fits', async ( container ) => ( await import( './ui/fits/FitsView.js' ) ).mountFitsView( container ), { title: 'Glasshead: fit a target' } );
 router.register( '/admin', async ( container ) => ( await import( './ui/admin/AdminView.js' ) ).mountAdminView( container ), { title: 'Glasshead: privacy' } );
 
 registerDebug( 'route', () => router.currentPath );

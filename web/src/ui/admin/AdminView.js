@@ -7,7 +7,7 @@ import { currentSession, onSessionChange } from '../../session.js';
 import { confirmWords, deletedWords, exportName } from './adminRows.js';
 import { h } from '../shared/dom.js';
 import { downloadFile } from '../shared/download.js';
-import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
+import { signInPrompt } from '../shared/SignInPrompt.js';
 import { hasRole } from '../shared/signIn.js';
 import { View } from '../shared/View.js';
 import './admin.css';
@@ -158,9 +158,7 @@ export class AdminView extends View {
 
 	fail( error ) {
 
-		const prompt = signedOutPrompt( error, { win: this.window } );
-		if ( prompt ) this.message.replaceChildren( prompt );
-		else this.say( error.message );
+		this.showFailure( error, this.message, ( words ) => this.say( words ) );
 
 	}
 

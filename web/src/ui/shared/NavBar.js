@@ -28,11 +28,12 @@ export const NAV_VIEWS = Object.freeze( [
 
 /**
  * Views listed after those only while someone who uses them is signed in: the lesson editor for
- * authors (and admins), the privacy page for admins, the lesson runner for teachers (and admins).
+ * authors (and admins), the fit page for authors and clinicians (and admins), the privacy page for admins, the lesson runner for teachers (and admins).
  * Children reach their practice (#/practice) at the address their teacher gives them.
  */
 export const ROLE_VIEWS = Object.freeze( [
 	Object.freeze( { path: '/author', label: 'Write', roles: Object.freeze( [ 'author', 'admin' ] ) } ),
+	Object.freeze( { path: '/fits', label: 'Fit', roles: Object.freeze( [ 'author', 'clinician', 'admin' ] ) } ),
 	Object.freeze( { path: '/admin', label: 'Privacy', roles: Object.freeze( [ 'admin' ] ) } ),
 	Object.freeze( { path: '/teach', label: 'Teach', roles: Object.freeze( [ 'teacher', 'admin' ] ) } ),
 ] );

@@ -18,6 +18,7 @@
 import { api as pageApi } from '../../api.js';
 import { registerDebug } from '../../debug.js';
 import { createHeadStage } from './headStage.js';
+import { signedOutPrompt } from './SignInPrompt.js';
 
 export class View {
 
@@ -33,6 +34,18 @@ export class View {
 		this.unregister = [];
 		/** The view's element in the router's container (attach()). */
 		this.root = null;
+
+	}
+
+	/**
+	 * Show a failed request's `error`: for a 401 the "Please sign in" prompt in `box` (the
+	 * session is forgotten), else its message through `say( words )`.
+	 */
+	showFailure( error, box, say ) {
+
+		const prompt = signedOutPrompt( error, { win: this.window } );
+		if ( prompt ) box.replaceChildren( prompt );
+		else say( error.message );
 
 	}
 

@@ -116,13 +116,33 @@ export class PhonemeTargets {
 
 }
 
+/** Words for a part's error in a report's `terms` (docs/fits.md). */
+const TERM_WORDS = {
+	contour: ( term ) => `contour ${ term.rms_mm.toFixed( 2 ) } mm RMS`,
+	epg: ( term ) => `EPG agreement ${ Math.round( 100 * term.agreement ) } %`,
+	ema: ( term ) => `sensors ${ term.rms_mm.toFixed( 2 ) } mm RMS`,
+};
+
+/**
+ * How well a finished fit matches what it was given, in words: each measurement's error for a
+ * fit with `terms`, else the outline's RMS and the EPG agreement.
+ */
+export function fitErrorWords( report ) {
+
+	if ( ! report ) return '';
+	if ( report.terms ) return Object.entries( report.terms ).map( ( [ kind, term ] ) => TERM_WORDS[ kind ]?.( term ) ).filter( Boolean ).join( ', ' );
+	const words = [];
+	if ( Number.isFinite( report.rms_mm ) ) words.push( `RMS ${ report.rms_mm.toFixed( 2 ) } mm` );
+	if ( Number.isFinite( report.agreement ) ) words.push( `EPG agreement ${ Math.round( 100 * report.agreement ) } %` );
+	return words.join( ', ' );
+
+}
+
 /** How a fitted target is described: what it was fitted to and how closely. */
 export function fitDescription( fit ) {
 
-	const report = fit.report ?? {};
-	const rms = Number.isFinite( report.rms_mm ) ? `, RMS ${ report.rms_mm.toFixed( 2 ) } mm` : '';
-	const agreement = Number.isFinite( report.agreement ) ? `, EPG agreement ${ Math.round( 100 * report.agreement ) } %` : '';
-	return `${ fit.kind } fit${ rms }${ agreement }`;
+	const error = fitErrorWords( fit.report );
+	return `${ fit.kind } fit${ error ? `, ${ error }` : '' }`;
 
 }
 
