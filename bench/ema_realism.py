@@ -1,4 +1,4 @@
-"""Benchmark: how closely the head follows real speakers (``training.ema_comparison``).
+"""Benchmark: how closely the head follows real speakers (``speech.ema_comparison``).
 
 The head speaks each HPRC recording's phones on their own times; its flesh points are compared
 with the speaker's sensors. Printed per signal of the training goals (issue 29, point 3): the
@@ -28,7 +28,7 @@ from glasshead.asset_store import AssetStore
 from glasshead.ema import read_ema
 from glasshead.flesh_point_assets import flesh_point_rig
 from glasshead.settings import get_settings
-from glasshead.training import ema_comparison as cmp
+from glasshead.speech import ema_comparison as cmp
 
 QUICK = os.environ.get("GLASSHEAD_BENCH_QUICK") == "1"
 #: Issue 29, point 3: the held-out speaker's r of each signal, and the jaw's range ratio.

@@ -1,4 +1,4 @@
-"""The head against real articulography (training.ema_comparison): the registration, the
+"""The head against real articulography (speech.ema_comparison): the registration, the
 figures and the step baseline on made-up signals whose answers are known, then the comparison of
 the four real HPRC recordings and the command that prints it."""
 
@@ -13,7 +13,7 @@ import pytest
 
 from glasshead.ema import PAUSE, Phone, read_ema
 from glasshead.ema.recording import build_recording
-from glasshead.training import ema_comparison as cmp
+from glasshead.speech import ema_comparison as cmp
 from test_ema_writers import UTTERANCES, hprc_csv
 
 RATE = 100.0

@@ -177,7 +177,7 @@ def train(args):
 def compare_ema(args):
     """Compare the head with real articulography (docs/ema.md): text tables, or JSON."""
     from glasshead.asset_store import AssetUnavailableError
-    from glasshead.training import ema_comparison
+    from glasshead.speech import ema_comparison
 
     settings = get_settings()
     try:

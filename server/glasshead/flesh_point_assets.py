@@ -1,5 +1,5 @@
 """The flesh points' rig made from an asset store's current assets, for the API's utterances
-and for the comparison with real articulography (``training.ema_comparison``)."""
+and for the comparison with real articulography (``speech.ema_comparison``)."""
 
 from glasshead.asset_store import AssetStore
 from glasshead.geometry.flesh_points import FleshPointRig

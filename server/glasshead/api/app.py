@@ -23,7 +23,7 @@ API_PREFIX = "/api/v1"
 
 #: Route modules under glasshead.api.routes, each exposing ``router``; included under API_PREFIX.
 ROUTE_MODULES = ["health", "anatomy", "recordings", "epg_compare", "epg_coarticulated",
-                 "epg_indices", "poses",
+                 "epg_indices", "ema", "poses",
                  "collision", "tongue", "epg", "face", "landmarks", "velum",
                  "phonemes", "observations", "fits", "utterances", "auth", "users",
                  "lessons", "classes", "class_staff", "practice", "practice_audio",

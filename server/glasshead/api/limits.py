@@ -12,8 +12,8 @@ the request's limit in ``BODY_LIMITS`` (``DEFAULT_LIMIT`` for every other route)
 
 The 413 names the limit and carries ``Connection: close``: the rest of the body is never read.
 Upload routes keep their own, exact checks of the file (recordings 32 MiB, fits 2 or 8 MiB by
-kind, TextGrids 1 MiB); their body limit adds ``MULTIPART_SLACK`` for the form's framing. The
-limits are documented in docs/api.md.
+kind, EMA files 16 MiB and their labels 1 MiB, TextGrids 1 MiB); their body limit adds
+``MULTIPART_SLACK`` for the form's framing. The limits are documented in docs/api.md.
 """
 
 import json
@@ -23,7 +23,7 @@ from starlette.exceptions import HTTPException
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from glasshead import uploads
-from glasshead.api.routes import practice_audio, recordings, utterances
+from glasshead.api.routes import ema, practice_audio, recordings, utterances
 
 MIB = 1024 * 1024
 #: Room for the multipart framing (boundaries, part headers, small fields) around a file.
@@ -37,6 +37,7 @@ BODY_LIMITS: tuple[tuple[str, str, int], ...] = (
     # utterances.py; uploads.py).
     ("POST", "/api/v1/epg/recordings", recordings.MAX_UPLOAD_BYTES + MULTIPART_SLACK),
     ("POST", "/api/v1/fits", max(uploads.MAX_BYTES.values()) + MULTIPART_SLACK),
+    ("POST", "/api/v1/ema/playback", ema.MAX_FILE_BYTES + ema.MAX_LABEL_BYTES + MULTIPART_SLACK),
     ("POST", "/api/v1/utterances/textgrid", utterances.MAX_TEXTGRID_BYTES + MULTIPART_SLACK),
     # A WAV file sent as the body: 30 s at 48 kHz (routes/practice_audio.py).
     ("PUT", "/api/v1/practice/{record_id}/audio", practice_audio.MAX_AUDIO_BYTES),

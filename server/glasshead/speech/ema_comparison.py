@@ -84,6 +84,8 @@ class Driven:
     head: dict[str, Floats]
     #: frames compared (the speech, pauses at either end left out)
     speech: npt.NDArray[np.bool_]
+    #: the head's parameter tracks, name -> (n,) on the recording's samples
+    tracks: dict[str, Floats] = dataclasses.field(default_factory=dict)
 
 
 def speaker_of(recording: EmaRecording) -> str:
@@ -137,7 +139,10 @@ def drive(recording: EmaRecording, targets: dict, rig: FleshPointRig,
         take = np.minimum(np.arange(n), len(relative) - 1)
         head[name] = relative[take]
     measured = {name: np.asarray(recording.sensors[name], dtype=np.float64) for name in COMPARED}
-    return Driven(recording, speaker_of(recording), measured, head, speech_frames(recording))
+    take = np.minimum(np.arange(n), len(result["tracks"][0]) - 1)
+    on_samples = {name: np.asarray(track, dtype=np.float64)[take] for name, track in tracks.items()}
+    return Driven(recording, speaker_of(recording), measured, head, speech_frames(recording),
+                  on_samples)
 
 
 @dataclass(frozen=True)
