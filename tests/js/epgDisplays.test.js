@@ -13,38 +13,13 @@ import { parseTargetName } from '../../web/src/ui/shared/targets.js';
 import { createEpgLive } from '../../web/src/scene/EpgLive.js';
 import { debugObject, installDebug } from '../../web/src/debug.js';
 import { TongueRig } from '../../web/src/core/tongue.js';
+import { recordingContext } from './support/recordingContext.js';
 import { correctVertices } from '../../web/src/core/collision.js';
 import { decodeCollisionTables } from '../../web/src/core/tables.js';
 import { near, nearArray, readVectors } from './support/vectors.js';
 
 const CONTACTS = readVectors( 'epg-contacts.json' );
 const { fixtures: FIXTURES } = CONTACTS;
-
-/** A stand-in 2D context that records what is drawn, with the fill or stroke style at the time. */
-function recordingContext() {
-
-	const calls = [];
-	const ctx = {
-		calls, fillStyle: '', strokeStyle: '', lineWidth: 1, font: '', textAlign: '', textBaseline: '',
-		setLineDash( dash ) {
-
-			this.dash = dash;
-
-		},
-	};
-	for ( const name of [ 'fillRect', 'strokeRect', 'arc', 'fillText', 'moveTo', 'lineTo', 'quadraticCurveTo', 'beginPath', 'fill', 'stroke', 'clearRect' ] ) {
-
-		ctx[ name ] = function ( ...args ) {
-
-			calls.push( { name, args, fillStyle: this.fillStyle, strokeStyle: this.strokeStyle, dash: this.dash ?? [] } );
-
-		};
-
-	}
-
-	return ctx;
-
-}
 
 const ROWS_T = [ '01111110', '10000001', '10000001', '00000000', '00000000', '00000000', '00000000', '00000000' ];
 

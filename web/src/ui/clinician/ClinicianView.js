@@ -18,6 +18,7 @@ import { clinicianEpgReport, clinicianReport } from './clinicianReport.js';
 import { playbackMethods } from './clinicianPlayback.js';
 import { clinicianLayout, DEFAULT_SPEED, fillChoices, keyHandler, offers } from './clinicianLayout.js';
 import { RecordingImport } from './clinicianImport.js';
+import { EmaPlayback } from './EmaPlayback.js';
 import { ChildHistory } from './clinicianChild.js';
 import { missingChoiceMessage, SelectionUrl } from './clinicianUrl.js';
 import { renderClinician } from './clinicianRender.js';
@@ -68,7 +69,10 @@ export class ClinicianView extends View {
 		// A child of the caseload: their practice and recordings; Compare opens a recording here.
 		this.childHistory = new ChildHistory( { api: this.api, onOpen: ( id ) => this.imported( { recordings: [ { id } ] } ) } );
 		this.main.append( this.childHistory.element );
-		this.debugFields( { clinicianChild: () => this.childHistory.report() } );
+		// A speaker's EMA recording beside the head saying its phones.
+		this.ema = new EmaPlayback( { api: this.api, win: this.window } );
+		this.main.append( this.ema.element );
+		this.debugFields( { clinicianChild: () => this.childHistory.report(), ema: () => this.ema.report() } );
 		this.attach( container, this.root );
 
 		this.listen( this.window, 'keydown', keyHandler( actions ) );
@@ -78,6 +82,7 @@ export class ClinicianView extends View {
 			apply: ( hash ) => this.state.loaded && this.applySelection( hash ),
 		} );
 		this.observeResize( [ this.main, this.plotCard ], () => this.fit() );
+		this.observeResize( [ this.ema.element ], () => this.ema.resize() );
 		this.registerDebugFields();
 		this.render();
 		this.load();
@@ -367,6 +372,7 @@ export class ClinicianView extends View {
 
 		this.palate3d?.dispose();
 		this.childHistory?.dispose();
+		this.ema?.dispose();
 
 	}
 

@@ -1,5 +1,5 @@
 // "The mouth" on the listening page: the 3D head in profile, cut away, posed at the target vowel's
-// phoneme target (ListenHead.js), and beside it a mid-sagittal drawing of the target's tongue
+// phoneme target (ui/shared/ProfileHead.js), and beside it a mid-sagittal drawing of the target's tongue
 // with the learner's tongue as estimated from the attempt's F1 and F2 (mouthDrawing.js;
 // core/listen/articulationEstimate.js). Until an attempt is measured only the target shows.
 //
@@ -10,7 +10,7 @@ import { estimateArticulation } from '../../core/listen/articulationEstimate.js'
 import { h } from '../shared/dom.js';
 import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 import { loadArticulationData, loadPhonemeTarget } from '../shared/loaders.js';
-import { ListenHead } from './ListenHead.js';
+import { ProfileHead } from '../shared/ProfileHead.js';
 import { drawMouth } from './mouthDrawing.js';
 import { TongueProfile } from './tongueProfile.js';
 
@@ -64,7 +64,7 @@ export class MouthPanel {
 		this.profile = null;
 		this.estimate = null;
 		this.drawCount = 0;
-		this.head = new ListenHead( this.stage, { api, onChange: () => this.refresh() } );
+		this.head = new ProfileHead( this.stage, { api, onChange: () => this.refresh() } );
 		this.load();
 
 	}

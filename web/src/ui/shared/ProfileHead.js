@@ -1,6 +1,7 @@
-// The listening page's 3D head: the whole head in profile with the sagittal cutaway, framed on the
-// mouth, posed at a phoneme target's parameters. It draws only when something changes (the
-// viewer draws on demand: a pose, a resize); the camera stays still, so the page scrolls over it.
+// A still 3D head in profile: the whole head with the sagittal cutaway, framed on the mouth, posed
+// at the parameters it is given (the listening page's phoneme target, the clinician's EMA
+// recording frame by frame). It draws only when something changes (the viewer draws on demand: a
+// pose, a resize); the camera stays still, so the page scrolls over it.
 //
 // Without WebGL2 there is no 3D view: `status` says 'no-webgl' and `message` why, and the palate
 // is still loaded (without a renderer) for the 2D drawing beside it.
@@ -9,9 +10,9 @@ import { getAnatomy } from '../../api.js';
 import { createArticulation } from '../../scene/Articulation.js';
 import { Head } from '../../scene/Head.js';
 import { viewPose } from '../../scene/viewPresets.js';
-import { createHeadStage } from '../shared/headStage.js';
-import { loadAnatomy } from '../shared/loaders.js';
-import { MidlineOutline } from '../shared/SagittalPanel.js';
+import { createHeadStage } from './headStage.js';
+import { loadAnatomy } from './loaders.js';
+import { MidlineOutline } from './SagittalPanel.js';
 
 /** What the camera frames, mm (project frame): the tongue, the palate and the lips. */
 const MOUTH_FOCUS = Object.freeze( { center: [ - 6, - 10, 0 ], radius: 60 } );
@@ -20,13 +21,14 @@ const PALATE_PART = 'maxilla';
 /** What the panel says without WebGL2 (the browser's console has the technical reason). */
 export const NO_WEBGL_MESSAGE = 'This browser cannot show the 3D head (it needs WebGL2). The drawing beside it still shows the tongues.';
 
-export class ListenHead {
+export class ProfileHead {
 
 	/**
 	 * @param {HTMLElement} element what the 3D canvas fills (sized by the page)
-	 * @param {{ api: object, onChange?: Function }} options `onChange()` after loading or failing
+	 * @param {{ api: object, onChange?: Function, label?: string }} options `onChange()` after
+	 *   loading or failing; `label` names the canvas for a screen reader
 	 */
-	constructor( element, { api, onChange = () => {} } ) {
+	constructor( element, { api, onChange = () => {}, label = 'The head in profile, cut down the middle: the target\'s tongue' } ) {
 
 		this.element = element;
 		this.api = api;
@@ -44,7 +46,7 @@ export class ListenHead {
 			// A still profile: no dragging (on a tablet a drag scrolls the page) and no wheel zoom.
 			this.viewer.controls.enabled = false;
 			this.viewer.renderer.domElement.style.touchAction = 'auto';
-			this.viewer.renderer.domElement.setAttribute( 'aria-label', 'The head in profile, cut down the middle: the target\'s tongue' );
+			this.viewer.renderer.domElement.setAttribute( 'aria-label', label );
 
 		} else {
 
@@ -81,7 +83,7 @@ export class ListenHead {
 
 		} catch ( error ) {
 
-			console.warn( `Glasshead: the listening page shows no head: ${ error.message }` );
+			console.warn( `Glasshead: the profile head could not be shown: ${ error.message }` );
 			if ( this.viewer ) this.fail( 'failed', `The head could not be loaded: ${ error.message }` );
 
 		}
