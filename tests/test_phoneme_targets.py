@@ -178,9 +178,24 @@ def test_l_touches_the_ridge_with_free_sides_and_ch_jh_close_behind_t(targets):
 
 def test_each_target_says_what_its_palatogram_was_fitted_to(targets):
     assert {targets[s]["epg_basis"] for s in ("T", "S", "K")} == {"real EPG"}
-    assert {targets[s]["epg_basis"] for s in ("SH", "ZH", "IY", "L", "CH", "JH")} == {
+    assert {targets[s]["epg_basis"] for s in ("SH", "ZH", "IY", "L", "CH", "JH", "R")} == {
         "published descriptions"}
-    assert {targets[s]["epg_basis"] for s in ("R", "AA", "F")} == {"not fitted"}
+    assert {targets[s]["epg_basis"] for s in ("W", "AA", "F")} == {"not fitted"}
+
+
+def test_r_touches_the_sides_of_the_back_rows_and_keeps_its_reasoned_shape(targets):
+    """/ɹ/ is reasoned from /ʃ/'s fit (the tip and blade lowered), which touched nothing; its
+    contact fit, with its own outline held, gives it the lateral contact of a real /r/."""
+    r = targets["R"]
+    g = grid(r)
+    assert not g[:2].any() and g[:, 2:6].sum() <= 2, g
+    assert g[3:, 0].sum() >= 3 and g[3:, 7].sum() >= 3, g
+    contact = r["source"]["contact"]
+    assert contact["goal"] == "rule: rhotic lateral" and contact["agreement"] >= 0.9
+    assert contact["before"]["rows"] == ["00000000"] * 8
+    # The outline it was given is its own reasoned pose's: the fit moves it little.
+    assert contact["rms_mm"] < 2.0 and abs(r["volume_change_pct"]) < 5.0
+    assert r["source"]["kind"] == "reasoning" and r["source"]["from"] == "SH"
 
 
 def test_k_g_ng_close_a_back_row_in_every_context_fitted_to_the_real_frames_that_do(built,

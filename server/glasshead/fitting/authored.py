@@ -104,12 +104,17 @@ def measurements_of(kind: str, points, weights: dict | None = None) -> fit_measu
         weights=dict(weights or {}))
 
 
-def rest_outline(section: MidSagittalSection, rig: TongueRig) -> np.ndarray:
-    """(k, 2) the neutral tongue's mid-sagittal upper contour, root to tip: the section runs
-    from the tip over the dorsum to the back of the root (its most posterior point), reversed."""
-    outline = section.outline(rig.neutral)
+def own_outline(section: MidSagittalSection, values) -> np.ndarray:
+    """(k, 2) the posed tongue's mid-sagittal upper contour, root to tip: the section runs from
+    the tip over the dorsum to the back of the root (its most posterior point), reversed."""
+    outline = section.outline(values)
     back = int(np.argmin(outline[:, 0]))
     return outline[:back + 1][::-1].copy()
+
+
+def rest_outline(section: MidSagittalSection, rig: TongueRig) -> np.ndarray:
+    """(k, 2) the neutral tongue's mid-sagittal upper contour, root to tip (``own_outline``)."""
+    return own_outline(section, rig.neutral)
 
 
 def _budget(kind: str, max_evals: int | None) -> int | None:

@@ -257,6 +257,11 @@ def build_targets(ctx: Context) -> tuple[list[dict], dict]:
 
     for symbol, base, changes, description in REASONED:
         params = _shift(ctx, targets[base]["params"], changes)
+        contact = None
+        if symbol in target_contact.CONTACT_OF_REASONED:
+            stem = target_contact.CONTACT_OF_REASONED[symbol]
+            made = target_contact.reasoned_contact(ctx, params, stem)
+            params, contact = {**params, **made["tongue"]}, made["contact"]
         body, grid = _finish(ctx, params)
         grids[symbol] = grid
         previous = targets.get(symbol, {}).get("source", {})
@@ -264,6 +269,8 @@ def build_targets(ctx: Context) -> tuple[list[dict], dict]:
         source = {**previous, "kind": kind, "from": base if base != symbol else None,
                   "adjustment": description,
                   "reasoning": phoneme_inventory.lookup(symbol).reasoning}
+        if contact is not None:
+            source["contact"] = contact
         targets[symbol] = {**body, "contexts": targets.get(symbol, {}).get("contexts", {}),
                            "source": source}
 

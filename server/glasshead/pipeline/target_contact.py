@@ -17,6 +17,7 @@ from glasshead.constants import VELUM_PARAMETER
 from glasshead.epg import classes as epg_classes
 from glasshead.epg.sequence import rows_to_strings
 from glasshead.fitting import fit_contact, objective_epg, vtl_mapping
+from glasshead.fitting.authored import own_outline
 from glasshead.pipeline.target_fits import (
     HELD_IN_TARGETS,
     TARGET_CORONAL_RANGES,
@@ -52,7 +53,16 @@ RULE_GOALS = {
         "rule: postalveolar closure",
         "published descriptions of English /tʃ dʒ/: a complete closure across R2 and R3, "
         "further back than /t/'s, with contact along both sides (outer columns of R4-R8)"),
+    "rhotic": (
+        "rule: rhotic lateral",
+        "published descriptions of English /r/: contact along the lateral margins of the back "
+        "of the palate (the outer columns of R4-R8), none in the front rows (R1-R2) or in the "
+        "middle four columns, where the air passes"),
 }
+#: Reasoned targets (``phoneme_targets.REASONED``) fitted from their reasoned pose toward a rule
+#: goal, their own outline held (``reasoned_contact``): /ɹ/, made from /ʃ/'s fit with the tip
+#: and blade lowered, touched nothing; a real /r/ touches the sides of the back of the palate.
+CONTACT_OF_REASONED = {"R": "rhotic"}
 #: The coronal groups each goal frees (``fit_contact.CORONAL_GROUPS``): the groove only for the
 #: sibilants, whose real frames keep the middle columns open in the front rows.
 CORONAL_OF_GOAL = {
@@ -75,8 +85,11 @@ RULE_FRAMES_OF_GOAL = {"velar_stop": epg_classes.back_closure}
 #: The EPG weight of a goal's contact fit where it is not ``fit_contact.EPG_WEIGHT``: the back
 #: row closes only when the dorsum reaches it across its whole width, against the volume bound
 #: and JD3's outline; at 30 the velar fits stopped with R8's middle electrodes about 0.5 mm out
-#: of reach (/k/(a) and /k/(u): R8 ``11100111``), at 100 they close it.
-EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0, "rule: postalveolar closure": 100.0}
+#: of reach (/k/(a) and /k/(u): R8 ``11100111``), at 100 they close it. The alveolar stops too:
+#: at 30 /t d n/ agreed 0.82 with their class (the sides free in R3-R5 and R7 where the real
+#: frames touch them), at 100 0.85.
+EPG_WEIGHT_OF_GOAL = {"velar_stop": 100.0, "rule: postalveolar closure": 100.0,
+                      "alveolar_stop": 100.0}
 #: mm, by goal and vowel context: the wanted contacts aimed this far past their electrodes, into
 #: the palate (the uncorrected tongue), instead of ``fit_contact.MARGIN_MM`` short of the contact
 #: tolerance: a stop must keep its closure when the pose moves a little. Fitted to reach R8 only
@@ -123,6 +136,12 @@ def rule_pattern(shape_name: str) -> tuple[np.ndarray, np.ndarray]:
         weights[:] = 0.0
         wanted[1:3] = 1
         weights[1:3] = 1.0
+        wanted[3:, [0, 7]] = 1
+        weights[3:, [0, 7]] = 1.0
+    elif stem == "rhotic":
+        weights[:] = 0.0
+        weights[:2] = epg_classes.ELECTRODES[:2]
+        weights[2:, 2:6] = 1.0
         wanted[3:, [0, 7]] = 1
         weights[3:, [0, 7]] = 1.0
     else:
@@ -239,6 +258,42 @@ def tongue_fit(ctx: Context, shape_name: str) -> dict:
                                   "rows": rows_to_strings(before_grid),
                                   "volume_change_pct": round(report.volume_change_pct, 3)}}}
     return {"tongue": tongue, "fit": fit}
+
+
+def reasoned_contact(ctx: Context, params: dict, stem: str) -> dict:
+    """A reasoned target's contact fit toward the rule goal ``stem`` (``RULE_GOALS``), from its
+    reasoned pose, with that pose's own mid-sagittal outline as the outline term: the shape the
+    reasoning gave is kept, and the sides and the body meet the palate where the rule wants.
+    Returns ``tongue`` (rig values by name) and ``contact`` (the report, as ``tongue_fit``'s)."""
+    rig = ctx.rig
+    reasoned = {n: params[n] for n in rig.parameter_names}
+    values = rig.values_from(reasoned)
+    outline = own_outline(ctx.section, values)
+    wanted, weights = rule_pattern(stem)
+    name, rule = RULE_GOALS[stem]
+    goal = {"name": name, "wanted": wanted, "weights": weights}
+    epg_weight = EPG_WEIGHT_OF_GOAL.get(name, fit_contact.EPG_WEIGHT)
+    options = fit_contact.ContactFit(
+        weights=weights, coronal=CORONAL_DEFAULT, held=HELD_IN_TARGETS, epg_weight=epg_weight,
+        ranges=TARGET_CORONAL_RANGES, section=ctx.section, name=stem)
+    before_grid = ctx.epg(reasoned)["grid"]
+    contact = fit_contact.fit_contact(rig, outline, ctx.probes, wanted, values, options)
+    tongue = {n: round(v, 4) for n, v in contact.params.items()}
+    after_grid = ctx.epg(tongue)["grid"]
+    return {"tongue": tongue, "contact": {
+        "goal": name, "rule": rule, "epg_error_mm": round(contact.epg_error_mm, 3),
+        "agreement": round(_agreement(after_grid, goal), 4),
+        "evaluations": contact.evaluations, "seconds": round(contact.seconds, 2),
+        "stop": contact.stop, "coronal": list(CORONAL_DEFAULT), "epg_weight": epg_weight,
+        "goal_frames": None, "outline": "its own reasoned pose's",
+        "rms_mm": round(contact.rms_mm, 3),
+        "before": {"rms_mm": 0.0,
+                   "epg_error_mm": round(objective_epg.EpgObjective(
+                       ctx.probes, wanted, rig.triangles, weights=weights)(
+                       rig.vertices(values)), 3),
+                   "agreement": round(_agreement(before_grid, goal), 4),
+                   "rows": rows_to_strings(before_grid),
+                   "volume_change_pct": round(ctx.volume_change(reasoned), 3)}}}
 
 
 def measured_target(ctx: Context, shape_name: str, nasal: bool, made: dict | None = None) -> dict:

@@ -37,6 +37,15 @@ def _postalveolar_closure(grid) -> bool:
     return bool(grid[1:3].all(axis=1).any() and epg_classes.side_contact(grid))
 
 
+def _rhotic_lateral(grid) -> bool:
+    """Contact along both sides in the back rows (column 1 or 2, and 7 or 8, in at least three
+    of R4-R8), none in R1-R2, and at most 2 electrodes of the middle four columns touched."""
+    grid = np.asarray(grid).astype(bool)
+    left = grid[3:, :2].any(axis=1).sum() >= 3
+    right = grid[3:, 6:].any(axis=1).sum() >= 3
+    return bool(left and right and not grid[:2].any() and grid[:, 2:6].sum() <= 2)
+
+
 def _little_contact(grid) -> bool:
     return int(np.asarray(grid).sum()) <= 6
 
@@ -56,6 +65,8 @@ RULES = (
                    "(published descriptions)", _postalveolar_closure),
     (("IY",), "contact at the sides only (outer columns in most rows, at most 2 of the middle "
               "four columns' electrodes)", _sides_only),
+    (("R",), "contact along both sides of the back rows (R4-R8), none in R1-R2 and at most 2 "
+              "electrodes in the middle four columns (published descriptions)", _rhotic_lateral),
     (("AA",), "little or no contact (at most 6 electrodes)", _little_contact),
 )
 
