@@ -163,7 +163,10 @@ def fit(args):
 
 
 def train(args):
-    """Train the coarticulation constants (docs/coarticulation.md) and write them."""
+    """Train the coarticulation constants (docs/coarticulation.md) and write them; with
+    ``--ema``, train the jaw against real articulography and report it (docs/ema.md)."""
+    if args.ema:
+        return train_ema(args)
     from glasshead.training import coarticulation
 
     max_evals = coarticulation.MAX_EVALS if args.max_evals is None else args.max_evals
@@ -171,6 +174,26 @@ def train(args):
     coarticulation.print_report(made["report"])
     path = coarticulation.write_constants(made["constants"])
     print(f"wrote {path}")
+    return 0
+
+
+def train_ema(args):
+    """The jaw trained against the HPRC recordings, each speaker held out: the report only."""
+    from glasshead.asset_store import AssetStore
+    from glasshead.flesh_point_assets import flesh_point_rig
+    from glasshead.speech import ema_comparison
+    from glasshead.training import ema_training
+
+    settings = get_settings()
+    store = AssetStore(settings.assets_dir)
+    rig = flesh_point_rig(store)
+    k = rig.tongue.jaw_parameter
+    jaw_range = (float(rig.tongue.minimum[k]), float(rig.tongue.maximum[k]))
+    report = ema_training.run(ema_comparison.hprc_recordings(settings.data_dir),
+                              store.get("phoneme_targets"), rig.incisors["lower_incisor"][:2],
+                              rig.tongue.jaw, jaw_range,
+                              max_evals=args.max_evals or ema_training.MAX_EVALS)
+    print(ema_training.format_report(report))
     return 0
 
 
@@ -315,6 +338,10 @@ def main(argv=None):
                       "and write speech/constants.json (docs/coarticulation.md)")
     train_parser.add_argument("--max-evals", type=int, default=None,
                               help="cap on the optimiser's evaluations (default: the trainer's)")
+    train_parser.add_argument("--ema", action="store_true",
+                              help="train the jaw's dominance and target gains against the HPRC "
+                                   "recordings, each speaker held out, and report it (writes "
+                                   "nothing; docs/ema.md)")
     train_parser.set_defaults(handler=train)
     compare_parser = commands.add_parser(
         "compare-ema", help="drive the head with real articulography's phone timings and "
