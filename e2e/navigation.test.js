@@ -14,6 +14,8 @@ const VIEWS = [
 	{ path: '/clinician', label: 'Clinician' },
 	{ path: '/speak', label: 'Speak' },
 	{ path: '/listen', label: 'Listen' },
+	// For the clinician signed in here (authors and admins see it too).
+	{ path: '/fits', label: 'Fit' },
 ];
 const SIZES = [ [ 1366, 768 ], [ 1920, 1080 ], [ 1024, 768 ], [ 768, 1024 ] ];
 /** Smallest touch target, CSS pixels. */

@@ -39,7 +39,7 @@ export class FitsView extends View {
 		super( { api, win } );
 		this.pollMs = pollMs;
 		this.files = Object.fromEntries( FIT_PARTS.map( ( part ) => [ part.kind, null ] ) );
-		this.state = { kind: null, fit: null, recent: [], message: '' };
+		this.state = { loaded: false, kind: null, fit: null, recent: [], message: '' };
 		this.stopped = false;
 
 	}
@@ -48,7 +48,7 @@ export class FitsView extends View {
 
 		this.attach( container, h( 'div', { className: 'fits-view' } ) );
 		this.onUnmount( () => ( this.stopped = true ) );
-		this.debugFields( { fits: () => ( { ...this.state, fit: this.state.fit && { ...this.state.fit } } ) } );
+		this.debugFields( { loaded: () => this.state.loaded, fits: () => ( { ...this.state, fit: this.state.fit && { ...this.state.fit } } ) } );
 		this.weights = {};
 		this.name = h( 'input', { type: 'text', id: 'fit-name', maxlength: '200', placeholder: 'from the file names' } );
 		this.start = h( 'button', { type: 'submit', className: 'fits-start' }, 'Start the fit' );
@@ -225,6 +225,8 @@ export class FitsView extends View {
 			this.fail( error );
 
 		}
+
+		this.state.loaded = true;
 
 	}
 
