@@ -66,6 +66,7 @@ KEEP_ALIVE_S = 15.0
 RETRY_AFTER_S = 30
 #: Most evaluations an upload may ask a fit to spend.
 MAX_EVALS = 20000
+NO_FILE = "field file: the upload has no file part"
 #: Largest weight a combined fit's part may have (a weight of 100 already silences the others).
 MAX_WEIGHT = 100.0
 _CHUNK = 64 * 1024
@@ -197,7 +198,8 @@ async def create_fit(
         read = partial(uploads.read_combined, contents, frame=frame, ema_frame=ema_frame)
         default_name = " + ".join(filename or part for part, (_, filename) in contents.items())
     else:
-        assert file is not None
+        if file is None:  # refused by _check_fields already; this says so to the types too
+            raise HTTPException(status_code=422, detail=NO_FILE)
         content = await _read_limited(file, kind)
         digest = idempotency.upload_digest(kind, content, file.filename, name, method,
                                            max_evals, frame)
@@ -243,7 +245,7 @@ def _check_fields(kind: str, file: UploadFile | None, files: dict, weights: dict
                 refuse(f"field {part}_weight: there is no {part}_file to weigh")
         return
     if file is None:
-        refuse("field file: the upload has no file part")
+        refuse(NO_FILE)
     extra = [f"{part}_file" for part, upload in files.items() if upload is not None]
     extra += [f"{part}_weight" for part in weights]
     extra += ["ema_frame"] if ema_frame is not None else []

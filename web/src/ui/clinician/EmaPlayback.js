@@ -21,8 +21,8 @@ const MARKER_MM = 2.2;
 export class EmaPlayback {
 
 	/**
-	 * @param {{ api: object, win?: Window, schedule?: Function, cancel?: Function }} options the
-	 *   HTTP client, and the window whose animation frames time the playing
+	 * @param {{ api: object, win?: Window }} options the HTTP client, and the window whose
+	 *   animation frames time the playing
 	 */
 	constructor( { api, win = globalThis.window } ) {
 
@@ -147,13 +147,13 @@ export class EmaPlayback {
 		const material = ( color ) => new MeshBasicMaterial( { color, depthTest: false, depthWrite: false, transparent: true } );
 		this.markers = new Group();
 		this.markers.name = 'ema-sensors';
-		this.markers.renderOrder = 10;
 		this.markerMeshes = { speaker: {}, head: {} };
 		for ( const sensor of TRACK_SENSORS ) {
 
 			const speaker = new Mesh( geometry, material( TRACK_COLORS.speaker ) );
 			const own = new Mesh( geometry, material( TRACK_COLORS.head ) );
 			own.scale.setScalar( 0.7 );
+			// Drawn last and through the skin and bone (no depth test): the sensors always show.
 			speaker.renderOrder = own.renderOrder = 10;
 			this.markerMeshes.speaker[ sensor.name ] = speaker;
 			this.markerMeshes.head[ sensor.name ] = own;
