@@ -37,10 +37,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from glasshead.epg import synthetic
-from glasshead.epg.classes import ELECTRODES, agreement
+from glasshead.epg.classes import ELECTRODES
 from glasshead.epg.contacts import Probes, probes_from_layout
-from glasshead.epg.sequence import rows_to_strings
 from glasshead.fitting import fit2d, fit_contact, fit_measured
 from glasshead.fitting.objective2d import MidSagittalSection
 from glasshead.fitting.objective_epg import EpgObjective
@@ -225,18 +223,14 @@ def fit_epg(inputs: FitInputs, wanted, weights, *, method: str, max_evals: int,
     full = objective.expand @ result.x
     errors = objective.plane.errors(full)
     values = objective.values(result.x)
-    grid = synthetic.synthetic_frame(rig, values, inputs.tables, inputs.probes).grid
-    plain = EpgObjective(inputs.probes, wanted, rig.triangles, weights=weights)
-    margin = fit2d.LIMIT_FRACTION * (objective.upper - objective.lower)
-    near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
+    figures = fit_measured.epg_figures(inputs, values, wanted, weights)
     report = {
         "method": method, "rms_mm": float(np.sqrt(np.mean(errors**2))),
         "evaluations": done, "seconds": time.perf_counter() - started,
         "volume_change_pct": objective.plane.volume_change(full),
-        "at_limit": [g for (g, _), hit in zip(objective.groups, near, strict=True) if hit],
-        "stop": result.stop, "epg_error_mm": plain(rig.vertices(values)),
-        "agreement": agreement(grid, wanted), "wanted_rows": rows_to_strings(wanted),
-        "rows": rows_to_strings(grid),
+        "at_limit": fit2d.at_limit(result.x, objective.lower, objective.upper,
+                                   [g for g, _ in objective.groups]),
+        "stop": result.stop, "epg_error_mm": figures.pop("error_mm"), **figures,
     }
     params = {n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)}
     return _EpgFit(params), report

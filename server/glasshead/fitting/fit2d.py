@@ -98,6 +98,14 @@ class FitReport:
         return asdict(self)
 
 
+def at_limit(x, lower, upper, names) -> list[str]:
+    """The ``names`` of the variables of ``x`` that ended within ``LIMIT_FRACTION`` of their
+    range of a limit (``lower``, ``upper``: arrays as x)."""
+    margin = LIMIT_FRACTION * (upper - lower)
+    near = (x <= lower + margin) | (x >= upper - margin)
+    return [n for n, hit in zip(names, near, strict=True) if hit]
+
+
 def sagittal_parameters(rig: TongueRig) -> list[str]:
     return [p for p in rig.parameter_names if rig.parameters[p]["group"] == SAGITTAL_GROUP]
 
@@ -177,15 +185,13 @@ def fit_outline(rig: TongueRig, outline, options: OutlineFit | None = None, /, *
                                 restarts=options.restarts, restart_gain=RESTART_GAIN,
                                 progress=progress)
     errors = objective.errors(result.x)
-    margin = LIMIT_FRACTION * (objective.upper - objective.lower)
-    near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
-    at_limit = [n for n, hit in zip(free, near, strict=True) if hit]
+    limited = at_limit(result.x, objective.lower, objective.upper, free)
     values = objective.values(result.x)
     return FitReport(
         shape=options.name, method=options.method, evaluations=result.evaluations,
         seconds=result.seconds,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
-        volume_change_pct=objective.volume_change(result.x), at_limit=at_limit,
+        volume_change_pct=objective.volume_change(result.x), at_limit=limited,
         rays=len(errors), stop=result.stop,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)})
 

@@ -63,7 +63,6 @@ import numpy.typing as npt
 
 from glasshead.fitting import fit2d, fit_contact
 from glasshead.fitting.fit2d import (
-    LIMIT_FRACTION,
     NEUTRAL_WEIGHT,
     VOLUME_BOUND_PCT,
     VOLUME_BOUND_WEIGHT,
@@ -201,11 +200,7 @@ class Objective3D:
         self.names = [name for name, _ in self.groups]
         self.members = np.array([rig.parameter_names.index(m) for m in members])
         # x (one value per group) -> the members' values.
-        self.expand = np.zeros((len(members), len(groups)))
-        row = 0
-        for k, (_, ms) in enumerate(self.groups):
-            self.expand[row:row + len(ms), k] = 1.0
-            row += len(ms)
+        self.expand = fit_contact.group_expansion(self.groups)
         first = np.array([rig.parameter_names.index(ms[0]) for _, ms in self.groups])
         # a group's range: where every member is within its own
         inside = [self.members[self.expand[:, k] > 0] for k in range(len(self.groups))]
@@ -355,8 +350,6 @@ def fit_surface(rig: TongueRig, observed, options: SurfaceFit | None = None, /, 
                                 * (objective.upper - objective.lower))
     seconds, cpu = time.perf_counter() - started, time.process_time() - cpu
     errors = objective.residuals(result.x)
-    margin = LIMIT_FRACTION * (objective.upper - objective.lower)
-    near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
     values = objective.values(result.x)
     return FitReport3D(
         shape=options.name, method=options.method, evaluations=result.evaluations,
@@ -364,7 +357,7 @@ def fit_surface(rig: TongueRig, observed, options: SurfaceFit | None = None, /, 
         cpu_seconds=cpu,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         volume_change_pct=objective.volume_change(result.x),
-        at_limit=[n for n, hit in zip(objective.names, near, strict=True) if hit],
+        at_limit=fit2d.at_limit(result.x, objective.lower, objective.upper, objective.names),
         rays=len(errors), stop=result.stop,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)},
         start_rms_mm=float(np.sqrt(np.mean(before**2))),

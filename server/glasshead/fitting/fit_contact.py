@@ -109,6 +109,18 @@ def free_groups(rig: TongueRig, sections=SECTIONS, jaw=True,
     return groups
 
 
+def group_expansion(groups) -> np.ndarray:
+    """(members, groups) 0/1 matrix taking x (one value per group of ``groups``, (name,
+    members) pairs) to the members' values, in the order of the groups and their members."""
+    sizes = [len(members) for _, members in groups]
+    expand = np.zeros((sum(sizes), len(groups)))
+    start = 0
+    for k, size in enumerate(sizes):
+        expand[start:start + size, k] = 1.0
+        start += size
+    return expand
+
+
 class ContactObjective:
     """objective2d + epg_weight * E^2 over grouped free variables (see the module docstring)."""
 
@@ -127,13 +139,7 @@ class ContactObjective:
                                  volume_bound_pct=fit2d.VOLUME_BOUND_PCT,
                                  volume_bound_weight=volume_bound_weight,
                                  section=section or MidSagittalSection(rig))
-        # x (one value per group) -> the members' values.
-        self.expand = np.zeros((len(members), len(groups)))
-        row = 0
-        for k, (_, ms) in enumerate(groups):
-            for _ in ms:
-                self.expand[row, k] = 1.0
-                row += 1
+        self.expand = group_expansion(groups)
         first = [ms[0] for _, ms in groups]
         index = [rig.parameter_names.index(m) for m in first]
         self.lower, self.upper = rig.minimum[index].copy(), rig.maximum[index].copy()
@@ -261,8 +267,6 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, base,
     evaluations = result.evaluations
     full = objective.expand @ result.x
     errors = objective.plane.errors(full)
-    margin_x = fit2d.LIMIT_FRACTION * (objective.upper - objective.lower)
-    near = (result.x <= objective.lower + margin_x) | (result.x >= objective.upper - margin_x)
     values = objective.values(result.x)
     plain = EpgObjective(probes, wanted, rig.triangles, weights=options.weights)
     return ContactFitReport(
@@ -270,6 +274,7 @@ def fit_contact(rig: TongueRig, outline, probes: Probes, wanted, base,
         rms_mm=float(np.sqrt(np.mean(errors**2))), max_error_mm=float(np.abs(errors).max()),
         epg_error_mm=plain(rig.vertices(values)),
         volume_change_pct=objective.plane.volume_change(full),
-        at_limit=[g for (g, _), hit in zip(objective.groups, near, strict=True) if hit],
+        at_limit=fit2d.at_limit(result.x, objective.lower, objective.upper,
+                                [g for g, _ in objective.groups]),
         stop=result.stop,
         params={n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)})

@@ -104,12 +104,7 @@ class MeasuredObjective:
             volume_bound_weight=fit_contact.VOLUME_BOUND_WEIGHT * fit2d.VOLUME_BOUND_WEIGHT,
             section=section, outline_weight=1.0 if contour is None else
             measurements.weight("contour"))
-        self.expand = np.zeros((len(members), len(self.groups)))
-        row = 0
-        for k, (_, ms) in enumerate(self.groups):
-            for _ in ms:
-                self.expand[row, k] = 1.0
-                row += 1
+        self.expand = fit_contact.group_expansion(self.groups)
         index = [rig.parameter_names.index(ms[0]) for _, ms in self.groups]
         lower, upper = rig.minimum[index].copy(), rig.maximum[index].copy()
         x0 = np.clip(rig.neutral[index], lower, upper)
@@ -200,19 +195,28 @@ def fit_measured(inputs, measurements: Measurements, rest: np.ndarray, *, method
     tongue = objective.tongue_x(result.x)
     values = objective.values(result.x)
     errors = objective.plane.errors(tongue)
-    margin = fit2d.LIMIT_FRACTION * (objective.upper - objective.lower)
-    near = (result.x <= objective.lower + margin) | (result.x >= objective.upper - margin)
     names = [g for g, _ in objective.groups] + objective.lip_names
     report = {
         "method": method, "rms_mm": float(np.sqrt(np.mean(errors**2))),
         "evaluations": result.evaluations, "seconds": time.perf_counter() - started,
         "volume_change_pct": objective.plane.volume_change(tongue),
-        "at_limit": [n for n, hit in zip(names, near, strict=True) if hit],
+        "at_limit": fit2d.at_limit(result.x, objective.lower, objective.upper, names),
         "stop": result.stop, "terms": _terms(objective, inputs, result.x, values, errors),
     }
     params = {n: float(v) for n, v in zip(rig.parameter_names, values, strict=True)}
     params.update(objective.lips(result.x))
     return params, report
+
+
+def epg_figures(inputs, values, wanted, weights) -> dict:
+    """How the rig's ``values`` meet a wanted EPG pattern (8, 8) with its ``weights``:
+    ``error_mm`` (``objective_epg``, no margins), ``agreement`` of the synthetic EPG (the
+    corrected tongue, as every view shows it), ``wanted_rows`` and ``rows``."""
+    wanted = np.asarray(wanted).astype(np.uint8)
+    grid = synthetic.synthetic_frame(inputs.rig, values, inputs.tables, inputs.probes).grid
+    plain = EpgObjective(inputs.probes, wanted, inputs.rig.triangles, weights=weights)
+    return {"error_mm": plain(inputs.rig.vertices(values)), "agreement": agreement(grid, wanted),
+            "wanted_rows": rows_to_strings(wanted), "rows": rows_to_strings(grid)}
 
 
 def _terms(objective: MeasuredObjective, inputs, x, values, errors) -> dict:
@@ -223,14 +227,8 @@ def _terms(objective: MeasuredObjective, inputs, x, values, errors) -> dict:
                             "rms_mm": float(np.sqrt(np.mean(errors**2))),
                             "max_error_mm": float(np.abs(errors).max())}
     if objective.epg is not None and measurements.epg is not None:
-        wanted = measurements.epg[0].astype(np.uint8)
-        grid = synthetic.synthetic_frame(inputs.rig, values, inputs.tables, inputs.probes).grid
-        plain = EpgObjective(inputs.probes, wanted, inputs.rig.triangles,
-                             weights=measurements.epg[1])
         terms["epg"] = {"weight": objective.epg_weight,
-                        "error_mm": plain(inputs.rig.vertices(values)),
-                        "agreement": agreement(grid, wanted),
-                        "wanted_rows": rows_to_strings(wanted), "rows": rows_to_strings(grid)}
+                        **epg_figures(inputs, values, *measurements.epg)}
     if measurements.flesh is not None:
         terms["ema"] = {"weight": objective.flesh_weight,
                         "rms_mm": objective.flesh_rms(x, values),
