@@ -102,9 +102,10 @@ def _read_fit_files(args):
         except ValueError:
             raise uploads.ObservationError(f"--weight {item!r}: expected PART=NUMBER, e.g. "
                                            "ema=2") from None
-        if part not in parts or not 0 <= weights[part] <= 100:
+        if part not in parts or not 0 <= weights[part] <= uploads.MAX_PART_WEIGHT:
             raise uploads.ObservationError(f"--weight {item!r}: PART must be a file given "
-                                           "(contour, epg or ema), the weight 0 to 100")
+                                           "(contour, epg or ema), the weight 0 to "
+                                           f"{uploads.MAX_PART_WEIGHT:g}")
     contents: dict[str, tuple[bytes, str | None]] = {
         kind: (read(Path(name), kind), Path(name).name) for kind, name in parts.items()}
     observation = uploads.read_combined(contents, frame=args.frame, ema_frame=args.ema_frame)

@@ -36,11 +36,14 @@ from glasshead.epg import formats
 from glasshead.epg.classes import ELECTRODES, majority_pattern
 from glasshead.epg.sequence import EpgFormatError
 from glasshead.fitting.fit3d import MIN_RAYS
-from glasshead.uploads_flesh import FleshPointError, read_flesh_points
+from glasshead.upload_text import ObservationError, data_lines, decoded
+from glasshead.uploads_flesh import read_flesh_points
 
 KINDS = ("contour", "surface", "epg", "ema")
 #: The kinds a ``combined`` fit takes together.
 COMBINED_PARTS = ("contour", "epg", "ema")
+#: Largest weight a combined fit's part may have (a weight of 100 already silences the others).
+MAX_PART_WEIGHT = 100.0
 MIB = 1024 * 1024
 #: Largest upload of each kind, bytes: a surface of about 200,000 vertices as OBJ; a contour or
 #: EPG file far larger than any real one (2 MiB of EPG CSV is about 14,000 frames).
@@ -53,17 +56,6 @@ MIN_CONTOUR_LENGTH_MM = 10.0
 MIN_SURFACE_VERTICES = MIN_RAYS
 #: mm. The project frame's origin is inside the mouth; every anatomical point is within this.
 FRAME_LIMIT_MM = 150.0
-
-_SPLIT = re.compile(r"\s*[,;\t]\s*|\s+")
-
-
-class ObservationError(ValueError):
-    """An upload that cannot be fitted: ``status`` (413, 415 or 422) and a message naming why."""
-
-    def __init__(self, message: str, status: int = 422):
-        super().__init__(message)
-        self.status = status
-
 
 @dataclass
 class Observation:
@@ -103,10 +95,7 @@ def read_observation(kind: str, content: bytes, filename: str | None = None, *,
         points, details = read_epg(content, filename, frame)
         source.update(details)
     else:
-        try:
-            points, details = read_flesh_points(content, frame, FRAME_LIMIT_MM)
-        except FleshPointError as error:
-            raise ObservationError(str(error), error.status) from None
+        points, details = read_flesh_points(content, frame, FRAME_LIMIT_MM)
         source.update(details)
     return Observation(kind, points, source)
 
@@ -145,14 +134,6 @@ def read_combined(parts: dict[str, tuple[bytes, str | None]], *, frame: int | No
     return Observation("combined", points, source)
 
 
-def _text(content: bytes, what: str) -> str:
-    try:
-        return content.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise ObservationError(f"field file: not a text {what} file (it is not UTF-8)",
-                               status=415) from None
-
-
 def _check_frame(points: np.ndarray, lines: list[int], unit_hint: str) -> None:
     far = np.abs(points).max(axis=1) > FRAME_LIMIT_MM
     if far.any():
@@ -163,15 +144,10 @@ def _check_frame(points: np.ndarray, lines: list[int], unit_hint: str) -> None:
 
 def read_contour(content: bytes) -> np.ndarray:
     """(n, 2) float64 mm from CSV text: ``x_mm,y_mm`` per line, root to tip."""
-    text = _text(content, "CSV")
     rows: list[tuple[float, float]] = []
     lines: list[int] = []
     header = False
-    for number, line in enumerate(text.splitlines(), start=1):
-        line = line.strip()
-        if not line or line.startswith("#"):
-            continue
-        fields = [f for f in _SPLIT.split(line) if f]
+    for number, line, fields in data_lines(decoded(content, "CSV")):
         if len(fields) != 2:
             raise ObservationError(f"line {number}: expected two columns x_mm,y_mm, got "
                                    f"{len(fields)}")
@@ -216,7 +192,7 @@ def read_surface(content: bytes, filename: str | None) -> tuple[np.ndarray, str]
     """((k, 3) float64 vertices in mm, "obj" | "ply") of a surface file."""
     fmt = _surface_format(content, filename)
     if fmt == "obj":
-        vertices, lines = _obj_vertices(_text(content, "OBJ"))
+        vertices, lines = _obj_vertices(decoded(content, "OBJ"))
     else:
         vertices = _ply_vertices(content)
         lines = [k + 1 for k in range(len(vertices))]

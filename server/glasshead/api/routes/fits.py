@@ -67,8 +67,6 @@ RETRY_AFTER_S = 30
 #: Most evaluations an upload may ask a fit to spend.
 MAX_EVALS = 20000
 NO_FILE = "field file: the upload has no file part"
-#: Largest weight a combined fit's part may have (a weight of 100 already silences the others).
-MAX_WEIGHT = 100.0
 _CHUNK = 64 * 1024
 
 
@@ -167,11 +165,11 @@ async def create_fit(
         description="combined: an EPG recording")] = None,
     ema_file: Annotated[UploadFile | None, File(
         description="combined: flesh points, CSV or JSON")] = None,
-    contour_weight: Annotated[float | None, Form(ge=0, le=MAX_WEIGHT, description=(
+    contour_weight: Annotated[float | None, Form(ge=0, le=uploads.MAX_PART_WEIGHT, description=(
         "combined: the contour's weight (default 1)"))] = None,
-    epg_weight: Annotated[float | None, Form(ge=0, le=MAX_WEIGHT, description=(
+    epg_weight: Annotated[float | None, Form(ge=0, le=uploads.MAX_PART_WEIGHT, description=(
         "combined: the EPG frames' weight (default 1)"))] = None,
-    ema_weight: Annotated[float | None, Form(ge=0, le=MAX_WEIGHT, description=(
+    ema_weight: Annotated[float | None, Form(ge=0, le=uploads.MAX_PART_WEIGHT, description=(
         "combined: the flesh points' weight (default 1)"))] = None,
     ema_frame: Annotated[int | None, Form(ge=0, description=(
         "combined: the frame of flesh-point tracks to fit (default the first)"))] = None,
