@@ -16,10 +16,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from glasshead.ema import EmaRecording, parse_carstens, parse_hprc, parse_mocha, project_axes
+from glasshead.ema import EmaFormatError, EmaRecording, parse_ema, project_axes
 from glasshead.ema.labels import PAUSE
-from glasshead.ema.reading import FORMATS, detect_format
-from glasshead.ema.recording import EmaFormatError
 from glasshead.geometry.flesh_points import FleshPointRig
 from glasshead.phonemes import lookup
 from glasshead.speech import ema_comparison as cmp
@@ -34,33 +32,13 @@ MAX_FRAMES = 30_000
 def read_upload(content: bytes, filename: str, labels: bytes | None, *,
                 labels_name: str = "labels", format: str | None = None,
                 channels: Mapping[str, int] | None = None) -> EmaRecording:
-    """The recording in an upload: the sensor file's bytes and name, the phone labels' bytes
-    (HPRC's ``_phones.tsv``, MOCHA's ``.lab``, or a label file for a Carstens file) and their
-    file's name, the format
-    (default: told from the name, else the first bytes) and, for Carstens, the channels.
-    Raises ``EmaFormatError`` naming the file and line."""
-    if format is None:
-        format = detect_format(filename, content[:64])
-    if format not in FORMATS:
-        raise EmaFormatError(f"unknown format {format!r}; use one of {', '.join(FORMATS)}",
-                             source=filename)
+    """The recording in an upload (``ema.parse_ema``), which must have its phone labels: the
+    head says them. Raises ``EmaFormatError`` naming the file and line."""
     if labels is None:
         raise EmaFormatError("the recording has no phone labels: send them as labels (HPRC's "
                              "_phones.tsv, MOCHA's .lab)", source=filename)
-    stem = filename.rsplit("/", 1)[-1].removesuffix("_ema.csv").rsplit(".", 1)[0] or "upload"
-    if format == "hprc":
-        return parse_hprc(content, phones=labels, name=stem, source=filename,
-                          phones_source=labels_name)
-    if format == "mocha":
-        if channels is not None:
-            raise EmaFormatError("channels is for Carstens files; MOCHA files name their "
-                                 "sensors", source=filename)
-        return parse_mocha(content, labels, name=stem, source=filename, labels_source=labels_name)
-    if channels is None:
-        raise EmaFormatError("Carstens files do not name their channels: give channels, e.g. "
-                             "{\"TT\": 3, \"UL\": 5} (numbers from 1)", source=filename)
-    return parse_carstens(content, labels, channels=channels, name=stem, source=filename,
-                          labels_source=labels_name)
+    return parse_ema(content, filename, labels=labels, labels_source=labels_name, format=format,
+                     channels=channels)
 
 
 def check_length(recording: EmaRecording) -> None:
@@ -72,31 +50,20 @@ def check_length(recording: EmaRecording) -> None:
                              source=recording.name)
 
 
-def _rounded(values: np.ndarray, digits: int = 3) -> list:
-    """Lists of floats rounded for JSON, NaN as None."""
-    rounded = np.round(np.asarray(values, dtype=np.float64), digits).tolist()
-
-    def clean(value):
-        if isinstance(value, list):
-            return [clean(v) for v in value]
-        return None if value is None or not math.isfinite(value) else value
-
-    return clean(rounded)
-
-
-def _finite(value):
-    return value if isinstance(value, (int, float)) and math.isfinite(value) else None
+def _json_safe(value):
+    """``value`` (dicts, lists, numbers) with every NaN or infinity as None: JSON has none."""
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_json_safe(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
-def _clean_report(report):
-    """The comparison's report with NaN as None (JSON has no NaN)."""
-    if isinstance(report, dict):
-        return {k: _clean_report(v) for k, v in report.items()}
-    if isinstance(report, list):
-        return [_clean_report(v) for v in report]
-    if isinstance(report, float):
-        return _finite(report)
-    return report
+def _rounded(values, digits: int = 3) -> list:
+    """An array as nested lists of floats rounded for JSON, NaN as None."""
+    return _json_safe(np.round(np.asarray(values, dtype=np.float64), digits).tolist())
 
 
 def playback(recording: EmaRecording, targets: dict, rig: FleshPointRig,
@@ -141,7 +108,7 @@ def playback(recording: EmaRecording, targets: dict, rig: FleshPointRig,
         "display_registration": {
             "fitted_on": "all of the speech", "rms_mm": round(float(np.sqrt(np.mean(
                 residual**2))), 3) if residual.size else None},
-        "scores": _clean_report({"registration": report["registration"],
+        "scores": _json_safe({"registration": report["registration"],
                                  "frames": report["frames"], "sensors": report["sensors"],
                                  "signals": report["signals"]}),
     }
