@@ -103,10 +103,8 @@ def main() -> int:
 def trained_jaw(paths, targets, rig, step_r) -> bool:
     """The jaw trained on the other speakers (``training.ema_training``), scored on each one
     held out, beside the same run's step baseline; True when every figure is finite."""
-    k = rig.tongue.jaw_parameter
-    jaw_range = (float(rig.tongue.minimum[k]), float(rig.tongue.maximum[k]))
-    report = ema_training.run(paths, targets, rig.incisors["lower_incisor"][:2], rig.tongue.jaw,
-                              jaw_range, max_evals=60 if QUICK else ema_training.MAX_EVALS)
+    report = ema_training.run(paths, targets, rig,
+                              max_evals=60 if QUICK else ema_training.MAX_EVALS)
     before, after = report["mean"]["before"], report["mean"]["after"]
     print(f"jaw opening trained on the other speakers, each held out: r {before['r']:.2f} -> "
           f"{after['r']:.2f} (step {step_r:.2f}, goal {GOALS_R['jaw_opening']}), range "

@@ -22,10 +22,7 @@ from glasshead.training import ema_training as et
 def setting(built_assets, data_dir):
     store = AssetStore(built_assets)
     rig = flesh_point_rig(store)
-    k = rig.tongue.jaw_parameter
-    jaw_range = (float(rig.tongue.minimum[k]), float(rig.tongue.maximum[k]))
-    scorer = et.JawScorer(store.get("phoneme_targets"), rig.incisors["lower_incisor"][:2],
-                          rig.tongue.jaw, jaw_range)
+    scorer = et.JawScorer.of(store.get("phoneme_targets"), rig)
     recordings = [et.Recording.of(read_ema(p)) for p in cmp.hprc_recordings(data_dir)]
     return scorer, recordings, rig
 

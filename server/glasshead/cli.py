@@ -187,12 +187,8 @@ def train_ema(args):
 
     settings = get_settings()
     store = AssetStore(settings.assets_dir)
-    rig = flesh_point_rig(store)
-    k = rig.tongue.jaw_parameter
-    jaw_range = (float(rig.tongue.minimum[k]), float(rig.tongue.maximum[k]))
     report = ema_training.run(ema_comparison.hprc_recordings(settings.data_dir),
-                              store.get("phoneme_targets"), rig.incisors["lower_incisor"][:2],
-                              rig.tongue.jaw, jaw_range,
+                              store.get("phoneme_targets"), flesh_point_rig(store),
                               max_evals=args.max_evals or ema_training.MAX_EVALS)
     print(ema_training.format_report(report))
     return 0

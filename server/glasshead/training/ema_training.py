@@ -36,6 +36,7 @@ import numpy.typing as npt
 
 from glasshead.ema import EmaRecording
 from glasshead.fitting import optimizer
+from glasshead.geometry.flesh_points import FleshPointRig
 from glasshead.speech import coarticulation, dominance
 from glasshead.speech import ema_comparison as cmp
 
@@ -108,6 +109,15 @@ class JawScorer:
     def __init__(self, targets: dict, incisor: npt.ArrayLike, jaw: dict,
                  jaw_range: tuple[float, float]):
         self.targets, self.incisor, self.jaw, self.jaw_range = targets, incisor, jaw, jaw_range
+
+    @classmethod
+    def of(cls, targets: dict, rig: FleshPointRig) -> "JawScorer":
+        """The scorer of the phoneme ``targets`` on the flesh points' rig: its rest lower
+        incisor, its jaw and the jaw's range."""
+        tongue = rig.tongue
+        k = tongue.jaw_parameter
+        return cls(targets, rig.incisors["lower_incisor"][:2], tongue.jaw,
+                   (float(tongue.minimum[k]), float(tongue.maximum[k])))
 
     def head_signal(self, recording: Recording, model: JawModel) -> Floats:
         targets = with_jaw_gains(self.targets, model.gains, self.jaw_range)
@@ -226,13 +236,14 @@ def held_out(scorer: JawScorer, recordings: Sequence[Recording], base: dict, *,
                                      for when in ("before", "after")}}
 
 
-def run(paths: Sequence, targets: dict, incisor: npt.ArrayLike, jaw: dict,
-        jaw_range: tuple[float, float], *, max_evals: int = MAX_EVALS) -> dict:
-    """The held-out report and the model trained on every recording at ``paths``."""
+def run(paths: Sequence, targets: dict, rig: FleshPointRig, *,
+        max_evals: int = MAX_EVALS) -> dict:
+    """The held-out report and the model trained on every recording at ``paths``, for the
+    phoneme ``targets`` on the flesh points' ``rig``."""
     from glasshead.ema import read_ema
 
     recordings = [Recording.of(read_ema(path)) for path in paths]
-    scorer = JawScorer(targets, incisor, jaw, jaw_range)
+    scorer = JawScorer.of(targets, rig)
     base = dominance.load_constants()
     report = held_out(scorer, recordings, base, max_evals=max_evals)
     everyone = train(scorer, recordings, base, max_evals=max_evals)
