@@ -116,10 +116,11 @@ export class PhonemeTargets {
 
 }
 
+const agreementWords = ( agreement ) => `EPG agreement ${ Math.round( 100 * agreement ) } %`;
 /** Words for a part's error in a report's `terms` (docs/fits.md). */
 const TERM_WORDS = {
 	contour: ( term ) => `contour ${ term.rms_mm.toFixed( 2 ) } mm RMS`,
-	epg: ( term ) => `EPG agreement ${ Math.round( 100 * term.agreement ) } %`,
+	epg: ( term ) => agreementWords( term.agreement ),
 	ema: ( term ) => `sensors ${ term.rms_mm.toFixed( 2 ) } mm RMS`,
 };
 
@@ -133,7 +134,7 @@ export function fitErrorWords( report ) {
 	if ( report.terms ) return Object.entries( report.terms ).map( ( [ kind, term ] ) => TERM_WORDS[ kind ]?.( term ) ).filter( Boolean ).join( ', ' );
 	const words = [];
 	if ( Number.isFinite( report.rms_mm ) ) words.push( `RMS ${ report.rms_mm.toFixed( 2 ) } mm` );
-	if ( Number.isFinite( report.agreement ) ) words.push( `EPG agreement ${ Math.round( 100 * report.agreement ) } %` );
+	if ( Number.isFinite( report.agreement ) ) words.push( agreementWords( report.agreement ) );
 	return words.join( ', ' );
 
 }
