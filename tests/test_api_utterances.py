@@ -4,6 +4,7 @@ cache; 503 without espeak-ng."""
 import io
 import wave
 
+import numpy as np
 import pytest
 from fastapi import HTTPException
 
@@ -99,6 +100,35 @@ def test_given_phones_keep_their_times_divided_by_the_rate(client):
         ("sil", 0.0, 0.05), ("T", 0.05, 0.1), ("UW", 0.1, 0.3)]
     with wave.open(io.BytesIO(client.get(body["audio_url"]).content)) as audio:
         assert abs(audio.getnframes() / audio.getframerate() - 0.3) < 0.001
+
+
+def _wav_samples(client, url):
+    with wave.open(io.BytesIO(client.get(url).content)) as wav:
+        rate = wav.getframerate()
+        return np.frombuffer(wav.readframes(wav.getnframes()), "<i2") / 32768.0, rate
+
+
+def _centroid_hz(samples, rate):
+    power = np.abs(np.fft.rfft(samples)) ** 2
+    return float(np.sum(power * np.fft.rfftfreq(len(samples), 1 / rate)) / np.sum(power))
+
+
+def test_an_s_held_for_700_ms_is_a_hiss_all_through_at_the_band_of_the_voices_own_s(client):
+    held = [{"symbol": "sil", "start_s": 0.0, "end_s": 0.2},
+            {"symbol": "s", "start_s": 0.2, "end_s": 0.9},
+            {"symbol": "sil", "start_s": 0.9, "end_s": 1.1}]
+    body = client.post(f"{API}/utterances", json={"phones": held}).json()
+    natural = client.post(f"{API}/utterances", json={"phonemes": "s"}).json()
+    samples, rate = _wav_samples(client, body["audio_url"])
+    own, own_rate = _wav_samples(client, natural["audio_url"])
+    s = next(p for p in natural["phones"] if p["symbol"] == "S")
+    own_s = own[int(s["start_s"] * own_rate):int(s["end_s"] * own_rate)]
+    hiss = samples[int(0.25 * rate):int(0.85 * rate)]
+    quarters = [np.sqrt(np.mean(q ** 2)) for q in np.array_split(hiss, 4)]
+    assert min(quarters) > 0.3 * max(quarters), f"the hiss fades: RMS by quarter {quarters}"
+    assert min(quarters) > 0.3 * np.sqrt(np.mean(own_s ** 2))
+    assert abs(_centroid_hz(hiss, rate) - _centroid_hz(own_s, own_rate)) < 0.15 * _centroid_hz(
+        own_s, own_rate)
 
 
 def test_a_gap_between_given_phones_is_silence(client):

@@ -3,8 +3,9 @@ articulatory voice."""
 
 import numpy as np
 import pytest
+from scipy import signal
 
-from glasshead.speech import audio, vtl_voice
+from glasshead.speech import audio, time_stretch, vtl_voice
 from glasshead.speech.espeak import get_engine
 from glasshead.speech.pronounce import pronounce
 
@@ -80,12 +81,45 @@ def test_the_vocoder_bands_are_spaced_on_the_cochlea_between_the_limits():
     assert np.all(np.diff(edges) > 0) and np.all(np.diff(np.log(edges)) > 0.5)
 
 
-def test_retiming_moves_each_boundary_where_it_is_asked():
+def test_retiming_moves_each_boundary_where_it_is_asked_within_a_frame():
     rate = 1000
     x = np.concatenate([np.zeros(100), np.ones(100)])  # a step at 0.1 s
     y = audio.retime(x, rate, [0.0, 0.1, 0.2], [0.0, 0.3, 0.4])
     assert len(y) == 400
-    assert y[295] == 0.0 and y[305] == 1.0
+    reach = int(time_stretch.FRAME_S / 2 * rate)  # the crossfade between two phones' frames
+    assert np.all(y[:300 - reach] < 1e-9) and np.allclose(y[300 + reach:], 1.0)
+
+
+def _zero_crossing_hz(samples, rate):
+    rising = np.sum((samples[:-1] < 0) & (samples[1:] >= 0))
+    return rising / (len(samples) / rate)
+
+
+def _spectral_centroid_hz(samples, rate):
+    power = np.abs(np.fft.rfft(samples)) ** 2
+    return float(np.sum(power * np.fft.rfftfreq(len(samples), 1 / rate)) / np.sum(power))
+
+
+@pytest.mark.parametrize("stretch", [0.5, 3.0, 5.0])
+def test_a_phone_held_longer_or_shorter_keeps_its_pitch_and_its_loudness(stretch):
+    rate = 22050
+    t = np.arange(int(0.6 * rate)) / rate
+    tone = 0.5 * np.sin(2 * np.pi * 200 * t)
+    y = audio.retime(tone, rate, [0.0, 0.6], [0.0, 0.6 * stretch])
+    assert len(y) == int(round(0.6 * stretch * rate))
+    steady = y[int(0.03 * rate):-int(0.03 * rate)]
+    assert abs(_zero_crossing_hz(steady, rate) - 200.0) < 6.0  # resampling would give 200/stretch
+    assert abs(np.sqrt(np.mean(steady ** 2)) - 0.5 / np.sqrt(2)) < 0.05
+
+
+def test_a_hiss_held_five_times_as_long_keeps_its_band():
+    rate = 22050
+    band = signal.butter(6, [4000, 8000], "bandpass", fs=rate, output="sos")
+    hiss = signal.sosfilt(band, np.random.default_rng(7).standard_normal(int(0.13 * rate)))
+    held = audio.retime(hiss, rate, [0.0, 0.13], [0.0, 0.7])
+    before = _spectral_centroid_hz(hiss, rate)
+    after = _spectral_centroid_hz(held[int(0.05 * rate):-int(0.05 * rate)], rate)
+    assert before > 5000 and abs(after - before) < 0.05 * before  # resampled: about 1.1 kHz
 
 
 def test_a_wav_file_keeps_the_samples_and_rate(tmp_path, speech):

@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from glasshead.speech import time_stretch
+
 KINDS = ("natural", "lowpass", "vocoded", "none", "articulatory")
 #: Default and accepted low-pass cut-off, Hz.
 DEFAULT_CUTOFF_HZ = 1000.0
@@ -125,12 +127,7 @@ def read_wav(path: Path) -> tuple[np.ndarray, int]:
 def retime(samples: np.ndarray, sample_rate: int, source_bounds: list[float],
            target_bounds: list[float]) -> np.ndarray:
     """(n,) samples whose phone boundaries lie at ``source_bounds`` (s, increasing) stretched
-    piecewise linearly so that they lie at ``target_bounds`` (same length); (m,) float64 lasting
-    to ``target_bounds[-1]``. Each phone's pitch moves with its stretch."""
-    x = _as_float(samples)
-    n_out = int(round(target_bounds[-1] * sample_rate))
-    if len(x) == 0:
-        return np.zeros(n_out)
-    t_out = np.arange(n_out) / sample_rate
-    t_source = np.interp(t_out, target_bounds, source_bounds)
-    return np.interp(t_source * sample_rate, np.arange(len(x)), x)
+    so that they lie at ``target_bounds`` (same length); (m,) float64 lasting to
+    ``target_bounds[-1]``. Each phone keeps its pitch and spectrum (``time_stretch``: WSOLA), so
+    a phone held longer sounds the same, held."""
+    return time_stretch.stretch_to(_as_float(samples), sample_rate, source_bounds, target_bounds)

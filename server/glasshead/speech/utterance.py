@@ -7,7 +7,7 @@ The three inputs meet in one list of timed phones:
 - phonemes (IPA or ARPAbet): the same synthesis of exactly those phones;
 - phones with ``start_s``/``end_s`` (a forced alignment, a TextGrid): taken as given, divided by
   the rate; the espeak-ng voice, when asked for, is synthesised and stretched phone by phone onto
-  those times (``audio.retime``).
+  those times (``audio.retime``: each phone keeps its pitch and spectrum).
 
 The tracks and cues come from ``speech.coarticulation.coarticulate`` on the phones and the built
 phoneme targets. The result is cached under an id that is a hash of the request's content, the
@@ -33,7 +33,7 @@ from glasshead.speech.espeak_phones import PAUSE, VOWELS
 from glasshead.speech.pronounce import pronounce
 
 #: Bump when the response changes for the same request.
-FORMAT_VERSION = 3
+FORMAT_VERSION = 4
 #: The tracks' frame rate, Hz.
 RATE_HZ = 100.0
 #: Phone times are compared with this tolerance, s (a TextGrid's boundaries are written rounded).
