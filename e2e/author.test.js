@@ -1,6 +1,7 @@
 // End-to-end test of the author's lesson editor (#/author) in Debian's Chromium: an author makes
 // a lesson of two items in the form, is told beside the field what the server refused, previews
-// an item on the head with its own views and speed, saves, reloads and finds the lesson as saved;
+// an item on the head with its own views and speed, is told when bone hides a label the item
+// names, saves, reloads and finds the lesson as saved;
 // a save over a version someone else saved meanwhile gets the plain 412 message, keeps the
 // author's edits, and overwrites knowingly. Screenshots: e2e/screenshots/author-*.png.
 
@@ -92,6 +93,21 @@ describe( 'the lesson editor', { timeout: 900_000 }, () => {
 		await page.getByRole( 'button', { name: 'Play the preview' } ).click();
 		await waitAuthor( page, () => window.glasshead.speech?.playing === true || window.glasshead.speech?.time > 0, null, 30_000 );
 
+		// The tongue tip named and seen from the front without the cutaway: the preview flags that
+		// the jaw hides it; back in profile with the cutaway, the flag goes.
+		await form.getByLabel( 'Labels', { exact: true } ).selectOption( 'chosen' );
+		assert.equal( await form.getByLabel( 'tongue tip' ).isChecked(), true, 'choosing starts from the tongue tip' );
+		await form.getByLabel( 'Seen from' ).selectOption( 'front' );
+		await form.getByLabel( 'Cutaway' ).uncheck();
+		await waitAuthor( page, () => window.glasshead.author.preview?.settings?.camera === 'front' && window.glasshead.author.preview.busy === false && window.glasshead.author.preview.hidden.length > 0, null, 120_000 );
+		const warning = page.locator( '.le-preview-warning' );
+		assert.match( await warning.textContent(), /bone hides the tongue tip/ );
+		await form.getByLabel( 'Seen from' ).selectOption( 'profile' );
+		await form.getByLabel( 'Cutaway' ).check();
+		await waitAuthor( page, () => window.glasshead.author.preview?.settings?.camera === 'profile' && window.glasshead.author.preview.settings.cutaway && window.glasshead.author.preview.busy === false, null, 120_000 );
+		assert.deepEqual( ( await author( page ) ).preview.hidden, [] );
+		assert.equal( await warning.isVisible(), false );
+
 		await page.getByRole( 'button', { name: 'Save', exact: true } ).click();
 		await waitAuthor( page, () => window.glasshead.author.lesson !== null && window.glasshead.author.dirty === false );
 		state = await author( page );
@@ -107,9 +123,9 @@ describe( 'the lesson editor', { timeout: 900_000 }, () => {
 		assert.equal( reloaded.dirty, false );
 		const session = await apiSession( server, 'author' );
 		const stored = await ( await fetch( `${ server.baseUrl }/api/v1/lessons/${ state.lesson }`, { headers: authHeaders( session ) } ) ).json();
-		assert.deepEqual( stored.items.map( ( item ) => [ item.target.kind, item.target.text, item.presentation, item.speed, item.audio.kind, item.audio.cutoff_hz, item.views.cutaway ] ), [
-			[ 'phoneme', 's', 'static', 1, 'natural', null, true ],
-			[ 'word', 'ship', 'dynamic', 0.5, 'lowpass', 800, false ],
+		assert.deepEqual( stored.items.map( ( item ) => [ item.target.kind, item.target.text, item.presentation, item.speed, item.audio.kind, item.audio.cutoff_hz, item.views.cutaway, item.views.labels ] ), [
+			[ 'phoneme', 's', 'static', 1, 'natural', null, true, [ 'tongue_tip' ] ],
+			[ 'word', 'ship', 'dynamic', 0.5, 'lowpass', 800, false, false ],
 		] );
 		// The refused save is the one request that failed, as the test meant it to.
 		assert.deepEqual( page.problems.filter( ( problem ) => ! /status of 422/.test( problem ) ), [] );

@@ -60,7 +60,11 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		assert.equal( state.error ?? null, null );
 		assert.deepEqual( [ state.runner.target, state.runner.settings.transparency, state.runner.settings.hold ], [ '/s/', 80, true ] );
 		assert.equal( state.speech.hold, 'S', 'the target of /s/ is held' );
-		assert.equal( state.labels.visible, true );
+		const s = state.speech.phones.find( ( phone ) => phone.symbol === 'S' );
+		assert.ok( s.end_s - s.start_s >= 0.6 && s.end_s - s.start_s <= 0.8, `/s/ is said for ${ s.end_s - s.start_s } s, long enough to copy` );
+		assert.deepEqual( [ state.runner.settings.cutaway, state.runner.settings.camera, state.runner.settings.zoom ], [ true, 'profile', 1.5 ] );
+		assert.deepEqual( state.labels.names, [ 'tongue_tip', 'alveolar', 'postalveolar' ], 'the place and the articulator, not every label' );
+		assert.deepEqual( state.labels.hidden, [], 'nothing the item names is behind bone' );
 		assert.ok( await visible( '.epg-overlay' ), 'the EPG card is shown' );
 		assert.ok( state.epg.contacted > 0, `the held /s/ touches the palate: ${ state.epg.rows.join( ' ' ) }` );
 		assert.equal( await page.locator( '.lr-dot[aria-current="step"]' ).getAttribute( 'aria-label' ), 'Item 1: /s/' );
@@ -135,6 +139,36 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		if ( ( await runner() ).presenting ) await page.keyboard.press( 'Escape' );
 		await page.waitForFunction( () => window.glasshead.runner.presenting === false, null, { timeout: 60_000 } );
 		assert.ok( await visible( '.lr-panel' ) && await visible( '.nav-bar' ) );
+
+	} );
+
+	test( 'every starter lesson opens on a view where bone hides none of the labels it names; a view without the cutaway would', async () => {
+
+		const titles = [ '/s/ and /ʃ/', '/t/ and /k/', '/r/ and /l/', 'Nasals and their oral pairs', 'The vowels' ];
+		const starters = titles.map( ( title ) => lessons.find( ( l ) => l.title === title ) );
+		for ( const [ k, lesson ] of starters.entries() ) {
+
+			await page.goto( `${ server.baseUrl }/#/teach?lesson=${ lesson.id }&item=0` );
+			await ready( lesson.id, 0 );
+			await settle( page );
+			const { labels, runner: state } = await readDebug( page );
+			assert.ok( labels.count >= 2 && labels.count <= 4, `${ lesson.title }: ${ labels.names }` );
+			assert.deepEqual( labels.hidden, [], `${ lesson.title }: bone hides ${ labels.hidden }` );
+			assert.deepEqual( [ state.settings.cutaway, state.settings.camera ], [ true, 'profile' ] );
+			await saveScreenshot( page, `runner-starter-${ k + 1 }-1366x768` );
+
+		}
+
+		// The same labels seen from the front without the cutaway: the jaw and teeth hide the tongue.
+		const author = await apiSession( server, 'author' );
+		const hiding = { title: 'Seen from the front (e2e)', items: [ { target: { kind: 'phoneme', text: 't' }, presentation: 'static', views: { skin_transparency: 0.8, camera: 'front', labels: [ 'tongue_tip', 'tongue_back' ] } } ] };
+		const made = await fetch( `${ server.baseUrl }/api/v1/lessons`, { method: 'POST', headers: authHeaders( author, { 'content-type': 'application/json' } ), body: JSON.stringify( hiding ) } );
+		assert.equal( made.status, 201 );
+		const { id } = await made.json();
+		await page.goto( `${ server.baseUrl }/#/teach?lesson=${ id }&item=0` );
+		await ready( id, 0 );
+		await settle( page );
+		assert.deepEqual( ( await readDebug( page ) ).labels.hidden, [ 'tongue_tip', 'tongue_back' ] );
 
 	} );
 

@@ -93,6 +93,20 @@ def test_a_stale_if_match_is_a_412_that_changes_nothing_and_names_the_current_et
     ({"items": [{"target": {"kind": "word", "text": "x"},
                  "listen": {"measure": "rhotic", "f3_below_hz": 9000}}]},
      "body.items.0.listen.rhotic.f3_below_hz"),
+    ({"items": [{"target": {"kind": "word", "text": "x"}, "views": {"labels": ["nose"]}}]},
+     "'nose' is not a label"),
+    ({"items": [{"target": {"kind": "word", "text": "x"}, "views": {"labels": []}}]},
+     "name 1 to 6 labels"),
+    ({"items": [{"target": {"kind": "word", "text": "x"},
+                 "views": {"labels": ["lips", "velar", "lips"]}}]}, "lips named more than once"),
+    ({"items": [{"target": {"kind": "word", "text": "x"}, "views": {"camera": "top"}}]},
+     "body.items.0.views.camera"),
+    ({"items": [{"target": {"kind": "word", "text": "x"}, "views": {"zoom": 5}}]},
+     "body.items.0.views.zoom"),
+    ({"items": [{"target": {"kind": "word", "text": "ship"}, "said_as": "syllable"}]},
+     "said_as: only a phoneme target"),
+    ({"items": [{"target": {"kind": "phoneme", "text": "t"}, "said_as": "twice"}]},
+     "body.items.0.said_as"),
 ])
 def test_invalid_lessons_are_422s_that_name_the_field_and_store_nothing(client, change, field):
     response = client.post(f"{API}/lessons", json={**SIP_SHIP, **change})
@@ -116,6 +130,19 @@ def test_an_item_keeps_what_a_try_is_measured_on_and_its_zone(client):
     vowels = next(lesson for lesson in starters if lesson["title"] == "The vowels")
     measured = client.get(f"{API}/lessons/{vowels['id']}").json()["items"]
     assert all(item["listen"]["measure"] == "vowel" for item in measured)
+
+
+def test_an_item_names_its_labels_camera_zoom_and_how_its_sound_is_said(client):
+    items = [{"target": {"kind": "phoneme", "text": "t"}, "said_as": "repeated",
+              "views": {"labels": ["tongue_tip", "alveolar"], "camera": "front", "zoom": 2}},
+             {"target": {"kind": "word", "text": "tea"}}]
+    lesson = create(client, {**SIP_SHIP, "items": items}).json()
+    first, second = lesson["items"]
+    assert first["said_as"] == "repeated" and second["said_as"] is None
+    assert (first["views"]["labels"], first["views"]["camera"], first["views"]["zoom"]) == (
+        ["tongue_tip", "alveolar"], "front", 2.0)
+    assert (second["views"]["labels"], second["views"]["camera"], second["views"]["zoom"]) == (
+        False, "profile", 1.0)
 
 
 def test_an_unknown_phoneme_symbol_is_named_in_the_422(client):

@@ -278,3 +278,19 @@ FIT_PLOTS_DIR = "fit-plots"
 FIT_REPORT_PAGE = "fit-report.html"
 #: The command that rebuilds every asset, named in the API's 503 answers.
 REBUILD_COMMAND = "glasshead build"
+
+# --- Lessons: what an item shows ------------------------------------------------------------------
+#: The labelled parts and places of articulation (GET /anatomy/landmarks, kinds "part" and
+#: "place"), in the label layer's order: the names a lesson item's ``views.labels`` may list.
+LABEL_NAMES = ("lips", "teeth", "alveolar_ridge", "hard_palate", "velum", "uvula", "tongue_tip",
+               "tongue_blade", "tongue_front", "tongue_back", "tongue_root", "pharynx", "larynx",
+               "nasal_port", "bilabial", "labiodental", "dental", "alveolar", "postalveolar",
+               "palatal", "velar", "uvular", "glottal")
+#: The camera views a lesson item may open on (web/src/scene/viewPresets.js).
+CAMERA_VIEWS = ("profile", "three-quarter", "front")
+#: How close a lesson item's camera comes: 1 frames the mouth and throat, 2 is twice as close.
+LESSON_ZOOM_RANGE = (1.0, 2.5)
+#: What a lesson item shows when it leaves a view out (the lesson format's defaults).
+LESSON_VIEW_DEFAULTS: dict[str, Any] = {
+    "skin_transparency": 0.6, "cutaway": False, "diagram": False, "cues": True, "labels": False,
+    "epg": False, "camera": "profile", "zoom": 1.0}

@@ -2,19 +2,22 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
 	authorHref, blankLesson, draftOf, fieldErrors, insertItem, isDirty, itemErrors, itemSummary,
-	itemsWithErrors, lessonBody, LISTEN_CHOICES, listenChoice, listenFromChoice, moveItem, newItem, parseAuthorHash, parseLessonFile, readNumber, removeItem, setField,
+	itemsWithErrors, labelMode, labelsOfMode, lessonBody, LISTEN_CHOICES, toggleLabel, SAID_AS_CHOICES, CAMERA_CHOICES, LABEL_CHOICES, listenChoice, listenFromChoice, moveItem, newItem, parseAuthorHash, parseLessonFile, readNumber, removeItem, setField,
 } from '../../web/src/ui/author/LessonEditorModel.js';
 import { createLessonClient } from '../../web/src/ui/author/LessonEditorClient.js';
 import { createApi } from '../../web/src/api.js';
 import { attachmentName } from '../../web/src/ui/shared/download.js';
+import { readFileSync } from 'node:fs';
+
+const SCHEMA = JSON.parse( readFileSync( new URL( '../../docs/lesson.schema.json', import.meta.url ), 'utf8' ) );
 
 const SERVER_LESSON = {
 	id: 7, title: 'sip, ship', language: 'en-US', description: '', format_version: 1,
 	items: [
 		{ target: { kind: 'phoneme', text: 's' }, presentation: 'static', audio: { kind: 'natural', cutoff_hz: null, channels: null },
-			views: { skin_transparency: 0.6, cutaway: true, diagram: false, cues: true, labels: false, epg: true }, speed: 1 },
+			views: { skin_transparency: 0.6, cutaway: true, diagram: false, cues: true, labels: [ 'tongue_tip', 'alveolar' ], epg: true, camera: 'profile', zoom: 1.5 }, speed: 1, said_as: 'alone' },
 		{ target: { kind: 'word', text: 'ship' }, presentation: 'dynamic', audio: { kind: 'lowpass', cutoff_hz: 800, channels: null },
-			views: { skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false }, speed: 0.5 },
+			views: { skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false, camera: 'front', zoom: 1 }, speed: 0.5 },
 	],
 };
 
@@ -26,8 +29,25 @@ test( 'a draft read from the server sends back exactly the lesson format, with o
 	assert.deepEqual( body.items[ 1 ].audio, { kind: 'lowpass', cutoff_hz: 800 } );
 	assert.equal( body.items[ 1 ].speed, 0.5 );
 	assert.deepEqual( body.items[ 0 ].views, SERVER_LESSON.items[ 0 ].views );
+	assert.equal( body.items[ 0 ].said_as, 'alone' );
+	assert.equal( 'said_as' in body.items[ 1 ], false, 'a word is not said as anything' );
 	const vocoded = lessonBody( { ...blankLesson(), items: [ setField( setField( newItem(), 'audio.kind', 'vocoded' ), 'audio.channels', 6 ) ] } );
 	assert.deepEqual( vocoded.items[ 0 ].audio, { kind: 'vocoded', channels: 6 } );
+
+} );
+
+test( 'the labels are none, all or a few chosen, kept in the label layer\'s order; choosing keeps the names chosen before', () => {
+
+	assert.deepEqual( [ labelMode( false ), labelMode( true ), labelMode( [ 'lips' ] ) ], [ 'none', 'all', 'chosen' ] );
+	assert.deepEqual( labelsOfMode( 'chosen', true ), [ 'tongue_tip' ] );
+	assert.deepEqual( labelsOfMode( 'chosen', [ 'velar' ] ), [ 'velar' ] );
+	assert.equal( labelsOfMode( 'all', [ 'velar' ] ), true );
+	assert.equal( labelsOfMode( 'none', [ 'velar' ] ), false );
+	assert.deepEqual( toggleLabel( [ 'velar' ], 'lips', true ), [ 'lips', 'velar' ] );
+	assert.deepEqual( toggleLabel( [ 'velar', 'lips' ], 'velar', false ), [ 'lips' ] );
+	assert.deepEqual( LABEL_CHOICES.map( ( c ) => c.value ), SCHEMA.$defs.Views.properties.labels.anyOf[ 1 ].items.enum );
+	assert.deepEqual( CAMERA_CHOICES.map( ( c ) => c.value ).sort(), [ ...SCHEMA.$defs.Views.properties.camera.enum ].sort() );
+	assert.deepEqual( SAID_AS_CHOICES.map( ( c ) => c.value ).filter( Boolean ), SCHEMA.$defs.Item.properties.said_as.anyOf[ 0 ].enum );
 
 } );
 
@@ -36,7 +56,7 @@ test( 'an item left sparse gets the schema defaults, and the draft is a copy tha
 	const item = draftOf( { items: [ { target: { kind: 'word', text: 'sun' } } ] } ).items[ 0 ];
 	assert.deepEqual( item, {
 		target: { kind: 'word', text: 'sun' }, presentation: 'dynamic', audio: { kind: 'natural', cutoff_hz: null, channels: null },
-		views: { skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false }, speed: 1, listen: null,
+		views: { skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false, camera: 'profile', zoom: 1 }, speed: 1, said_as: null, listen: null,
 	} );
 	// What a try is measured on goes through the editor as the lesson had it.
 	const listened = { target: { kind: 'phoneme', text: 'i' }, listen: { measure: 'vowel', vowel: 'iy', within_sd: 2 } };

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
 import {
-	DEFAULT_VIEWS, itemRequest, itemSettings, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, SLOW_SPEED, stepItem, targetLabel, listenHref,
+	DEFAULT_VIEWS, HELD_S, itemRequest, itemSettings, phonemeIndex, saidAs, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, SLOW_SPEED, stepItem, targetLabel, listenHref,
 } from '../../web/src/ui/lessons/LessonRunnerItems.js';
 import { practiceRows } from '../../web/src/ui/lessons/LessonRunnerPanel.js';
 
@@ -22,6 +22,39 @@ test( 'a phoneme target is said as phonemes and a word, syllable or phrase as te
 	assert.deepEqual( itemRequest( word( 'ship' ) ), { text: 'ship', audio: { kind: 'natural' }, dominance: true } );
 	assert.deepEqual( itemRequest( { target: { kind: 'phrase', text: 'Put the cat on the mat.' } } ).text, 'Put the cat on the mat.' );
 	assert.deepEqual( itemRequest( { target: { kind: 'syllable', text: '/M AA/' } } ).phonemes, 'M AA' );
+
+} );
+
+const INVENTORY = phonemeIndex( [
+	{ ipa: 's', arpabet: 'S', manner: 'fricative' }, { ipa: 't', arpabet: 'T', manner: 'stop' },
+	{ ipa: 'tʃ', arpabet: 'CH', manner: 'affricate' }, { ipa: 'i', arpabet: 'IY', manner: 'close' },
+] );
+
+test( 'a sound that can be held is held 0.7 s between silences, as timed phones the server stretches', () => {
+
+	for ( const symbol of [ 's', 'S', 'i' ] ) {
+
+		const request = itemRequest( phoneme( symbol ), INVENTORY );
+		assert.equal( request.phonemes, undefined );
+		assert.deepEqual( request.phones.map( ( p ) => p.symbol ), [ 'sil', symbol, 'sil' ] );
+		const held = request.phones[ 1 ];
+		assert.ok( Math.abs( held.end_s - held.start_s - HELD_S ) < 1e-9 && HELD_S >= 0.6 && HELD_S <= 0.8 );
+		assert.deepEqual( [ request.audio, request.dominance ], [ { kind: 'natural' }, true ] );
+
+	}
+
+} );
+
+test( 'a stop or an affricate is said in a syllable unless the item says otherwise; any sound can be said three times or alone', () => {
+
+	assert.equal( saidAs( phoneme( 't' ), INVENTORY.get( 't' ) ), 'syllable' );
+	assert.equal( itemRequest( phoneme( 't' ), INVENTORY ).phonemes, 't ˈɑ' );
+	assert.equal( itemRequest( phoneme( 'CH' ), INVENTORY ).phonemes, 'CH ˈɑ' );
+	assert.equal( itemRequest( phoneme( 't', { said_as: 'repeated' } ), INVENTORY ).phonemes, 't ə sil t ə sil t ə' );
+	assert.equal( itemRequest( phoneme( 't', { said_as: 'alone' } ), INVENTORY ).phonemes, 't', 'a stop alone: its burst, as the voice says it' );
+	assert.equal( itemRequest( phoneme( 's', { said_as: 'syllable' } ), INVENTORY ).phonemes, 's ˈɑ' );
+	assert.equal( itemRequest( phoneme( 's', { said_as: 'repeated' } ), INVENTORY ).phonemes, 's ə sil s ə sil s ə' );
+	assert.equal( saidAs( phoneme( 's' ), INVENTORY.get( 's' ) ), 'alone' );
 
 } );
 
@@ -46,7 +79,9 @@ test( 'the views an item leaves out are the published schema\'s defaults', () =>
 test( 'an item\'s settings: skin transparency in percent, its switches, its speed, and a static item held', () => {
 
 	const settings = itemSettings( phoneme( 's', { presentation: 'static', speed: 0.5, views: { skin_transparency: 0.8, epg: true, labels: true } } ) );
-	assert.deepEqual( settings, { transparency: 80, cutaway: false, diagram: false, cues: true, labels: true, epg: true, speed: 0.5, hold: true } );
+	assert.deepEqual( settings, { transparency: 80, cutaway: false, diagram: false, cues: true, labels: true, epg: true, camera: 'profile', zoom: 1, speed: 0.5, hold: true } );
+	const chosen = itemSettings( phoneme( 't', { views: { labels: [ 'tongue_tip', 'alveolar' ], camera: 'front', zoom: 9 } } ) );
+	assert.deepEqual( [ chosen.labels, chosen.camera, chosen.zoom ], [ [ 'tongue_tip', 'alveolar' ], 'front', 2.5 ] );
 	const defaults = itemSettings( word( 'ship' ) );
 	assert.deepEqual( [ defaults.transparency, defaults.hold, defaults.speed ], [ 60, false, 1 ] );
 

@@ -2,7 +2,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { easeInOut, fitDistance, interpolatePose, VIEW_ELEVATION_DEG, VIEW_NAMES, viewDirection, viewPose } from '../../web/src/scene/viewPresets.js';
+import { easeInOut, fitDistance, interpolatePose, MOUTH_AND_THROAT, VIEW_ELEVATION_DEG, VIEW_NAMES, viewDirection, viewPose, zoomedPose } from '../../web/src/scene/viewPresets.js';
 
 const close = ( actual, expected, tolerance = 1e-9 ) => assert.ok( Math.abs( actual - expected ) <= tolerance, `${ actual } is not ${ expected }` );
 const length = ( v ) => Math.hypot( v[ 0 ], v[ 1 ], v[ 2 ] );
@@ -59,6 +59,23 @@ test( 'a view pose is the view direction times the fitted distance from the cent
 	assert.deepEqual( pose.target, [ 10, 20, 0 ] );
 	close( length( offset( pose ) ), fitDistance( 100, 30, 1 ), 1e-9 );
 	assert.ok( pose.position[ 0 ] > 10 + 300 );
+
+} );
+
+test( 'a zoomed pose comes closer by the zoom and turns onto the oral cavity, which it reaches at zoom 2', () => {
+
+	const whole = zoomedPose( 'profile', 1, 40, 1.5 );
+	assert.deepEqual( whole, viewPose( 'profile', MOUTH_AND_THROAT.center, MOUTH_AND_THROAT.radius, 40, 1.5 ) );
+	for ( const zoom of [ 1.5, 2, 2.5 ] ) {
+
+		const pose = zoomedPose( 'profile', zoom, 40, 1.5 );
+		close( length( offset( pose ) ) * zoom, length( offset( whole ) ), 1e-6 );
+		assert.ok( pose.target[ 1 ] > whole.target[ 1 ], 'up, toward the palate' );
+
+	}
+
+	assert.deepEqual( zoomedPose( 'profile', 2, 40, 1.5 ).target, zoomedPose( 'profile', 2.5, 40, 1.5 ).target );
+	assert.deepEqual( zoomedPose( 'front', 0.2, 40, 1.5 ), zoomedPose( 'front', 1, 40, 1.5 ), 'never farther than zoom 1' );
 
 } );
 

@@ -15,9 +15,22 @@ here. The same pydantic model is published as JSON Schema (``GET /lessons/schema
 
 from typing import Annotated, Final, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    StringConstraints,
+    field_validator,
+    model_validator,
+)
 
-from glasshead.constants import VOWEL_NORMS_VOWELS
+from glasshead.constants import (
+    CAMERA_VIEWS,
+    LABEL_NAMES,
+    LESSON_VIEW_DEFAULTS,
+    LESSON_ZOOM_RANGE,
+    VOWEL_NORMS_VOWELS,
+)
 from glasshead.phonemes import UnknownPhonemeError, lookup
 
 #: The format's version, carried by every export; an import of a newer one is refused.
@@ -72,16 +85,54 @@ class Audio(BaseModel):
                                  description="vocoded: the vocoder's channels")
 
 
+#: Most labels an item names: the place and the articulator, and a part or two beside them.
+MAX_ITEM_LABELS = 6
+#: A name of the label layer (the parts and the places of articulation).
+LabelName = Literal[LABEL_NAMES]  # type: ignore[valid-type]
+_VIEW = LESSON_VIEW_DEFAULTS
+
+
 class Views(BaseModel):
-    """How the head is shown: skin transparency (0 opaque .. 1 invisible) and which parts are on."""
+    """How the head is shown: skin transparency (0 opaque .. 1 invisible), which parts are on,
+    which labels, and where the camera looks from and how close."""
 
     model_config = ConfigDict(extra="forbid")
-    skin_transparency: float = Field(0.6, ge=0.0, le=1.0)
-    cutaway: bool = False
-    diagram: bool = Field(False, description="the 2D mid-sagittal diagram")
-    cues: bool = Field(True, description="voicing and airflow cues")
-    labels: bool = False
-    epg: bool = Field(False, description="the EPG panel")
+    skin_transparency: float = Field(_VIEW["skin_transparency"], ge=0.0, le=1.0)
+    cutaway: bool = _VIEW["cutaway"]
+    diagram: bool = Field(_VIEW["diagram"], description="the 2D mid-sagittal diagram")
+    cues: bool = Field(_VIEW["cues"], description="voicing and airflow cues")
+    labels: bool | list[LabelName] = Field(
+        _VIEW["labels"], description="every label (true), none (false), or only those named "
+                                     "(the parts and places of GET /anatomy/landmarks)")
+    epg: bool = Field(_VIEW["epg"], description="the EPG panel")
+    camera: Literal[CAMERA_VIEWS] = Field(  # type: ignore[valid-type]
+        _VIEW["camera"], description="where the camera looks from: profile shows the cutaway's "
+                                     "section")
+    zoom: float = Field(_VIEW["zoom"], ge=LESSON_ZOOM_RANGE[0], le=LESSON_ZOOM_RANGE[1],
+                        description="1 frames the mouth and throat; 2 is twice as close, on "
+                                    "the mouth")
+
+    @field_validator("labels", mode="before")
+    @classmethod
+    def _known_labels(cls, value):
+        if isinstance(value, list):
+            unknown = [n for n in value if n not in LABEL_NAMES]
+            if unknown:
+                raise ValueError(f"{unknown[0]!r} is not a label: name parts or places of GET "
+                                 f"/anatomy/landmarks ({', '.join(LABEL_NAMES)}), or say true "
+                                 "for all of them")
+        return value
+
+    @model_validator(mode="after")
+    def _few_distinct_labels(self):
+        if isinstance(self.labels, list):
+            if not 1 <= len(self.labels) <= MAX_ITEM_LABELS:
+                raise ValueError(f"labels: name 1 to {MAX_ITEM_LABELS} labels, or say true for "
+                                 f"all of them ({len(self.labels)} named)")
+            twice = sorted({n for n in self.labels if self.labels.count(n) > 1})
+            if twice:
+                raise ValueError(f"labels: {', '.join(twice)} named more than once")
+        return self
 
 
 class ListenVowel(BaseModel):
@@ -127,8 +178,20 @@ class Item(BaseModel):
     views: Views = Field(default_factory=Views)
     speed: float = Field(1.0, ge=0.1, le=1.0, description="1 is natural speed; 0.1 ten times "
                                                           "slower")
+    said_as: Literal["alone", "syllable", "repeated"] | None = Field(
+        None, description="a phoneme target: alone (a sound that can be held is held "
+                          "0.7 s), in a syllable before /ɑ/ (ta) or three times (t-t-t); none: "
+                          "a stop or an affricate in a syllable, any other sound held alone")
     listen: Listen | None = Field(None, description="what a try is measured on, and its target "
                                                     "zone; none: not measured")
+
+
+    @model_validator(mode="after")
+    def _said_as_a_phoneme(self):
+        if self.said_as is not None and self.target.kind != "phoneme":
+            raise ValueError(f"said_as: only a phoneme target is said alone, in a syllable or "
+                             f"repeated; this target is a {self.target.kind} (leave said_as out)")
+        return self
 
 
 class LessonContent(BaseModel):

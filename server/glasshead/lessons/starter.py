@@ -1,23 +1,40 @@
 """The lessons a new store starts with, so that a first user has something to open at once.
 
 Contrasts that speech therapy teaches first, each as the two phonemes shown side by side and
-then minimal pairs of words: /s/ against /ʃ/, /t/ against /k/, /r/ against /l/, the nasals
-against their oral pairs, and the vowels from front to back. Migration 0005 inserts them once,
-into the new ``lessons`` table; they are ordinary lessons afterwards (edited or deleted like
-any other, never put back).
+then minimal pairs of words, on the cutaway in profile with the labels the contrast is about:
+/s/ against /ʃ/, /t/ against /k/, /r/ against /l/, the nasals against their oral pairs, and the
+vowels from front to back. Migration 0005 inserts them once, into the new ``lessons`` table;
+they are ordinary lessons afterwards (edited or deleted like any other, never put back).
+Migration 0013 brings a starter lesson nobody has changed (still at version 1) to this content.
 """
 
 from glasshead.lessons.schema import LessonContent
 from glasshead.phonemes import lookup
 
-#: Views that show the tongue against the palate: skin mostly clear, the EPG panel on. Each set
-#: names only what differs from the format's defaults (``schema.Views``), as every lesson here
-#: leaves out what the defaults give.
-_PALATE = {"skin_transparency": 0.8, "labels": True, "epg": True}
-#: Views for the velum and voicing: the mid-sagittal cutaway with cues.
-_CUTAWAY = {"skin_transparency": 1.0, "cutaway": True, "diagram": True, "labels": True}
-#: Views for vowels: tongue and lips seen through the skin, no EPG.
-_VOWEL = {"skin_transparency": 0.7, "cutaway": True, "cues": False, "labels": True}
+#: Every item opens on the cutaway in profile, close on the mouth: the section shows the tongue,
+#: palate and velum that bone and teeth would hide from any other side. Each set names only what
+#: differs from the format's defaults (``schema.Views``), as every lesson here leaves out what the
+#: defaults give.
+_SECTION = {"skin_transparency": 0.8, "cutaway": True, "zoom": 1.5}  # the camera: profile
+#: The tongue against the palate: the EPG panel beside the section.
+_PALATE = {**_SECTION, "epg": True}
+#: The velum and voicing: the 2D diagram and the cues beside the section.
+_VELUM = {**_SECTION, "diagram": True}
+#: Vowels: no cues (a vowel has no constriction to show air through).
+_VOWEL = {**_SECTION, "cues": False}
+
+#: The two or three labels a contrast is about: the articulators and the places they reach.
+_LABELS = {
+    "s-sh": ["tongue_tip", "alveolar", "postalveolar"],
+    "t-k": ["tongue_tip", "tongue_back", "alveolar", "velar"],
+    "r-l": ["tongue_tip", "tongue_back", "alveolar_ridge"],
+    "nasals": ["velum", "nasal_port", "lips"],
+    "vowels": ["tongue_front", "tongue_back", "lips"],
+}
+
+
+def _views(views: dict, labels: str) -> dict:
+    return {**views, "labels": _LABELS[labels]}
 
 
 #: What a try is measured on (schema.Listen), by the phoneme or word it is at: the vowels by
@@ -58,20 +75,20 @@ def _contrast(title: str, description: str, phonemes: list[str], words: list[str
 STARTER_LESSONS: tuple[dict, ...] = (
     _contrast("/s/ and /ʃ/", "The tongue tip at the ridge, then further back and domed: "
               "watch the groove move on the EPG.", ["s", "ʃ"],
-              ["sip", "ship", "sore", "shore", "sell", "shell"], _PALATE),
+              ["sip", "ship", "sore", "shore", "sell", "shell"], _views(_PALATE, "s-sh")),
     _contrast("/t/ and /k/", "A closure at the front of the palate, then at the back.",
-              ["t", "k"], ["tea", "key", "tap", "cap", "tot", "cot"], _PALATE),
+              ["t", "k"], ["tea", "key", "tap", "cap", "tot", "cot"], _views(_PALATE, "t-k")),
     _contrast("/r/ and /l/", "The bunched /r/ keeps off the palate; /l/ touches the ridge "
               "with the sides open.", ["r", "l"],
-              ["red", "led", "right", "light", "rock", "lock"], _PALATE),
+              ["red", "led", "right", "light", "rock", "lock"], _views(_PALATE, "r-l")),
     _contrast("Nasals and their oral pairs", "The same closures with the velum lowered: air "
               "through the nose for /m n ŋ/, not for /b d ɡ/.", ["m", "b", "n", "d", "ŋ", "ɡ"],
-              ["me", "bee", "knee", "dee", "sing", "sig"], _CUTAWAY),
+              ["me", "bee", "knee", "dee", "sing", "sig"], _views(_VELUM, "nasals")),
     {"title": "The vowels",
      "description": "From the front of the mouth to the back: how high the tongue is, and "
                     "where, and the lips.",
-     "items": [_phoneme(p, _VOWEL) for p in _VOWELS]
-     + [_word(w, _VOWEL, speed=0.4) for w in _VOWEL_WORDS]},
+     "items": [_phoneme(p, _views(_VOWEL, "vowels")) for p in _VOWELS]
+     + [_word(w, _views(_VOWEL, "vowels"), speed=0.4) for w in _VOWEL_WORDS]},
 )
 
 

@@ -308,3 +308,47 @@ export const FIT_PLOTS_DIR = 'fit-plots';
 export const FIT_REPORT_PAGE = 'fit-report.html';
 /** The command that rebuilds every asset, named in the API's 503 answers. */
 export const REBUILD_COMMAND = 'glasshead build';
+/**
+ * The labelled parts and places of articulation (GET /anatomy/landmarks, kinds "part" and "place"),
+ * in the label layer's order: the names a lesson item's ``views.labels`` may list.
+ */
+export const LABEL_NAMES = Object.freeze( [
+	'lips',
+	'teeth',
+	'alveolar_ridge',
+	'hard_palate',
+	'velum',
+	'uvula',
+	'tongue_tip',
+	'tongue_blade',
+	'tongue_front',
+	'tongue_back',
+	'tongue_root',
+	'pharynx',
+	'larynx',
+	'nasal_port',
+	'bilabial',
+	'labiodental',
+	'dental',
+	'alveolar',
+	'postalveolar',
+	'palatal',
+	'velar',
+	'uvular',
+	'glottal',
+] );
+/** The camera views a lesson item may open on (web/src/scene/viewPresets.js). */
+export const CAMERA_VIEWS = Object.freeze( [ 'profile', 'three-quarter', 'front' ] );
+/** How close a lesson item's camera comes: 1 frames the mouth and throat, 2 is twice as close. */
+export const LESSON_ZOOM_RANGE = Object.freeze( [ 1.0, 2.5 ] );
+/** What a lesson item shows when it leaves a view out (the lesson format's defaults). */
+export const LESSON_VIEW_DEFAULTS = Object.freeze( {
+	skin_transparency: 0.6,
+	cutaway: false,
+	diagram: false,
+	cues: true,
+	labels: false,
+	epg: false,
+	camera: 'profile',
+	zoom: 1.0,
+} );

@@ -304,13 +304,18 @@ export class Head {
 
 	}
 
-	/** World box around the lips (the mouth), falling back to the frame origin, which is in the mouth. */
+	/**
+	 * World box around the lips (the mouth), and with the cutaway on, the velum too: the section
+	 * shows the mouth from the lips to the soft palate, which panels over the view keep clear of.
+	 * Falls back to the frame origin, which is in the mouth.
+	 */
 	mouthBox( target = new Box3() ) {
 
 		target.makeEmpty();
-		for ( const name of [ 'upper_lip', 'lower_lip' ] ) {
+		const parts = [ this.parts.get( 'upper_lip' ), this.parts.get( 'lower_lip' ) ];
+		if ( this.cutaway ) parts.push( ...[ ...this.parts.values() ].filter( ( part ) => part.tissue === 'velum' && part.group.visible ) );
+		for ( const part of parts ) {
 
-			const part = this.parts.get( name );
 			if ( ! part ) continue;
 			part.geometry.computeBoundingBox();
 			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );

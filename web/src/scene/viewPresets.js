@@ -75,6 +75,24 @@ export function viewPose( name, center, radius, fovDeg, aspect = 1 ) {
 
 }
 
+/** The mouth and throat, lips to larynx: what the speech player and a lesson at zoom 1 frame. */
+export const MOUTH_AND_THROAT = Object.freeze( { center: Object.freeze( [ - 4, - 8, 0 ] ), radius: 68 } );
+/** The oral cavity, lips to velum and tongue to palate: where the camera closes in as it zooms. */
+const ORAL_CAVITY_CENTER = Object.freeze( [ - 8, 4, 0 ] );
+
+/**
+ * The pose of view `name` at `zoom` (1 frames the mouth and throat; 2 is twice as close, and the
+ * camera turns onto the oral cavity as it comes in, reaching it at zoom 2).
+ */
+export function zoomedPose( name, zoom, fovDeg, aspect = 1 ) {
+
+	const z = Math.max( 1, Number( zoom ) || 1 );
+	const toward = Math.min( z - 1, 1 );
+	const center = MOUTH_AND_THROAT.center.map( ( c, i ) => c + ( ORAL_CAVITY_CENTER[ i ] - c ) * toward );
+	return viewPose( name, center, MOUTH_AND_THROAT.radius / z, fovDeg, aspect );
+
+}
+
 /** Smooth ease in and out on [0, 1] (a cubic smoothstep). */
 export function easeInOut( s ) {
 

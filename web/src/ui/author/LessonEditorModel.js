@@ -5,7 +5,7 @@
 // shows it and tests/js/lessonEditor.test.js reads it. The format is the server's
 // (server/glasshead/lessons/schema.py, docs/lessons.md).
 
-import { VOWEL_NORMS_VOWELS } from '../../core/constants.js';
+import { CAMERA_VIEWS, LABEL_NAMES, LESSON_VIEW_DEFAULTS, LESSON_ZOOM_RANGE, VOWEL_NORMS_VOWELS } from '../../core/constants.js';
 
 /** The editor's route. */
 export const AUTHOR_PATH = '/author';
@@ -73,19 +73,62 @@ export const VIEW_SWITCHES = Object.freeze( [
 	Object.freeze( { key: 'cutaway', label: 'Cutaway' } ),
 	Object.freeze( { key: 'diagram', label: '2D diagram' } ),
 	Object.freeze( { key: 'cues', label: 'Cues' } ),
-	Object.freeze( { key: 'labels', label: 'Labels' } ),
 	Object.freeze( { key: 'epg', label: 'EPG panel' } ),
 ] );
+/** Where the camera looks from, in an author's words (the format's CAMERA_VIEWS). */
+const CAMERA_WORDS = Object.freeze( { profile: 'Profile (the cut side)', 'three-quarter': 'Three-quarter', front: 'Front' } );
+export const CAMERA_CHOICES = Object.freeze( CAMERA_VIEWS.map( ( value ) => Object.freeze( { value, label: CAMERA_WORDS[ value ] ?? value } ) ) );
+/** How a phoneme target is said (the format's `said_as`). */
+export const SAID_AS_CHOICES = Object.freeze( [
+	Object.freeze( { value: '', label: 'By its sound: held alone, or a stop in a syllable' } ),
+	Object.freeze( { value: 'alone', label: 'Alone (held when it can be)' } ),
+	Object.freeze( { value: 'syllable', label: 'In a syllable (ta)' } ),
+	Object.freeze( { value: 'repeated', label: 'Three times (t-t-t)' } ),
+] );
+/** Which labels the head shows: none, all, or those chosen. */
+export const LABEL_MODES = Object.freeze( [
+	Object.freeze( { value: 'none', label: 'None' } ),
+	Object.freeze( { value: 'all', label: 'All of them' } ),
+	Object.freeze( { value: 'chosen', label: 'Only these:' } ),
+] );
+/** The names a label list may hold, each with the words the label shows. */
+export const LABEL_CHOICES = Object.freeze( LABEL_NAMES.map( ( value ) => Object.freeze( { value, label: value === 'velum' ? 'velum (soft palate)' : value.replace( /_/g, ' ' ) } ) ) );
+/** The labels an author starts from on choosing "Only these". */
+export const FIRST_CHOSEN_LABELS = Object.freeze( [ 'tongue_tip' ] );
+
+/** The mode (LABEL_MODES) of an item's `views.labels`. */
+export function labelMode( labels ) {
+
+	return Array.isArray( labels ) ? 'chosen' : labels ? 'all' : 'none';
+
+}
+
+/** `views.labels` for a mode, keeping the names `previous` chose. */
+export function labelsOfMode( mode, previous ) {
+
+	if ( mode === 'chosen' ) return Array.isArray( previous ) && previous.length ? [ ...previous ] : [ ...FIRST_CHOSEN_LABELS ];
+	return mode === 'all';
+
+}
+
+/** `labels` with `name` chosen or not, in the label layer's order. */
+export function toggleLabel( labels, name, chosen ) {
+
+	const names = new Set( Array.isArray( labels ) ? labels : [] );
+	if ( chosen ) names.add( name );
+	else names.delete( name );
+	return LABEL_NAMES.filter( ( n ) => names.has( n ) );
+
+}
 /** The schema's defaults for what an item leaves out. */
-export const DEFAULT_VIEWS = Object.freeze( {
-	skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false,
-} );
+export const DEFAULT_VIEWS = LESSON_VIEW_DEFAULTS;
 /** Ranges the server accepts (schema.py): [low, high]. */
 export const RANGES = Object.freeze( {
 	speed: Object.freeze( [ 0.1, 1 ] ),
 	cutoff_hz: Object.freeze( [ 100, 8000 ] ),
 	channels: Object.freeze( [ 1, 16 ] ),
 	skin_transparency: Object.freeze( [ 0, 1 ] ),
+	zoom: LESSON_ZOOM_RANGE,
 } );
 
 /** What a stale save says, in plain words. */
@@ -115,6 +158,7 @@ export function normaliseItem( item = {} ) {
 		audio: { kind: audio.kind ?? 'natural', cutoff_hz: audio.cutoff_hz ?? null, channels: audio.channels ?? null },
 		views: { ...DEFAULT_VIEWS, ...( item.views ?? {} ) },
 		speed: item.speed ?? 1,
+		said_as: item.said_as ?? null,
 		listen: item.listen ? { ...item.listen } : null,
 	};
 
@@ -148,7 +192,10 @@ export function lessonBody( draft ) {
 			const audio = { kind: item.audio.kind };
 			if ( item.audio.kind === 'lowpass' && item.audio.cutoff_hz !== null ) audio.cutoff_hz = item.audio.cutoff_hz;
 			if ( item.audio.kind === 'vocoded' && item.audio.channels !== null ) audio.channels = item.audio.channels;
-			const body = { target: { ...item.target }, presentation: item.presentation, audio, views: { ...item.views }, speed: item.speed };
+			const views = { ...item.views, labels: Array.isArray( item.views.labels ) ? [ ...item.views.labels ] : item.views.labels };
+			const body = { target: { ...item.target }, presentation: item.presentation, audio, views, speed: item.speed };
+			// How a phoneme is said, when the author chose; a word or phrase has none.
+			if ( item.said_as && item.target.kind === 'phoneme' ) body.said_as = item.said_as;
 			// What a try is measured on is kept as the lesson had it (the starter lessons set it).
 			if ( item.listen ) body.listen = { ...item.listen };
 			return body;

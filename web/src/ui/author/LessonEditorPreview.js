@@ -13,6 +13,17 @@ import { api as pageApi } from '../../api.js';
 import { h } from '../shared/dom.js';
 import { ItemPresenter } from '../lessons/LessonRunnerViews.js';
 import { SpeechView } from '../speak/SpeechView.js';
+import { LABEL_CHOICES } from './LessonEditorModel.js';
+
+/** What the preview says when bone hides labels the item names (their words, joined). */
+export function hiddenLabelsWarning( names ) {
+
+	if ( ! names.length ) return '';
+	const words = names.map( ( name ) => LABEL_CHOICES.find( ( c ) => c.value === name )?.label ?? name );
+	const list = words.length > 1 ? `${ words.slice( 0, - 1 ).join( ', ' ) } and ${ words.at( - 1 ) }` : words[ 0 ];
+	return `In this view, bone hides the ${ list }: a child would not see ${ words.length > 1 ? 'them' : 'it' }. Turn on the cutaway and see it from the profile.`;
+
+}
 
 /** How long the form must be still before the preview follows it, ms. */
 export const PREVIEW_DELAY_MS = 600;
@@ -26,9 +37,11 @@ export class LessonPreview {
 		this.status = h( 'p', { className: 'status le-preview-status', role: 'status', 'aria-live': 'polite' }, 'Loading the head…' );
 		this.playButton = h( 'button', { type: 'button', className: 'le-preview-play', disabled: '', onClick: () => this.play() }, 'Play the preview' );
 		this.box = h( 'div', { className: 'le-preview-head' } );
+		this.warning = h( 'p', { className: 'le-preview-warning', role: 'alert', hidden: '' } );
 		this.element = h( 'section', { className: 'le-preview', 'aria-label': 'Preview' },
 			h( 'div', { className: 'le-preview-bar' }, h( 'h2', { className: 'le-heading' }, 'Preview' ), this.playButton, this.status ),
-			this.box );
+			this.warning, this.box );
+		this.hidden = [];
 		this.pending = null;
 		this.timer = null;
 		this.shown = null;
@@ -83,6 +96,7 @@ export class LessonPreview {
 		this.busy = true;
 		this.playButton.disabled = true;
 		this.say( 'Preparing the preview…' );
+		this.warn( [] );
 		const done = await this.presenter.present( item );
 		if ( presented !== this.presented || ! this.view ) return;
 		this.busy = false;
@@ -91,6 +105,8 @@ export class LessonPreview {
 			this.shown = item;
 			this.playButton.disabled = false;
 			this.say( `Ready: ${ item.target.kind === 'phoneme' ? `/${ item.target.text }/` : item.target.text }` );
+			const hidden = Array.isArray( item.views.labels ) ? await this.presenter.hiddenLabels() : [];
+			if ( presented === this.presented ) this.warn( hidden );
 
 		} else {
 
@@ -115,13 +131,22 @@ export class LessonPreview {
 
 	}
 
+	/** Flag the labels the item names that bone hides in its view (none: the flag goes). */
+	warn( names ) {
+
+		this.hidden = names;
+		this.warning.textContent = hiddenLabelsWarning( names );
+		this.warning.hidden = names.length === 0;
+
+	}
+
 	/** What window.glasshead.author.preview reports. */
 	report() {
 
 		return {
 			loaded: this.view?.state.loaded ?? false, busy: this.busy || Boolean( this.waiting ), target: this.shown?.target ?? null,
 			settings: this.presenter?.settings ?? null, playing: this.view?.clock.playing ?? false,
-			utterance: this.view?.utterance?.id ?? null, status: this.status.textContent,
+			utterance: this.view?.utterance?.id ?? null, status: this.status.textContent, hidden: this.hidden,
 		};
 
 	}

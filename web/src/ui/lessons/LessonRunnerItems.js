@@ -4,6 +4,7 @@
 // runner's address (#/teach?lesson=ID&item=N) and keys. No DOM: the lesson runner and the child's
 // practice turn it into the head's settings, and tests/js/lessonRunner.test.js reads it.
 
+import { LESSON_VIEW_DEFAULTS, LESSON_ZOOM_RANGE } from '../../core/constants.js';
 import { utteranceRequest } from '../speak/SpeechControls.js';
 import { SPEED_RANGE } from '../speak/speechClock.js';
 
@@ -13,9 +14,16 @@ export const RUNNER_PATH = '/teach';
 export const SLOW_SPEED = 0.25;
 
 /** The item's views when the lesson leaves them out (the schema's defaults). */
-export const DEFAULT_VIEWS = Object.freeze( {
-	skin_transparency: 0.6, cutaway: false, diagram: false, cues: true, labels: false, epg: false,
-} );
+export const DEFAULT_VIEWS = LESSON_VIEW_DEFAULTS;
+
+/** How long a sound that can be held is held when it is said alone, s (600 to 800 ms to copy). */
+export const HELD_S = 0.7;
+/** The silence before and after a held sound, s. */
+const HELD_QUIET_S = 0.2;
+/** Manners of sounds that cannot be held: a burst, said in a syllable or repeated instead. */
+const UNHELD_MANNERS = new Set( [ 'stop', 'affricate' ] );
+/** The vowel a syllable is made with: open, central to the mouth, where every place shows. */
+const SYLLABLE_VOWEL = 'ɑ';
 
 /** The keys of presentation mode: KeyboardEvent.key -> what it does. */
 export const RUNNER_KEYS = Object.freeze( {
@@ -42,34 +50,81 @@ export function runnerAction( event ) {
 }
 
 /**
- * The POST /utterances body that says `item`'s target with its audio: a phoneme as phonemes,
- * a syllable, word or phrase as text (between slashes: phonemes, as the speech player takes them).
+ * How a phoneme target is said (the item's `said_as`, or by its sound when it leaves it out):
+ * 'alone' for a sound that can be held, 'syllable' for a stop or an affricate. `phoneme` is its
+ * GET /phonemes entry (its `manner`), or undefined when the inventory is not known.
  */
-export function itemRequest( item ) {
+export function saidAs( item, phoneme ) {
+
+	if ( item.said_as ) return item.said_as;
+	return UNHELD_MANNERS.has( phoneme?.manner ) ? 'syllable' : 'alone';
+
+}
+
+/**
+ * The POST /utterances body that says `item`'s target with its audio: a syllable, word or
+ * phrase as text (between slashes: phonemes, as the speech player takes them); a phoneme held
+ * HELD_S between silences (as timed phones, which the server stretches keeping its pitch), in a
+ * syllable before /ɑ/, three times (t-t-t), or alone as the voice says it (a stop alone: its
+ * burst). `inventory` maps a symbol (IPA or ARPAbet) to its GET /phonemes entry.
+ */
+export function itemRequest( item, inventory = new Map() ) {
 
 	const { kind, text } = item.target;
 	const audio = { kind: item.audio?.kind ?? 'natural', cutoff_hz: item.audio?.cutoff_hz ?? 1000, channels: item.audio?.channels ?? 4 };
-	const typed = kind === 'phoneme' ? `/${ text }/` : text;
-	return utteranceRequest( typed, audio );
+	if ( kind !== 'phoneme' ) return utteranceRequest( text, audio );
+	const phoneme = inventory.get( text );
+	const how = saidAs( item, phoneme );
+	if ( how === 'syllable' ) return utteranceRequest( `/${ text } ˈ${ SYLLABLE_VOWEL }/`, audio );
+	if ( how === 'repeated' ) return utteranceRequest( `/${ [ 1, 2, 3 ].map( () => `${ text } ə` ).join( ' sil ' ) }/`, audio );
+	const request = utteranceRequest( `/${ text }/`, audio );
+	if ( ! phoneme || UNHELD_MANNERS.has( phoneme.manner ) ) return request;
+	const { phonemes, ...rest } = request;
+	const end = HELD_QUIET_S + HELD_S;
+	return { phones: [
+		{ symbol: 'sil', start_s: 0, end_s: HELD_QUIET_S },
+		{ symbol: phonemes, start_s: HELD_QUIET_S, end_s: end },
+		{ symbol: 'sil', start_s: end, end_s: end + HELD_QUIET_S },
+	], ...rest };
+
+}
+
+/** The inventory as itemRequest reads it: each GET /phonemes entry under its IPA and ARPAbet. */
+export function phonemeIndex( phonemes ) {
+
+	const index = new Map();
+	for ( const entry of phonemes ?? [] ) {
+
+		index.set( entry.ipa, entry );
+		index.set( entry.arpabet, entry );
+		index.set( entry.arpabet.toLowerCase(), entry );
+
+	}
+
+	return index;
 
 }
 
 /**
  * The head's settings for `item`: skin transparency in percent (0 opaque), cutaway, the 2D
- * diagram, cues, labels and the EPG card, the speed (SPEED_RANGE) and whether the target is held
- * (static presentation) or spoken.
+ * diagram, cues, the labels (true, false or the names to show), the EPG card, the camera's view
+ * and zoom, the speed (SPEED_RANGE) and whether the target is held (static presentation) or
+ * spoken.
  */
 export function itemSettings( item ) {
 
 	const views = { ...DEFAULT_VIEWS, ...( item.views ?? {} ) };
 	const [ low, high ] = SPEED_RANGE;
+	const [ closest, farthest ] = [ LESSON_ZOOM_RANGE[ 0 ], LESSON_ZOOM_RANGE[ 1 ] ];
 	return {
 		transparency: Math.round( Math.min( Math.max( views.skin_transparency, 0 ), 1 ) * 100 ),
 		cutaway: Boolean( views.cutaway ),
 		diagram: Boolean( views.diagram ),
 		cues: Boolean( views.cues ),
-		labels: Boolean( views.labels ),
+		labels: Array.isArray( views.labels ) ? [ ...views.labels ] : Boolean( views.labels ),
 		epg: Boolean( views.epg ),
+		camera: views.camera,
+		zoom: Math.min( Math.max( Number( views.zoom ) || 1, closest ), farthest ),
 		speed: Math.min( Math.max( item.speed ?? 1, low ), high ),
 		hold: ( item.presentation ?? 'dynamic' ) === 'static',
 	};

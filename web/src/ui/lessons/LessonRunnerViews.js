@@ -9,7 +9,27 @@
 //   await presenter.present( item );   // views, target, speed, hold
 //   presenter.replay();                 // from the start, with its sound
 
-import { itemRequest, itemSettings } from './LessonRunnerItems.js';
+import { api } from '../../api.js';
+import { zoomedPose } from '../../scene/viewPresets.js';
+import { itemRequest, itemSettings, phonemeIndex } from './LessonRunnerItems.js';
+
+/** How long the camera takes to move to an item's view, ms. */
+const CAMERA_FLIGHT_MS = 500;
+/** The phoneme inventory (GET /phonemes) as itemRequest reads it, fetched once per page. */
+let inventory = null;
+
+/** The inventory, or an empty one when it cannot be read (a phoneme is then said as it comes). */
+export function phonemeInventory( client = api ) {
+
+	inventory ??= client.get( 'phonemes' ).then( ( body ) => phonemeIndex( body.phonemes ), () => {
+
+		inventory = null; // asked again next time
+		return new Map();
+
+	} );
+	return inventory;
+
+}
 
 /** The first phone that is not silence, or -1. */
 export function firstSpokenPhone( phones ) {
@@ -48,8 +68,9 @@ export class ItemPresenter {
 		this.item = item;
 		this.settings = itemSettings( item );
 		this.plays = 0;
-		await this.applyViews( this.settings );
-		await view.say( itemRequest( item ) );
+		const [ phonemes ] = await Promise.all( [ phonemeInventory(), this.applyViews( this.settings ) ] );
+		if ( presenting !== this.presenting ) return false;
+		await view.say( itemRequest( item, phonemes ) );
 		if ( presenting !== this.presenting || ! view.viewer || ! view.utterance || view.busy ) return false;
 		view.setSpeed( this.settings.speed );
 		if ( this.settings.hold ) await this.hold();
@@ -58,10 +79,16 @@ export class ItemPresenter {
 
 	}
 
-	/** The item's views on the head and beside it (the label layer loaded when first wanted). */
+	/**
+	 * The item's views on the head and beside it: the camera's view and zoom, the skin, the
+	 * panels, and the labels it names (the label layer loaded when first wanted).
+	 */
 	async applyViews( settings ) {
 
 		const view = this.view;
+		const camera = view.viewer.camera;
+		view.viewer.flyTo( zoomedPose( settings.camera, settings.zoom, camera.fov, view.viewer.aspect ), this.cameraSet ? CAMERA_FLIGHT_MS : 0 );
+		this.cameraSet = true;
 		view.state.skin = settings.transparency > 0;
 		if ( settings.transparency > 0 ) view.state.transparency = settings.transparency;
 		view.state.cutaway = settings.cutaway;
@@ -101,6 +128,29 @@ export class ItemPresenter {
 
 		this.labels?.setVisible( settings.labels );
 		view.viewer.requestRender();
+
+	}
+
+	/**
+	 * The labels the item names that the camera cannot see at its settings (bone in the way),
+	 * once the camera has reached the item's view; [] when it names none.
+	 */
+	async hiddenLabels() {
+
+		const viewer = this.view.viewer;
+		if ( viewer?.animating ) await new Promise( ( resolve ) => {
+
+			const stop = viewer.onFrame( () => {
+
+				if ( viewer.animating ) return false;
+				stop();
+				resolve();
+				return false;
+
+			} );
+
+		} );
+		return this.labels && this.view.viewer ? this.labels.hiddenLabels() : [];
 
 	}
 

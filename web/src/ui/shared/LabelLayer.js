@@ -5,7 +5,8 @@
 // off the panels over or beside the view: the stage's other children (the EPG card) and the
 // elements `obstacles()` gives (the side panel).
 //
-// window.glasshead.labels = { visible, count, hovered, overlapping }.
+// window.glasshead.labels = { visible, count, names, hidden, hovered, overlapping }: `hidden` names
+// the labels on show whose point the camera cannot see (bone in the way).
 
 import { Raycaster, Vector2, Vector3 } from 'three';
 import { registerDebug } from '../../debug.js';
@@ -18,6 +19,10 @@ const SVG = 'http://www.w3.org/2000/svg';
 /** Meshes never named by a pointer: the skin is see-through, the air is no part. */
 const SKIN_TISSUES = new Set( [ 'skin', 'shell' ] );
 const SKIPPED_ROLES = new Set( [ 'air' ] );
+/** Tissues that hide what lies behind them from the camera: bone and teeth. */
+const BONE_TISSUES = new Set( [ 'maxilla', 'mandible', 'bone', 'solidBone' ] );
+/** How far short of a label's point a hit must be to hide it, mm: the point lies on a surface. */
+const COVER_MARGIN_MM = 3;
 
 export class LabelLayer {
 
@@ -38,6 +43,7 @@ export class LabelLayer {
 		this.visible = false;
 		this.hovered = null;
 		this.raycaster = new Raycaster();
+		this.sightline = new Raycaster();
 		this.pointer = new Vector2();
 		this.teeth = new Map();
 
@@ -78,16 +84,36 @@ export class LabelLayer {
 				return false; // the labels are HTML over the canvas: they never need a new 3D frame
 
 			} ),
-			registerDebug( 'labels', () => ( { visible: this.visible, count: this.visible ? this.labels.length : 0, hovered: this.hovered, overlapping: this.visible ? this.overlapping : 0 } ) ),
+			registerDebug( 'labels', () => ( { visible: this.visible, count: this.visible ? this.shown.length : 0, names: this.visible ? this.shown.map( ( label ) => label.entry.name ) : [], hidden: this.visible ? this.hiddenLabels() : [], hovered: this.hovered, overlapping: this.visible ? this.overlapping : 0 } ) ),
 		];
 
 	}
 
+	/**
+	 * Show every label (true), none (false), or only those named (landmark names, as a lesson
+	 * item lists them: the place and the articulator).
+	 */
 	setVisible( on ) {
 
-		this.visible = on;
-		this.element.hidden = ! on;
-		if ( on ) this.layout();
+		const only = Array.isArray( on ) ? new Set( on ) : null;
+		this.visible = Boolean( on ) && ( ! only || only.size > 0 );
+		for ( const label of this.labels ) {
+
+			label.shown = ! only || only.has( label.entry.name );
+			label.text.hidden = ! label.shown;
+			label.line.style.display = label.dot.style.display = label.shown ? '' : 'none';
+
+		}
+
+		this.element.hidden = ! this.visible;
+		if ( this.visible ) this.layout();
+
+	}
+
+	/** The labels on show. */
+	get shown() {
+
+		return this.labels.filter( ( label ) => label.shown !== false );
 
 	}
 
@@ -112,33 +138,35 @@ export class LabelLayer {
 
 	}
 
-	/** Put every label at its landmark on the screen, keeping labels apart. */
+	/** Put every label on show at its landmark on the screen, keeping labels apart. */
 	layout() {
 
 		const rect = this.stage.getBoundingClientRect();
 		const canvasRect = this.viewer.renderer.domElement.getBoundingClientRect();
 		const v = new Vector3();
-		const points = this.labels.map( ( { entry } ) => {
+		const labels = this.shown;
+		const entries = labels.map( ( label ) => label.entry );
+		const points = labels.map( ( { entry } ) => {
 
 			v.fromArray( entry.position ).project( this.viewer.camera );
 			return { x: ( v.x + 1 ) / 2 * canvasRect.width + canvasRect.left - rect.left, y: ( 1 - v.y ) / 2 * canvasRect.height + canvasRect.top - rect.top };
 
 		} );
-		const angles = preferredAngles( this.entries, points );
-		const anchors = this.labels.map( ( label, i ) => {
+		const angles = preferredAngles( entries, points );
+		const anchors = labels.map( ( label, i ) => {
 
 			label.size ??= { w: label.text.offsetWidth, h: label.text.offsetHeight };
 			return { ...points[ i ], ...label.size, angle: angles[ i ] };
 
 		} );
 		// Places first (they are read in order along the roof), then the parts.
-		const order = anchors.map( ( _, i ) => i ).sort( ( a, b ) => ( this.entries[ a ].kind === 'place' ? 0 : 1 ) - ( this.entries[ b ].kind === 'place' ? 0 : 1 ) );
+		const order = anchors.map( ( _, i ) => i ).sort( ( a, b ) => ( entries[ a ].kind === 'place' ? 0 : 1 ) - ( entries[ b ].kind === 'place' ? 0 : 1 ) );
 		const boxes = placeLabels( order.map( ( i ) => anchors[ i ] ), { width: rect.width, height: rect.height }, this.obstacleRects( rect ) );
 		this.overlapping = boxes.filter( ( box ) => box.overlapping ).length;
 		this.svg.setAttribute( 'viewBox', `0 0 ${ rect.width } ${ rect.height }` );
 		order.forEach( ( i, k ) => {
 
-			const { line, dot, text } = this.labels[ i ];
+			const { line, dot, text } = labels[ i ];
 			const box = boxes[ k ];
 			const p = points[ i ];
 			text.style.transform = `translate(${ box.x }px, ${ box.y }px)`;
@@ -171,6 +199,40 @@ export class LabelLayer {
 		}
 
 		return rects;
+
+	}
+
+	/**
+	 * The names of the labels on show whose point the camera cannot see: bone or teeth lie
+	 * between (cut away with the cutaway; the skin too when it is opaque), the part the label
+	 * itself names aside. A lesson that names the tongue tip in a view where the jaw hides it
+	 * shows nothing it teaches.
+	 */
+	hiddenLabels() {
+
+		const head = this.head;
+		const opaqueSkin = ! head.transparency && ! head.cutaway;
+		const blockers = [];
+		for ( const part of head.parts.values() ) {
+
+			if ( ! part.group.visible || ! ( BONE_TISSUES.has( part.tissue ) || ( opaqueSkin && SKIN_TISSUES.has( part.tissue ) ) ) ) continue;
+			for ( const mesh of part.meshes ) if ( mesh.visible && ! mesh.userData.skinPass?.match( /back|prepass/ ) ) blockers.push( { mesh, part: part.name } );
+
+		}
+
+		const eye = this.viewer.camera.getWorldPosition( new Vector3() );
+		const direction = new Vector3();
+		return this.shown.filter( ( { entry } ) => {
+
+			const own = new Set( entry.meshes );
+			const meshes = blockers.filter( ( b ) => ! own.has( b.part ) ).map( ( b ) => b.mesh );
+			direction.fromArray( entry.position ).sub( eye );
+			const distance = direction.length();
+			this.sightline.set( eye, direction.normalize() );
+			this.sightline.far = Math.max( distance - COVER_MARGIN_MM, 0 );
+			return this.sightline.intersectObjects( meshes, false ).some( ( hit ) => ! head.cutaway || hit.point.z >= - 1e-3 );
+
+		} ).map( ( { entry } ) => entry.name );
 
 	}
 

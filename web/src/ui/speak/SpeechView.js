@@ -7,7 +7,7 @@
 
 import { getAnatomy } from '../../api.js';
 import { packTracks, sampleTracks } from '../../core/trackSampling.js';
-import { viewPose } from '../../scene/viewPresets.js';
+import { zoomedPose } from '../../scene/viewPresets.js';
 import { h } from '../shared/dom.js';
 import { loadAnatomy, loadArticulation, loadLandmarks, loadPhonemeTarget } from '../shared/loaders.js';
 import { PhonemeStrip } from './PhonemeStrip.js';
@@ -17,8 +17,6 @@ import { phoneIndexAt, SpeechClock } from './speechClock.js';
 import { View } from '../shared/View.js';
 import './speech.css';
 
-/** What the 3D view frames in profile: the mouth, the velum and the pharynx (mm). */
-const FOCUS = Object.freeze( { center: [ - 4, - 8, 0 ], radius: 68 } );
 /** The voicing cue (0..1) above which the voice is shown sounding. */
 const VOICED = 0.5;
 
@@ -137,7 +135,7 @@ export class SpeechView extends View {
 		this.side.append( ...this.panels.sections );
 		this.onUnmount( this.viewer.onFrame( () => this.tick() ) );
 		this.apply();
-		this.viewer.flyTo( viewPose( 'profile', FOCUS.center, FOCUS.radius, this.viewer.camera.fov, this.viewer.aspect ), 0 );
+		this.viewer.flyTo( zoomedPose( 'profile', 1, this.viewer.camera.fov, this.viewer.aspect ), 0 );
 		this.state.loaded = true;
 		this.form.setBusy( false );
 		this.form.showStatus( '' );
