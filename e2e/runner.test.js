@@ -119,6 +119,27 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 
 	} );
 
+	test( 'Present takes the focus, so the first Space plays; its bar says Esc leaves and hides while the pointer rests', async () => {
+
+		await page.getByRole( 'button', { name: 'Present', exact: true } ).click();
+		await page.waitForFunction( () => window.glasshead.runner.presenting === true, null, { timeout: 60_000 } );
+		assert.equal( await page.evaluate( () => document.activeElement?.classList.contains( 'lesson-runner' ) ), true, 'the runner has the focus' );
+		const bar = page.getByRole( 'toolbar', { name: 'Presenting' } );
+		assert.ok( await bar.isVisible() );
+		assert.match( await bar.textContent(), /Esc leaves/ );
+		await page.keyboard.press( ' ' );
+		await page.waitForFunction( () => window.glasshead.speech.playing === true || window.glasshead.speech.time > 0, null, { timeout: 60_000 } );
+		await page.waitForFunction( () => document.querySelector( '.lr-present-bar' ).classList.contains( 'lr-resting' ), null, { timeout: 10_000 } );
+		assert.equal( await bar.evaluate( ( element ) => getComputedStyle( element ).pointerEvents ), 'none', 'the resting bar takes no taps' );
+		await page.mouse.move( 300, 300 );
+		await page.mouse.move( 320, 310 );
+		await page.waitForFunction( () => ! document.querySelector( '.lr-present-bar' ).classList.contains( 'lr-resting' ), null, { timeout: 10_000 } );
+		await page.keyboard.press( 'Escape' );
+		await page.waitForFunction( () => window.glasshead.runner.presenting === false, null, { timeout: 60_000 } );
+		assert.equal( await bar.isVisible(), false );
+
+	} );
+
 	test( 'F shows the head alone with the target in big letters and the item dots; Esc comes back', async () => {
 
 		await page.keyboard.press( 'f' );

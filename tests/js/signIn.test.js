@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { SESSION_KEY, currentSession } from '../../web/src/session.js';
 import { ApiError } from '../../web/src/api.js';
 import {
-	hasRole, isForbidden, isSignedOut, nextFromHash, retryAfterSeconds, rolesWords, safeNext, signIn, signInHref,
+	hasRole, isForbidden, isSignedOut, landingFor, nextFromHash, ROLE_HOMES, retryAfterSeconds, rolesWords, safeNext, signIn, signInHref,
 	signInMessage, signOut, waitWords, whoLabel,
 } from '../../web/src/ui/shared/signIn.js';
 
@@ -174,5 +174,16 @@ test( 'signing out revokes the token on the server and forgets it, even when the
 
 	assert.equal( refused.calls[ 0 ].url, '/api/v1/auth/child-sessions/current' );
 	assert.equal( currentSession( { win } ), null );
+
+} );
+
+test( 'a sign-in from the start page lands on the role\'s own home; one asked from a view goes back to it', () => {
+
+	assert.deepEqual( Object.fromEntries( [ 'teacher', 'clinician', 'author', 'admin' ].map( ( role ) => [ role, landingFor( '#/', role ) ] ) ),
+		{ teacher: '#/teach', clinician: '#/clinician', author: '#/author', admin: '#/admin' } );
+	assert.equal( landingFor( null, 'teacher' ), ROLE_HOMES.teacher );
+	assert.equal( landingFor( '#/workbench', 'teacher' ), '#/workbench' );
+	assert.equal( landingFor( 'https://elsewhere.example/', 'clinician' ), '#/clinician', 'never another site' );
+	assert.equal( landingFor( '#/', 'someone' ), '#/', 'a role without a home starts on the head' );
 
 } );

@@ -19,6 +19,9 @@ import { SpeechView } from '../speak/SpeechView.js';
 import { View } from '../shared/View.js';
 import './lessonRunner.css';
 
+/** How long the presentation bar stays after the pointer or a key last moved, ms. */
+const BAR_REST_MS = 3000;
+
 export class LessonRunner extends View {
 
 	/** @param {{ api?: object, win?: Window }} options */
@@ -170,7 +173,15 @@ export class LessonRunner extends View {
 		this.dotStrip = h( 'div', { className: 'lr-itembar' }, h( 'h1', { className: 'lr-title' }, lesson.title ), h( 'nav', { className: 'lr-dots', 'aria-label': 'Items' }, ...this.dots ) );
 		this.headBox = h( 'div', { className: 'lr-head' } );
 		this.panel = new LessonRunnerPanel( { api: this.api } );
-		this.root.append( this.toolbar, this.dotStrip, h( 'div', { className: 'lr-main' }, this.headBox, this.targetBox ), this.panel.element );
+		this.presentPlay = button( 'Play', () => this.act( 'play' ), { className: 'lr-play' } );
+		this.presentSlow = button( 'Slow (S)', () => this.act( 'slow' ), { 'aria-pressed': 'false' } );
+		this.presentBar = h( 'div', { className: 'lr-present-bar', role: 'toolbar', 'aria-label': 'Presenting' },
+			button( 'Previous', () => this.act( 'previous' ) ), this.presentPlay, button( 'Next', () => this.act( 'next' ) ), this.presentSlow,
+			button( 'Leave (Esc)', () => this.act( 'leave' ) ),
+			h( 'p', { className: 'lr-present-hint' }, 'Space plays, the arrows change items, Esc leaves.' ) );
+		this.root.append( this.toolbar, this.dotStrip, h( 'div', { className: 'lr-main' }, this.headBox, this.targetBox ), this.panel.element, this.presentBar );
+		this.listen( this.root, 'pointermove', () => this.wake() );
+		this.listen( this.root, 'pointerdown', () => this.wake() );
 		this.speech = new SpeechView( { api: this.api, sayOnLoad: false } ).mount( this.headBox );
 		this.presenter = new ItemPresenter( this.speech, { obstacles: () => [ this.targetBox ] } );
 		this.unwatch = this.speech.viewer?.onFrame( () => this.syncPlay() );
@@ -213,7 +224,7 @@ export class LessonRunner extends View {
 	syncPlay() {
 
 		const label = this.speech?.clock.playing ? 'Pause' : 'Play';
-		if ( this.playButton.textContent !== label ) this.playButton.textContent = label;
+		for ( const button of [ this.playButton, this.presentPlay ] ) if ( button.textContent !== label ) button.textContent = label;
 		return false;
 
 	}
@@ -222,6 +233,7 @@ export class LessonRunner extends View {
 
 		if ( this.screen !== 'lesson' ) return;
 		const action = runnerAction( event );
+		if ( this.presenting ) this.wake();
 		if ( ! action ) return;
 		event.preventDefault();
 		this.act( action );
@@ -241,7 +253,7 @@ export class LessonRunner extends View {
 		} else if ( action === 'slow' ) {
 
 			this.slow = ! this.slow;
-			this.slowButton.setAttribute( 'aria-pressed', String( this.slow ) );
+			for ( const button of [ this.slowButton, this.presentSlow ] ) button.setAttribute( 'aria-pressed', String( this.slow ) );
 			if ( this.presenter.settings ) this.presenter.setSpeed( runnerSpeed( this.presenter.settings, this.slow ) );
 
 		} else if ( action === 'fullscreen' ) this.toggleFullscreen();
@@ -276,18 +288,41 @@ export class LessonRunner extends View {
 
 	}
 
-	/** Presentation mode on or off: the head fills the screen, the panel and the bars hide. */
+	/**
+	 * Presentation mode on or off: the head fills the screen, the panel and the bars hide, and a
+	 * small bar of controls with a hint shows until the pointer rests. The runner takes the focus
+	 * (the Present button it came from is hidden), so that Space and the arrows work at once.
+	 */
 	setPresenting( on ) {
 
+		const was = this.presenting;
 		this.presenting = Boolean( on ) && this.screen === 'lesson';
 		this.root?.classList.toggle( 'presenting', this.presenting );
 		this.window.document.body.classList.toggle( 'lr-presenting', this.presenting );
 		this.speech?.viewer?.requestRender();
+		if ( this.presenting && ! was ) {
+
+			this.root.tabIndex = - 1;
+			this.root.focus( { preventScroll: true } );
+			this.wake();
+
+		}
+
+	}
+
+	/** Show the presentation bar, and hide it again once nothing has moved for BAR_REST_MS. */
+	wake() {
+
+		if ( ! this.presentBar ) return;
+		this.presentBar.classList.remove( 'lr-resting' );
+		this.window.clearTimeout( this.restTimer );
+		this.restTimer = this.window.setTimeout( () => this.presentBar?.classList.add( 'lr-resting' ), BAR_REST_MS );
 
 	}
 
 	unmount() {
 
+		this.window.clearTimeout( this.restTimer );
 		if ( this.window.document.fullscreenElement ) this.window.document.exitFullscreen?.();
 		this.closeLesson();
 		super.unmount();

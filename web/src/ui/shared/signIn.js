@@ -23,6 +23,22 @@ export function signInHref( here = DEFAULT_NEXT ) {
 
 }
 
+/** Where each role starts its work: a teacher teaches, a clinician reads, an author writes. */
+export const ROLE_HOMES = Object.freeze( {
+	teacher: '#/teach', clinician: '#/clinician', author: '#/author', admin: '#/admin',
+} );
+
+/**
+ * Where to go once signed in as `role`: the place the sign-in was asked from (`next`), or, when
+ * it was asked from the start page or from nowhere, the role's own home.
+ */
+export function landingFor( next, role ) {
+
+	const safe = safeNext( next );
+	return safe === DEFAULT_NEXT ? ROLE_HOMES[ role ] ?? DEFAULT_NEXT : safe;
+
+}
+
 /**
  * A place to go back to, or DEFAULT_NEXT: only a view of this page ('#/…'), never another site
  * (an address in a link must not send a person who just signed in somewhere else) and never the

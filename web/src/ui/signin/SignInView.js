@@ -8,7 +8,7 @@
 
 import { currentSession, onSessionChange } from '../../session.js';
 import { h } from '../shared/dom.js';
-import { nextFromHash, signIn, signOut, whoLabel } from '../shared/signIn.js';
+import { landingFor, nextFromHash, signIn, signOut, whoLabel } from '../shared/signIn.js';
 import { View } from '../shared/View.js';
 import '../shared/signin.css';
 
@@ -80,7 +80,7 @@ export class SignInView extends View {
 		const signOutButton = h( 'button', { type: 'button', onClick: () => signOut( { win } ) }, 'Sign out' );
 		this.signedIn.append(
 			h( 'p', { role: 'status' }, `You are signed in as ${ whoLabel( session ) }.` ),
-			h( 'div', { className: 'signin-actions' }, h( 'a', { className: 'signin-continue', href: this.next() }, 'Continue' ), signOutButton ),
+			h( 'div', { className: 'signin-actions' }, h( 'a', { className: 'signin-continue', href: landingFor( this.next(), session.user?.role ) }, 'Continue' ), signOutButton ),
 		);
 
 	}
@@ -103,9 +103,9 @@ export class SignInView extends View {
 		this.show( null );
 		try {
 
-			await signIn( username.value, password.value, { win: this.window } );
+			const session = await signIn( username.value, password.value, { win: this.window } );
 			password.value = '';
-			debug.next = this.next();
+			debug.next = landingFor( this.next(), session.user?.role );
 			this.window.location.hash = debug.next;
 
 		} catch ( error ) {
