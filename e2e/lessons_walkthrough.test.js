@@ -29,7 +29,7 @@ const LESSON = Object.freeze( {
 
 describe( 'a first lesson, from the author to the child and back to the teacher', { timeout: 900_000 }, () => {
 
-	let server, browser, sessions, lesson, schoolClass, children, teacherPage, childPage;
+	let server, browser, sessions, lesson, schoolClass, children, teacherPage, childPage, join;
 
 	/** A request of the test itself, as the signed-in `session`. */
 	const api = async ( session, method, path, body ) => {
@@ -93,7 +93,22 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		assert.equal( runner.panel.classId, schoolClass.id );
 		const assignments = ( await api( sessions.teacher, 'GET', `assignments?lesson_id=${ lesson.id }` ) ).body;
 		assert.deepEqual( assignments.assignments.map( ( a ) => [ a.lesson_id, a.class_id ] ), [ [ lesson.id, schoolClass.id ] ] );
-		assert.match( await teacherPage.locator( '.lr-code' ).textContent(), new RegExp( `#/practice with the class code ${ schoolClass.join_code }` ) );
+		// The way in, large: the code in two groups, a QR code of the join link, and the link.
+		await teacherPage.waitForFunction( () => Boolean( window.glasshead.runner.panel?.join?.code ), null, { timeout: 30_000 } );
+		join = ( await readDebug( teacherPage ) ).runner.panel.join;
+		assert.deepEqual( [ join.code, join.link ], [ schoolClass.join_code, `${ server.baseUrl }/#/practice?code=${ schoolClass.join_code }` ] );
+		assert.equal( await teacherPage.locator( '.lr-join-code' ).textContent(), `${ schoolClass.join_code.slice( 0, 3 ) } ${ schoolClass.join_code.slice( 3 ) }` );
+		const fontPx = await teacherPage.locator( '.lr-join-code' ).evaluate( ( element ) => parseFloat( getComputedStyle( element ).fontSize ) );
+		assert.ok( fontPx >= 32, `the code is ${ fontPx } px` );
+		assert.equal( await teacherPage.getByRole( 'img', { name: `QR code of ${ join.link }` } ).count(), 1 );
+		assert.equal( join.reachable, false, '127.0.0.1 is the test machine\'s own address' );
+		assert.ok( await teacherPage.getByText( 'tablets cannot reach it' ).isVisible() );
+		await teacherPage.getByRole( 'button', { name: 'Show to the class' } ).click();
+		const shown = teacherPage.getByRole( 'dialog', { name: `How to join ${ schoolClass.name }` } );
+		await shown.waitFor( { timeout: 10_000 } );
+		await saveScreenshot( teacherPage, 'walkthrough-join-1366x768' );
+		await teacherPage.keyboard.press( 'Escape' );
+		await shown.waitFor( { state: 'detached', timeout: 10_000 } );
 		// Back to the list while the child practises: one head drawing at a time on the test machine.
 		await teacherPage.getByRole( 'link', { name: 'All lessons' } ).click();
 		await teacherPage.waitForFunction( () => window.glasshead.runner?.screen === 'list', null, { timeout: 30_000 } );
@@ -106,11 +121,8 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		childPage = await context.newPage();
 		childPage.problems = [];
 		childPage.on( 'pageerror', ( error ) => childPage.problems.push( `uncaught: ${ error.message }` ) );
-		await childPage.goto( `${ server.baseUrl }/#/practice` );
-		// The adult types the code as they read it: small letters, a space in the middle.
-		const code = schoolClass.join_code.toLowerCase();
-		await childPage.getByRole( 'textbox', { name: 'Class code' } ).fill( `${ code.slice( 0, 3 ) } ${ code.slice( 3 ) }` );
-		await childPage.getByRole( 'button', { name: 'Go' } ).tap();
+		// The tablet scanned the QR code: the join link opens on the class's pictures.
+		await childPage.goto( join.link );
 		await childPage.waitForFunction( () => window.glasshead.practice?.screen === 'roster', null, { timeout: 30_000 } );
 		assert.deepEqual( ( await readDebug( childPage ) ).practice.roster, [ 'Ada', 'Bo' ] );
 		assert.ok( await childPage.getByRole( 'group', { name: 'Who are you?' } ).getByRole( 'img' ).count() === 0, 'the pictures are inside named buttons' );

@@ -22,6 +22,10 @@ class Settings(BaseSettings):
     #: Host names the server answers to, comma-separated (DNS rebinding guard); empty: the
     #: loopback names and ``host``. Behind a load balancer: the name users type.
     allowed_hosts: str = ""
+    #: The address children's tablets and the school's computers reach this server at
+    #: (``http://glasshead.school.example:8000``), for the join link and its QR code a teacher
+    #: shows; empty: the address the teacher's own browser used.
+    public_url: str = Field("", pattern=r"^(https?://[^\s/?#]+(/[^\s?#]*)?)?$")
     #: Reference data (meshes, EPG, ultrasound); read-only.
     data_dir: Path = REPO_ROOT.parent / "shared" / "data"
     #: Output of `glasshead build`.

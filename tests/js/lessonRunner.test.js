@@ -115,6 +115,9 @@ test( 'Space plays, the arrows move, S slows, F goes full screen and Esc leaves;
 	assert.equal( on( 'ArrowDown' ), null );
 	assert.equal( on( 's', { tagName: 'INPUT' } ), null );
 	assert.equal( on( 'Escape', { tagName: 'SELECT' } ), 'leave' );
+	const inDialog = { tagName: 'BUTTON', closest: ( selector ) => ( selector === 'dialog' ? {} : null ) };
+	assert.equal( on( 'Escape', inDialog ), null, 'an open dialog closes on its own Esc' );
+	assert.equal( on( 'ArrowRight', inDialog ), null );
 	assert.equal( on( ' ', { tagName: 'BUTTON' } ), null, 'Space on a button presses that button' );
 	assert.equal( on( 'f', undefined, { ctrlKey: true } ), null );
 

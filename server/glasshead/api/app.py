@@ -22,7 +22,7 @@ from glasshead.settings import get_settings
 API_PREFIX = "/api/v1"
 
 #: Route modules under glasshead.api.routes, each exposing ``router``; included under API_PREFIX.
-ROUTE_MODULES = ["health", "anatomy", "recordings", "epg_compare", "epg_coarticulated",
+ROUTE_MODULES = ["health", "site", "anatomy", "recordings", "epg_compare", "epg_coarticulated",
                  "epg_indices", "ema", "poses",
                  "collision", "tongue", "epg", "face", "landmarks", "velum",
                  "phonemes", "observations", "fits", "utterances", "auth", "users",

@@ -41,6 +41,8 @@ export const RUNNER_KEYS = Object.freeze( {
 export function runnerAction( event ) {
 
 	if ( event.ctrlKey || event.metaKey || event.altKey ) return null;
+	// An open dialog (the class code shown to the class) keeps its keys: Esc closes it.
+	if ( event.target?.closest?.( 'dialog' ) ) return null;
 	const tag = event.target?.tagName;
 	if ( tag === 'INPUT' || tag === 'TEXTAREA' || tag === 'SELECT' ) return event.key === 'Escape' ? 'leave' : null;
 	// Space on a focused button presses the button; the runner's own play is the same action.

@@ -8,6 +8,7 @@
 import { h } from '../shared/dom.js';
 import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
 import { targetLabel } from './LessonRunnerItems.js';
+import { LessonRunnerJoin } from './LessonRunnerJoin.js';
 import { LessonRunnerRoster } from './LessonRunnerRoster.js';
 import { LessonRunnerStaff } from './LessonRunnerStaff.js';
 import { isForbidden } from '../shared/signIn.js';
@@ -47,13 +48,6 @@ export function shortTime( iso, now = new Date() ) {
 
 }
 
-/** Where children practise: this page's #/practice. */
-function practiceAddress( location = globalThis.location ) {
-
-	return location ? `${ location.origin }${ location.pathname }#/practice` : '#/practice';
-
-}
-
 export class LessonRunnerPanel {
 
 	/** @param {{ api: object }} options the page's API client */
@@ -68,7 +62,7 @@ export class LessonRunnerPanel {
 		this.classSelect = h( 'select', { id: 'lr-class', className: 'lr-select', 'aria-label': 'Class', onChange: () => this.refresh() } );
 		this.assignButton = h( 'button', { type: 'button', className: 'lr-assign', onClick: () => this.assign() }, 'Assign to this class' );
 		this.assignedNote = h( 'p', { className: 'lr-note', role: 'status', 'aria-live': 'polite' } );
-		this.codeNote = h( 'p', { className: 'lr-note lr-code' } );
+		this.join = new LessonRunnerJoin( { api } );
 		this.childrenNote = h( 'p', { className: 'lr-note lr-children' } );
 		this.roster = new LessonRunnerRoster( { api, classId: () => this.classId, onClass: ( made ) => this.loadClasses( made.id ), onChild: () => this.refresh() } );
 		this.sharing = new LessonRunnerStaff( { api } );
@@ -78,7 +72,7 @@ export class LessonRunnerPanel {
 		this.classLabel = h( 'label', { className: 'field-label', for: 'lr-class' }, 'Class' );
 		this.recordsHead = h( 'div', { className: 'lr-records-head' }, h( 'h2', { className: 'lr-heading' }, 'Practice' ), this.refreshButton );
 		this.element = h( 'aside', { className: 'lr-panel', 'aria-label': 'Class and practice' },
-			this.classLabel, this.classSelect, this.assignButton, this.assignedNote, this.codeNote, this.childrenNote, this.roster.element,
+			this.classLabel, this.classSelect, this.assignButton, this.assignedNote, this.join.element, this.childrenNote, this.roster.element,
 			this.sharing.element, this.recordsHead, this.table, this.error );
 
 	}
@@ -140,7 +134,7 @@ export class LessonRunnerPanel {
 		if ( classId !== this.sharing.classId ) this.sharing.load( classId ); // its own errors, its own line
 		if ( ! lesson || classId === null ) {
 
-			this.codeNote.textContent = '';
+			this.join.show( null );
 			this.childrenNote.textContent = '';
 			return this.show( [] );
 
@@ -159,7 +153,8 @@ export class LessonRunnerPanel {
 			this.assigned = assignments.assignments ?? [];
 			const chosen = this.classes.find( ( c ) => c.id === classId );
 			const name = chosen?.name ?? 'this class';
-			this.codeNote.textContent = chosen ? `Children practise at ${ practiceAddress() } with the class code ${ chosen.join_code }.` : '';
+			await this.join.show( chosen ?? null );
+			if ( load !== this.loads ) return;
 			this.childrenNote.textContent = kids.length ? `In the class: ${ kids.map( ( kid ) => kid.display_name ).join( ', ' ) }.` : 'No children in this class yet.';
 			this.assignedNote.textContent = this.assigned.length > 0 ? `${ name } has this lesson.` : `${ name } does not have this lesson yet.`;
 			this.assignButton.disabled = this.assigned.length > 0;
@@ -221,7 +216,7 @@ export class LessonRunnerPanel {
 		return {
 			classId: this.classId, classes: this.classes.map( ( c ) => c.name ), assigned: this.assigned.length > 0,
 			records: this.rows.map( ( row ) => ( { id: row.id, child: row.child.display_name, item: row.item, rating: row.rating?.rating ?? null, replays: row.replays } ) ),
-			sharing: this.sharing.report(),
+			sharing: this.sharing.report(), join: this.join.report(),
 		};
 
 	}

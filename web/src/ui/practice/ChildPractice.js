@@ -14,7 +14,7 @@
 
 import { currentSession } from '../../session.js';
 import { h } from '../shared/dom.js';
-import { PracticeRound } from './ChildPracticeFlow.js';
+import { joinCodeFromHash, PracticeRound } from './ChildPracticeFlow.js';
 import { bigButton, signInMethods } from './ChildPracticeSignIn.js';
 import { KEEPING_LABEL, PracticeAudio, uploadFailureMessage } from './PracticeAudio.js';
 import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
@@ -78,11 +78,16 @@ export class ChildPractice extends View {
 
 	}
 
-	/** A child already signed in goes to their lessons; anyone else starts at the class code. */
+	/**
+	 * A child already signed in goes to their lessons; anyone else starts at the class code, or,
+	 * come by a class's join link (its QR code), at the class's pictures.
+	 */
 	start() {
 
-		if ( this.child ) this.showLessons();
-		else this.showCode();
+		if ( this.child ) return this.showLessons();
+		this.showCode();
+		const code = joinCodeFromHash( this.window.location.hash );
+		if ( code ) this.findClass( code );
 
 	}
 

@@ -20,6 +20,15 @@ export function looksLikeJoinCode( code ) {
 
 }
 
+/** The class code a join link carries ('#/practice?code=ACD347'), normalised, or null. */
+export function joinCodeFromHash( hash ) {
+
+	const query = new URLSearchParams( String( hash ?? '' ).split( '?' ).slice( 1 ).join( '?' ) );
+	const code = normaliseJoinCode( query.get( 'code' ) ?? '' );
+	return looksLikeJoinCode( code ) ? code : null;
+
+}
+
 /** One pass through a lesson's items for one child. */
 export class PracticeRound {
 
