@@ -73,7 +73,7 @@ describe( 'a child’s data', { timeout: 900_000 }, () => {
 		await dialog.getByRole( 'button', { name: 'Delete Ada’s data' } ).click();
 		await page.waitForFunction( ( id ) => window.glasshead.admin.deleted.includes( id ), setting.ada.id, { timeout: 30_000 } );
 		assert.equal( await row.count(), 0, 'the row is gone' );
-		assert.match( await page.getByRole( 'status' ).first().textContent(), /2 practice records, 1 EPG recording, 1 assignment and 1 sign-in/ );
+		assert.match( await page.getByRole( 'region', { name: 'Privacy: children’s data' } ).getByRole( 'status' ).textContent(), /2 practice records, 1 EPG recording, 1 assignment and 1 sign-in/ );
 
 		const admin = await apiSession( server, 'admin' );
 		const get = async ( path ) => ( await fetch( `${ server.baseUrl }/api/v1/${ path }`, { headers: authHeaders( admin ) } ) );
@@ -81,6 +81,47 @@ describe( 'a child’s data', { timeout: 900_000 }, () => {
 		assert.equal( ( await get( `epg/recordings/${ setting.recordingId }` ) ).status, 404 );
 		assert.equal( ( await ( await get( `practice?child_id=${ setting.ada.id }` ) ).json() ).total, 0 );
 		assert.equal( ( await ( await get( `practice?child_id=${ setting.bo.id }` ) ).json() ).total, 1, 'the classmate’s practice stays' );
+		assert.deepEqual( page.problems, [] );
+		await page.close();
+
+	} );
+
+	test( 'an admin adds a teacher with a made-up password, who signs in with it; renames them, then removes them', async () => {
+
+		const page = await openPage( browser, { width: 1366, height: 768 } );
+		await signIn( page, server, 'admin' );
+		await page.goto( `${ server.baseUrl }/#/admin` );
+		await page.waitForFunction( () => ( window.glasshead?.admin?.people?.users.length ?? 0 ) >= 2, null, { timeout: 30_000 } );
+		const people = page.getByRole( 'region', { name: 'People who sign in' } );
+		const form = people.getByRole( 'form', { name: 'Add a person' } );
+		await form.getByLabel( 'Name shown' ).fill( 'Ms Rivera' );
+		await form.getByLabel( /^Username/ ).fill( 'rivera@school.example' );
+		await form.getByLabel( 'Role' ).selectOption( 'teacher' );
+		await form.getByRole( 'button', { name: 'Make one up' } ).click();
+		const password = await form.getByLabel( /^First password/ ).inputValue();
+		assert.match( password, /^[a-z2-9]{4}-[a-z2-9]{4}-[a-z2-9]{4}$/ );
+		await form.getByRole( 'button', { name: 'Add this person' } ).click();
+		await page.waitForFunction( () => window.glasshead.admin.people.added.length === 1, null, { timeout: 30_000 } );
+		const [ id ] = ( await readDebug( page ) ).admin.people.added;
+		assert.match( await people.getByRole( 'status' ).textContent(), new RegExp( `Added Ms Rivera \\(teacher\\)\\. Give them the username rivera@school\\.example and the password ${ password }` ) );
+		const signedIn = await fetch( `${ server.baseUrl }/api/v1/auth/sessions`, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify( { username: 'rivera@school.example', password } ) } );
+		assert.equal( signedIn.status, 201, 'the new teacher signs in with the password given' );
+		await saveScreenshot( page, 'admin-people-1366x768' );
+
+		const row = people.locator( `li[data-user="${ id }"]` );
+		await row.getByRole( 'button', { name: 'Rename Ms Rivera…' } ).click();
+		await row.getByLabel( 'New name for Ms Rivera' ).fill( 'Ms Rivera-Diaz' );
+		await row.getByRole( 'button', { name: 'Save the name' } ).click();
+		await page.waitForFunction( ( user ) => window.glasshead.admin.people.renamed.includes( user ), id, { timeout: 30_000 } );
+		await people.locator( `li[data-user="${ id }"]` ).getByText( 'Ms Rivera-Diaz' ).waitFor( { timeout: 30_000 } );
+		await people.locator( `li[data-user="${ id }"]` ).getByRole( 'button', { name: 'Remove Ms Rivera-Diaz…' } ).click();
+		await people.getByRole( 'button', { name: 'Remove Ms Rivera-Diaz', exact: true } ).click();
+		await page.waitForFunction( ( user ) => window.glasshead.admin.people.removed.includes( user ), id, { timeout: 30_000 } );
+		const admin = await apiSession( server, 'admin' );
+		assert.equal( ( await fetch( `${ server.baseUrl }/api/v1/users/${ id }`, { headers: authHeaders( admin ) } ) ).status, 404 );
+		const me = ( await readDebug( page ) ).admin.people;
+		assert.equal( await people.getByRole( 'button', { name: /^Remove E2E Admin/ } ).count(), 0, 'no one removes themselves here' );
+		assert.ok( me.users.length >= 2 );
 		assert.deepEqual( page.problems, [] );
 		await page.close();
 

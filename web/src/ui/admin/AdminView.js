@@ -1,9 +1,11 @@
-// The admin's privacy page (route `#/admin`): every class with its children, and for each child
-// an export of everything stored about them (GET /children/{id}/export, a JSON file) and its
-// deletion (DELETE /children/{id}/data) after a confirmation on the page that says what goes.
-// Only an admin may do either; anyone else sees who may and a link to sign in as them.
+// The admin's page (route `#/admin`): the people who sign in, added, renamed and removed here
+// (AdminPeople.js); then every class with its children, and for each child an export of
+// everything stored about them (GET /children/{id}/export, a JSON file) and its deletion
+// (DELETE /children/{id}/data) after a confirmation on the page that says what goes. Only an
+// admin may do any of it; anyone else sees who may and a link to sign in as them.
 
 import { currentSession, onSessionChange } from '../../session.js';
+import { AdminPeople } from './AdminPeople.js';
 import { confirmWords, deletedWords, exportName } from './adminRows.js';
 import { h } from '../shared/dom.js';
 import { downloadFile } from '../shared/download.js';
@@ -27,7 +29,7 @@ export class AdminView extends View {
 
 		this.attach( container, h( 'div', { className: 'admin-view' } ) );
 		this.onUnmount( onSessionChange( () => this.show() ) );
-		this.debugFields( { admin: () => ( { ...this.state } ) } );
+		this.debugFields( { admin: () => ( { ...this.state, people: this.people ? { ...this.people.state } : null } ) } );
 		this.show();
 		return this;
 
@@ -38,7 +40,7 @@ export class AdminView extends View {
 
 		this.root.replaceChildren();
 		const session = currentSession( { win: this.window } );
-		this.heading = h( 'h1', { className: 'title' }, 'Privacy: children’s data' );
+		this.heading = h( 'h1', { className: 'title' }, 'Admin' );
 		if ( ! hasRole( session, [ 'admin' ] ) ) {
 
 			this.state.screen = 'sign-in';
@@ -50,11 +52,14 @@ export class AdminView extends View {
 		}
 
 		this.state.screen = 'classes';
+		this.people = new AdminPeople( { api: this.api, me: () => currentSession( { win: this.window } )?.user?.id ?? null } );
 		this.message = h( 'p', { className: 'status', role: 'status', 'aria-live': 'polite' }, 'Loading the classes…' );
 		this.list = h( 'div', { className: 'admin-classes' } );
-		this.root.append( this.heading,
-			h( 'p', { className: 'admin-note' }, 'Export everything stored about a child as one JSON file, or delete it all. A deletion cannot be undone.' ),
-			this.message, this.list );
+		this.root.append( this.heading, this.people.element,
+			h( 'section', { className: 'admin-section', 'aria-labelledby': 'admin-privacy-title' }, h( 'h2', { id: 'admin-privacy-title' }, 'Privacy: children’s data' ),
+				h( 'p', { className: 'admin-note' }, 'Export everything stored about a child as one JSON file, or delete it all. A deletion cannot be undone.' ),
+				this.message, this.list ) );
+		this.people.load();
 		this.load();
 
 	}

@@ -34,7 +34,7 @@ export const NAV_VIEWS = Object.freeze( [
 export const ROLE_VIEWS = Object.freeze( [
 	Object.freeze( { path: '/author', label: 'Write', roles: Object.freeze( [ 'author', 'admin' ] ) } ),
 	Object.freeze( { path: '/fits', label: 'Fit', roles: Object.freeze( [ 'author', 'clinician', 'admin' ] ) } ),
-	Object.freeze( { path: '/admin', label: 'Privacy', roles: Object.freeze( [ 'admin' ] ) } ),
+	Object.freeze( { path: '/admin', label: 'Admin', roles: Object.freeze( [ 'admin' ] ) } ),
 	Object.freeze( { path: '/teach', label: 'Teach', roles: Object.freeze( [ 'teacher', 'admin' ] ) } ),
 ] );
 
