@@ -9,7 +9,7 @@
 
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
-import { apiSession, authHeaders, signIn } from './accounts.js';
+import { account, apiSession, authHeaders, signIn } from './accounts.js';
 import { animationFrames, openPage, readDebug, saveScreenshot, serverAndBrowser, settle } from './harness.js';
 
 const SIZE = Object.freeze( { width: 1366, height: 768 } );
@@ -38,6 +38,40 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 
 	} );
 
+	test( 'a teacher goes from an empty browser to the first target presented in six actions', async () => {
+
+		const teacher = await account( server, 'teacher' );
+		const fresh = await openPage( browser, SIZE );
+		const actions = [];
+		const act = async ( name, action ) => {
+
+			actions.push( name );
+			await action();
+
+		};
+		await act( 'open the school\'s address', () => fresh.goto( `${ server.baseUrl }/` ) );
+		await act( 'Sign in', () => fresh.getByRole( 'navigation', { name: 'Views' } ).getByRole( 'link', { name: 'Sign in' } ).click() );
+		await act( 'type the username', () => fresh.getByLabel( 'Username' ).fill( teacher.username ) );
+		await act( 'type the password', () => fresh.getByLabel( 'Password' ).fill( teacher.password ) );
+		await act( 'press Enter', () => fresh.getByLabel( 'Password' ).press( 'Enter' ) );
+		await fresh.getByRole( 'list', { name: 'Lessons' } ).getByRole( 'link' ).first().waitFor( { timeout: 60_000 } );
+		assert.equal( await fresh.evaluate( () => location.hash ), '#/teach', 'a teacher lands on Teach' );
+		await act( 'Present the first lesson', () => fresh.getByRole( 'link', { name: `Present ${ lessons[ 0 ].title }` } ).click() );
+		await fresh.waitForFunction( ( id ) => {
+
+			const r = window.glasshead.runner;
+			return ( r?.lesson === id && r.item === 0 && r.ready === true && r.presenting === true ) || Boolean( window.glasshead.error );
+
+		}, lessons[ 0 ].id, { timeout: 180_000, polling: 200 } );
+		assert.ok( actions.length <= 6, `${ actions.length } actions: ${ actions.join( ', ' ) }` );
+		assert.equal( await fresh.evaluate( () => location.hash ), `#/teach?lesson=${ lessons[ 0 ].id }&item=0`, 'the address drops the request to present' );
+		await fresh.keyboard.press( ' ' );
+		await fresh.waitForFunction( () => window.glasshead.speech.playing === true || window.glasshead.speech.time > 0, null, { timeout: 60_000 } );
+		assert.deepEqual( fresh.problems, [] );
+		await fresh.context().close();
+
+	} );
+
 	test( 'the list links every lesson the teacher may read to its first item', async () => {
 
 		await page.goto( `${ server.baseUrl }/#/teach` );
@@ -45,7 +79,7 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		await list.getByRole( 'link' ).first().waitFor( { timeout: 60_000 } );
 		const hrefs = await list.getByRole( 'link' ).evaluateAll( ( links ) => links.map( ( link ) => link.getAttribute( 'href' ) ) );
 		assert.ok( lessons.length >= 5, `${ lessons.length } starter lessons` );
-		assert.deepEqual( hrefs, lessons.map( ( lesson ) => `#/teach?lesson=${ lesson.id }&item=0` ) );
+		assert.deepEqual( hrefs, lessons.flatMap( ( lesson ) => [ `#/teach?lesson=${ lesson.id }&item=0`, `#/teach?lesson=${ lesson.id }&item=0&present=1` ] ) );
 		const teach = page.getByRole( 'navigation', { name: 'Views' } ).getByRole( 'link', { name: 'Teach', exact: true } );
 		assert.equal( await teach.getAttribute( 'aria-current' ), 'page', 'the bar links the runner for a teacher, marked' );
 

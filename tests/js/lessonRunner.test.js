@@ -100,10 +100,12 @@ test( 'the runner\'s address names a lesson and an item, and anything else is th
 
 	assert.equal( runnerHref(), '#/teach' );
 	assert.equal( runnerHref( 7, 3 ), '#/teach?lesson=7&item=3' );
-	assert.deepEqual( parseRunnerHash( runnerHref( 7, 3 ) ), { lesson: 7, item: 3 } );
-	assert.deepEqual( parseRunnerHash( '#/teach' ), { lesson: null, item: 0 } );
-	assert.deepEqual( parseRunnerHash( '#/teach?lesson=0&item=2' ), { lesson: null, item: 2 } );
-	assert.deepEqual( parseRunnerHash( '#/teach?lesson=x1&item=-2' ), { lesson: null, item: 0 } );
+	assert.deepEqual( parseRunnerHash( runnerHref( 7, 3 ) ), { lesson: 7, item: 3, present: false } );
+	assert.deepEqual( parseRunnerHash( '#/teach' ), { lesson: null, item: 0, present: false } );
+	assert.deepEqual( parseRunnerHash( '#/teach?lesson=0&item=2' ), { lesson: null, item: 2, present: false } );
+	assert.equal( runnerHref( 7, 0, { present: true } ), '#/teach?lesson=7&item=0&present=1' );
+	assert.deepEqual( parseRunnerHash( runnerHref( 7, 0, { present: true } ) ), { lesson: 7, item: 0, present: true } );
+	assert.deepEqual( parseRunnerHash( '#/teach?lesson=x1&item=-2' ), { lesson: null, item: 0, present: false } );
 	assert.deepEqual( [ stepItem( 0, - 1, 5 ), stepItem( 4, 1, 5 ), stepItem( 2, 1, 5 ), stepItem( 9, 0, 5 ) ], [ 0, 4, 3, 4 ] );
 
 } );

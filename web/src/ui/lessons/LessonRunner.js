@@ -70,12 +70,21 @@ export class LessonRunner extends View {
 	/** Show what the address names: the list, or a lesson's item; a sign-in link without a session. */
 	async route( force = false ) {
 
-		const { lesson, item } = parseRunnerHash( this.window.location.hash );
+		const { lesson, item, present } = parseRunnerHash( this.window.location.hash );
 		const session = currentSession( { win: this.window } );
 		if ( session?.kind !== 'user' ) return this.showSignIn();
 		if ( lesson === null ) return this.showList();
 		if ( force || this.lesson?.id !== lesson ) await this.openLesson( lesson );
-		if ( this.lesson?.id === lesson ) this.showItem( stepItem( item, 0, this.lesson.items.length ) );
+		if ( this.lesson?.id !== lesson ) return;
+		if ( present ) {
+
+			// Presented from the list: the address drops the request, so a reload shows the lesson.
+			this.window.history.replaceState( null, '', runnerHref( lesson, item ) );
+			this.setPresenting( true );
+
+		}
+
+		this.showItem( stepItem( item, 0, this.lesson.items.length ) );
 
 	}
 
@@ -118,10 +127,11 @@ export class LessonRunner extends View {
 
 		if ( shown !== this.shows ) return;
 		status.textContent = this.lessons.length ? 'Choose a lesson to run.' : 'There are no lessons yet.';
-		list.replaceChildren( ...this.lessons.map( ( lesson ) => h( 'li', {},
+		list.replaceChildren( ...this.lessons.map( ( lesson ) => h( 'li', { className: 'lr-lesson-row' },
 			h( 'a', { className: 'lr-lesson', href: runnerHref( lesson.id, 0 ) },
 				h( 'span', { className: 'lr-lesson-title' }, lesson.title ),
-				h( 'span', { className: 'lr-lesson-about' }, `${ lesson.n_items } items. ${ lesson.description }` ) ) ) ) );
+				h( 'span', { className: 'lr-lesson-about' }, `${ lesson.n_items } items. ${ lesson.description }` ) ),
+			h( 'a', { className: 'lr-lesson-present', href: runnerHref( lesson.id, 0, { present: true } ), 'aria-label': `Present ${ lesson.title }` }, 'Present' ) ) ) );
 
 	}
 

@@ -148,23 +148,28 @@ export function targetKindLabel( item ) {
 
 }
 
-/** The runner's address for item `index` (from 0) of lesson `lessonId`; the list without a lesson. */
-export function runnerHref( lessonId = null, index = 0 ) {
+/**
+ * The runner's address for item `index` (from 0) of lesson `lessonId`; the list without a
+ * lesson. `present`: the lesson opens straight in presentation mode (the list's Present).
+ */
+export function runnerHref( lessonId = null, index = 0, { present = false } = {} ) {
 
-	return lessonId === null ? `#${ RUNNER_PATH }` : `#${ RUNNER_PATH }?lesson=${ lessonId }&item=${ index }`;
+	if ( lessonId === null ) return `#${ RUNNER_PATH }`;
+	return `#${ RUNNER_PATH }?lesson=${ lessonId }&item=${ index }${ present ? '&present=1' : '' }`;
 
 }
 
 /**
- * The lesson and item of a runner address ('#/teach?lesson=3&item=2' -> { lesson: 3, item: 2 });
- * lesson null for the list, item 0 when missing or not a whole number from 0.
+ * The lesson and item of a runner address ('#/teach?lesson=3&item=2' -> { lesson: 3, item: 2,
+ * present: false }); lesson null for the list, item 0 when missing or not a whole number from 0;
+ * present when the address asks for presentation mode.
  */
 export function parseRunnerHash( hash ) {
 
 	const query = new URLSearchParams( ( hash ?? '' ).split( '?' ).slice( 1 ).join( '?' ) );
 	const whole = ( value ) => ( /^\d+$/.test( value ?? '' ) ? Number( value ) : null );
 	const lesson = whole( query.get( 'lesson' ) );
-	return { lesson: lesson !== null && lesson >= 1 ? lesson : null, item: whole( query.get( 'item' ) ) ?? 0 };
+	return { lesson: lesson !== null && lesson >= 1 ? lesson : null, item: whole( query.get( 'item' ) ) ?? 0, present: query.get( 'present' ) === '1' };
 
 }
 
