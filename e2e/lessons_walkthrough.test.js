@@ -131,6 +131,9 @@ describe( 'a first lesson, from the author to the child and back to the teacher'
 		await childPage.waitForFunction( () => window.glasshead.practice?.ready === true || Boolean( window.glasshead.error ), null, { timeout: 300_000, polling: 200 } );
 		let practice = ( await readDebug( childPage ) ).practice;
 		assert.equal( practice.child.id, children[ 0 ].id );
+		// The sound as a picture, not as IPA a child of 8 cannot read.
+		await childPage.locator( '.cp-target' ).getByRole( 'img', { name: 'a clock ticking: t t t' } ).waitFor( { timeout: 30_000 } );
+		assert.equal( await childPage.locator( '.cp-target' ).textContent(), '' );
 		assert.deepEqual( [ practice.lessons, practice.lesson, practice.item, practice.items ], [ [ lesson.id ], lesson.id, 0, 2 ] );
 		const sizes = await childPage.locator( '#app button' ).evaluateAll( ( buttons ) => buttons.filter( ( b ) => b.offsetParent !== null ).map( ( b ) => {
 

@@ -99,6 +99,8 @@ describe( 'the lesson runner', { timeout: 600_000 }, () => {
 		assert.deepEqual( [ state.runner.settings.cutaway, state.runner.settings.camera, state.runner.settings.zoom ], [ true, 'profile', 1.5 ] );
 		assert.deepEqual( state.labels.names, [ 'tongue_tip', 'alveolar', 'postalveolar' ], 'the place and the articulator, not every label' );
 		assert.deepEqual( state.labels.hidden, [], 'nothing the item names is behind bone' );
+		await page.getByRole( 'img', { name: 'a snake: sss' } ).waitFor( { timeout: 30_000 } );
+		assert.match( await page.locator( '.lr-how' ).textContent(), /^How \/s\/ is made: .*hiss/ );
 		assert.ok( await visible( '.epg-overlay' ), 'the EPG card is shown' );
 		assert.ok( state.epg.contacted > 0, `the held /s/ touches the palate: ${ state.epg.rows.join( ' ' ) }` );
 		assert.equal( await page.locator( '.lr-dot[aria-current="step"]' ).getAttribute( 'aria-label' ), 'Item 1: /s/' );

@@ -9,6 +9,7 @@ from fastapi import APIRouter, HTTPException
 from pydantic import BaseModel, ConfigDict, Field
 
 from glasshead.api.deps import AssetsDep
+from glasshead.phoneme_words import how_it_is_made
 from glasshead.phonemes import UnknownPhonemeError, lookup
 
 router = APIRouter(tags=["phonemes"])
@@ -31,6 +32,7 @@ class PhonemeSummary(BaseModel):
     manner: str = Field(description="consonants: stop, fricative, affricate, nasal, lateral, "
                                     "approximant; vowels: their height")
     examples: list[str]
+    how: str = Field(description="how the sound is made, in a teacher's words")
     source: SourceSummary
     epg_basis: str = Field(description="what the palatogram was fitted to: real EPG, published "
                                        "descriptions, or not fitted")
@@ -56,6 +58,7 @@ class PhonemeTarget(BaseModel):
     ipa: str
     kind: str
     examples: list[str]
+    how: str = Field(description="how the sound is made, in a teacher's words")
     features: dict
     velum: str = Field(description="lowered (nasals) or raised")
     params: dict[str, float] = Field(description="every parameter of the tongue, face (lips) "
@@ -79,7 +82,7 @@ def _summary(target: dict) -> dict:
     features = target["features"]
     return {"arpabet": target["arpabet"], "ipa": target["ipa"], "kind": target["kind"],
             "voiced": features["voiced"], "manner": features["manner"],
-            "examples": target["examples"],
+            "examples": target["examples"], "how": how_it_is_made(target["arpabet"]),
             "source": {"kind": source.get("kind"), "shapes": source.get("shapes", []),
                        "rms_mm": source.get("rms_mm")},
             "epg_basis": target["epg_basis"],
@@ -106,7 +109,7 @@ def get_phoneme(symbol: str, assets: AssetsDep) -> dict:
             f"no phoneme {symbol!r}: {exc}; GET /api/v1/phonemes lists them")) from None
     for target in document["targets"]:
         if target["arpabet"] == phoneme.arpabet:
-            return target
+            return {**target, "how": how_it_is_made(target["arpabet"])}
     raise HTTPException(status_code=404, detail=(
         f"phoneme {symbol!r} ({phoneme.arpabet}) has no built target; "
         "GET /api/v1/phonemes lists them"))

@@ -20,6 +20,7 @@ import {
 	itemsWithErrors, lessonBody, moveItem, newItem, parseAuthorHash, removeItem, setField,
 } from './LessonEditorModel.js';
 import { LessonPreview } from './LessonEditorPreview.js';
+import { phonemeInventory } from '../lessons/LessonRunnerViews.js';
 import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
 import { hasRole } from '../shared/signIn.js';
 import { View } from '../shared/View.js';
@@ -179,6 +180,13 @@ export class LessonEditor extends View {
 			reloadTheirs: () => this.reloadTheirs(), addItem: () => this.addItem(), changeMeta: ( key, value ) => this.changeMeta( key, value ),
 		} ) );
 		this.form = new ItemForm( { onChange: ( path, value ) => this.changeItem( path, value ) } );
+		phonemeInventory( this.api ).then( ( inventory ) => {
+
+			if ( ! this.form || ! this.draft ) return;
+			this.form.inventory = inventory;
+			this.render();
+
+		} );
 		this.preview = new LessonPreview();
 		this.root.append( this.bar, this.lessonPane, h( 'section', { className: 'le-item' }, this.form.element ), this.preview.element );
 		this.preview.start();

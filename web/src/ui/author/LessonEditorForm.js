@@ -29,6 +29,7 @@ export class ItemForm {
 			this.heading, this.itemError,
 			this.select( 'target.kind', 'Target kind', TARGET_KINDS ),
 			this.input( 'target.text', 'Target', { type: 'text', maxlength: '200', autocomplete: 'off', spellcheck: 'false' } ),
+			this.howNote = h( 'p', { className: 'le-how', hidden: '' } ),
 			this.select( 'presentation', 'Presentation', PRESENTATIONS ),
 			this.select( 'said_as', 'A sound is said', SAID_AS_CHOICES, { show: ( value ) => value ?? '', read: ( value ) => value || null } ),
 			this.select( 'audio.kind', 'Audio', AUDIO_KINDS ),
@@ -43,6 +44,8 @@ export class ItemForm {
 			this.select( 'listen', 'A spoken try is measured on', LISTEN_CHOICES, { show: listenChoice, read: ( value ) => listenFromChoice( value, this.item?.listen ) } ),
 		);
 		this.element.addEventListener( 'submit', ( event ) => event.preventDefault() );
+		/** The phoneme inventory (GET /phonemes by symbol), for how a sound is made; set by the editor. */
+		this.inventory = new Map();
 
 	}
 
@@ -133,6 +136,10 @@ export class ItemForm {
 		const chosen = Array.isArray( item.views.labels ) ? new Set( item.views.labels ) : null;
 		this.labelChoices.hidden = ! chosen;
 		for ( const [ name, { box } ] of this.labelBoxes ) box.checked = Boolean( chosen?.has( name ) );
+
+		const phoneme = item.target.kind === 'phoneme' ? this.inventory.get( item.target.text.trim() ) : null;
+		this.howNote.textContent = phoneme?.how ? `How /${ phoneme.ipa }/ is made: ${ phoneme.how }` : '';
+		this.howNote.hidden = ! phoneme?.how;
 
 		const whole = errors.get( '' ) ?? '';
 		this.itemError.textContent = whole;

@@ -14,7 +14,8 @@ import {
 	itemSettings, listenHref, parseRunnerHash, runnerAction, runnerHref, runnerSpeed, stepItem, targetKindLabel, targetLabel,
 } from './LessonRunnerItems.js';
 import { signedOutPrompt, signInPrompt } from '../shared/SignInPrompt.js';
-import { ItemPresenter } from './LessonRunnerViews.js';
+import { ItemPresenter, phonemeInventory } from './LessonRunnerViews.js';
+import { soundPicture } from '../shared/soundPictures.js';
 import { SpeechView } from '../speak/SpeechView.js';
 import { View } from '../shared/View.js';
 import './lessonRunner.css';
@@ -179,7 +180,9 @@ export class LessonRunner extends View {
 			this.liveLink = h( 'a', { className: 'lr-link', target: '_blank', rel: 'noopener', href: listenHref( null ) }, 'Live chart' ) );
 		this.kind = h( 'span', { className: 'lr-kind' } );
 		this.target = h( 'span', { className: 'lr-target-text' } );
-		this.targetBox = h( 'div', { className: 'lr-target', role: 'status', 'aria-live': 'polite' }, this.kind, this.target );
+		this.picture = h( 'span', { className: 'lr-target-picture' } );
+		this.targetBox = h( 'div', { className: 'lr-target', role: 'status', 'aria-live': 'polite' }, this.kind, h( 'span', { className: 'lr-target-line' }, this.target, this.picture ) );
+		this.how = h( 'p', { className: 'lr-how', hidden: '' } );
 		this.dotStrip = h( 'div', { className: 'lr-itembar' }, h( 'h1', { className: 'lr-title' }, lesson.title ), h( 'nav', { className: 'lr-dots', 'aria-label': 'Items' }, ...this.dots ) );
 		this.headBox = h( 'div', { className: 'lr-head' } );
 		this.panel = new LessonRunnerPanel( { api: this.api } );
@@ -189,6 +192,7 @@ export class LessonRunner extends View {
 			button( 'Previous', () => this.act( 'previous' ) ), this.presentPlay, button( 'Next', () => this.act( 'next' ) ), this.presentSlow,
 			button( 'Leave (Esc)', () => this.act( 'leave' ) ),
 			h( 'p', { className: 'lr-present-hint' }, 'Space plays, the arrows change items, Esc leaves.' ) );
+		this.panel.element.prepend( this.how );
 		this.root.append( this.toolbar, this.dotStrip, h( 'div', { className: 'lr-main' }, this.headBox, this.targetBox ), this.panel.element, this.presentBar );
 		this.listen( this.root, 'pointermove', () => this.wake() );
 		this.listen( this.root, 'pointerdown', () => this.wake() );
@@ -221,12 +225,31 @@ export class LessonRunner extends View {
 		const item = this.item;
 		this.kind.textContent = targetKindLabel( item );
 		this.target.textContent = targetLabel( item );
+		this.showSound( item );
 		this.liveLink.href = listenHref( item );
 		this.dots.forEach( ( dot, k ) => ( k === index ? dot.setAttribute( 'aria-current', 'step' ) : dot.removeAttribute( 'aria-current' ) ) );
 		const shown = await this.presenter.present( item );
 		if ( ! shown || this.index !== index ) return;
 		this.presenter.setSpeed( runnerSpeed( itemSettings( item ), this.slow ) );
 		this.ready = true;
+
+	}
+
+	/**
+	 * A sound's picture beside its symbol, for the children who cannot read it, and how it is
+	 * made, for the teacher to say (GET /phonemes); neither for a word.
+	 */
+	async showSound( item ) {
+
+		this.picture.replaceChildren();
+		this.how.hidden = true;
+		if ( item.target.kind !== 'phoneme' ) return;
+		const phoneme = ( await phonemeInventory( this.api ) ).get( item.target.text );
+		if ( ! phoneme || this.item !== item ) return;
+		const pictured = soundPicture( phoneme.arpabet, { className: 'lr-sound-picture', doc: this.window.document } );
+		if ( pictured ) this.picture.append( pictured );
+		this.how.replaceChildren( h( 'strong', {}, `How ${ targetLabel( item ) } is made: ` ), phoneme.how ?? '' );
+		this.how.hidden = ! phoneme.how;
 
 	}
 

@@ -18,8 +18,9 @@ import { joinCodeFromHash, PracticeRound } from './ChildPracticeFlow.js';
 import { bigButton, signInMethods } from './ChildPracticeSignIn.js';
 import { KEEPING_LABEL, PracticeAudio, uploadFailureMessage } from './PracticeAudio.js';
 import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
+import { soundPicture } from '../shared/soundPictures.js';
 import { targetLabel } from '../lessons/LessonRunnerItems.js';
-import { ItemPresenter } from '../lessons/LessonRunnerViews.js';
+import { ItemPresenter, phonemeInventory } from '../lessons/LessonRunnerViews.js';
 import { SpeechView } from '../speak/SpeechView.js';
 import { View } from '../shared/View.js';
 import { ListenError } from '../listen/audioInput.js';
@@ -209,7 +210,7 @@ export class ChildPractice extends View {
 		const round = this.round;
 		const item = round.item;
 		this.ready = false;
-		this.target.textContent = targetLabel( item );
+		this.showTarget( item );
 		[ ...this.dots.children ].forEach( ( dot, k ) => {
 
 			dot.classList.toggle( 'done', k < round.index );
@@ -224,6 +225,17 @@ export class ChildPractice extends View {
 		if ( ! shown || this.round !== round || round.item !== item ) return;
 		this.ready = true;
 		this.presenter.replay(); // the head says it once by itself
+
+	}
+
+	/** The target: a sound as its picture (a child need not read IPA), anything else as written. */
+	async showTarget( item ) {
+
+		this.target.replaceChildren( targetLabel( item ) );
+		if ( item.target.kind !== 'phoneme' ) return;
+		const code = ( await phonemeInventory() ).get( item.target.text )?.arpabet;
+		const pictured = code ? soundPicture( code, { doc: this.window.document } ) : null;
+		if ( pictured && this.round?.item === item ) this.target.replaceChildren( pictured );
 
 	}
 
