@@ -76,14 +76,19 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 
 		await page.goto( `${ server.baseUrl }/#/practice` );
 		const code = page.getByRole( 'textbox', { name: 'Class code' } );
-		await code.fill( 'abc' );
+		assert.equal( await page.locator( '.nav-bar' ).isVisible(), false, 'a kiosk: no adult navigation' );
+		await code.fill( 'ABC123' );
 		await page.getByRole( 'button', { name: 'Go' } ).tap();
-		await page.getByRole( 'alert' ).filter( { hasText: 'A class code has six letters and numbers.' } ).waitFor( { timeout: 60_000 } );
+		const said = 'A class code never has B, 1 and 2. Ask a grown-up to read the code again.';
+		const alert = page.getByRole( 'alert' ).filter( { hasText: said } );
+		await alert.waitFor( { timeout: 60_000 } );
+		assert.equal( await alert.locator( 'svg' ).count(), 1, 'the message has its picture' );
+		await page.waitForFunction( ( text ) => window.glasshead.practice.spoken.includes( text ), said, { timeout: 10_000 } );
 		// Six characters of the code alphabet, but no class has them.
 		const unknown = schoolClass.join_code === 'CDEFGH' ? 'CDEFGJ' : 'CDEFGH';
 		await code.fill( unknown );
 		await page.getByRole( 'button', { name: 'Go' } ).tap();
-		await page.getByRole( 'alert' ).filter( { hasText: 'There is no class with this code.' } ).waitFor( { timeout: 60_000 } );
+		await page.getByRole( 'alert' ).filter( { hasText: 'There is no class with this code. Ask a grown-up to check it.' } ).waitFor( { timeout: 60_000 } );
 		assert.equal( ( await practice() ).screen, 'code' );
 
 	} );
@@ -154,12 +159,33 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 
 	test( '"Not me" signs the child out: back to the code, and the token no longer works', async () => {
 
+		const icon = ( name ) => page.getByRole( 'button', { name } ).locator( 'svg' ).innerHTML();
+		assert.notEqual( await icon( 'Not me: sign out' ), await icon( 'For grown-ups: hold for 2 seconds to leave' ) );
 		const token = await page.evaluate( () => JSON.parse( localStorage.getItem( 'glasshead.session' ) ).token );
 		await page.getByRole( 'button', { name: 'Not me: sign out' } ).tap();
 		await screen( 'code' );
 		assert.equal( await page.evaluate( () => localStorage.getItem( 'glasshead.session' ) ), null );
 		assert.equal( ( await api( { token }, 'GET', 'auth/child-sessions/current' ) ).status, 401 );
 		assert.deepEqual( page.problems, [] );
+
+	} );
+
+	test( 'the kiosk is left only by a grown-up holding the lock: a tap says so aloud, two seconds leave', async () => {
+
+		const lock = page.getByRole( 'button', { name: 'For grown-ups: hold for 2 seconds to leave' } );
+		await lock.tap();
+		const said = 'This is for grown-ups: they hold it to leave.';
+		await page.getByRole( 'alert' ).filter( { hasText: said } ).waitFor( { timeout: 10_000 } );
+		await page.waitForFunction( ( text ) => window.glasshead.practice.spoken.includes( text ), said, { timeout: 10_000 } );
+		assert.equal( await page.evaluate( () => location.hash ), '#/practice' );
+		const box = await lock.boundingBox();
+		await page.mouse.move( box.x + box.width / 2, box.y + box.height / 2 );
+		await page.mouse.down();
+		await page.waitForTimeout( 2300 );
+		await page.mouse.up();
+		await page.waitForFunction( () => location.hash === '#/', null, { timeout: 10_000 } );
+		await page.locator( '.nav-bar' ).waitFor( { state: 'visible', timeout: 30_000 } );
+		assert.equal( await page.evaluate( () => document.body.classList.contains( 'cp-kiosk' ) ), false );
 
 	} );
 

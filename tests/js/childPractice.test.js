@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
 import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from '../../web/src/ui/practice/ChildPracticeFlow.js';
+import { codeMessage, NO_CLASS } from '../../web/src/ui/practice/practiceMessages.js';
 import { AVATAR_NAMES, pictureShapes, RATINGS } from '../../web/src/ui/shared/ChildPracticePictures.js';
 
 /** The server's avatars, read from the store module that defines them. */
@@ -56,5 +57,19 @@ test( 'every avatar the server offers has a picture of its own, and every rating
 	assert.deepEqual( RATINGS.map( ( r ) => r.rating ), [ 1, 2, 3 ] );
 	for ( const { face } of RATINGS ) assert.ok( pictureShapes( face ).length >= 3, face );
 	assert.equal( pictureShapes( 'unicorn' ).length, 1, 'an avatar added on the server later still gets a plain picture' );
+
+} );
+
+test( 'a typed code is said wrong with what to do: letters codes never have named, or how many there are', () => {
+
+	assert.equal( codeMessage( '7kq 4-mx' ), null, 'spaces, dashes and small letters are fine' );
+	assert.equal( codeMessage( 'ABC123' ).text, 'A class code never has B, 1 and 2. Ask a grown-up to read the code again.' );
+	assert.equal( codeMessage( 'O0O0O0' ).text, 'A class code never has O and 0. Ask a grown-up to read the code again.' );
+	assert.equal( codeMessage( 'abc' ).text, 'A class code never has B. Ask a grown-up to read the code again.' );
+	assert.equal( codeMessage( 'ACD' ).text, 'A class code has 6 letters and numbers; this one has 3. Ask a grown-up to check it.' );
+	assert.equal( codeMessage( 'ACD34?' ).text, 'A class code has only letters and numbers, not ?. Ask a grown-up to read the code again.' );
+	assert.equal( codeMessage( '' ).text, 'Type the class code: six letters and numbers.' );
+	for ( const typed of [ 'ABC123', 'ACD', '' ] ) assert.equal( codeMessage( typed ).icon, 'ask-adult', 'every message has its picture' );
+	assert.equal( NO_CLASS.icon, 'ask-adult' );
 
 } );

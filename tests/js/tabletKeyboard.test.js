@@ -71,3 +71,17 @@ test( 'the EPG card stays bottom left unless the lips are there, then takes the 
 	assert.ok( overlapArea( cornerRect( corner, stage, card ), everywhere ) < card.width * card.height );
 
 } );
+
+test( 'with the velum in section too, the card takes the corner clear of the lips that covers least of the velum', () => {
+
+	const stage = { x: 0, y: 0, width: 768, height: 500 };
+	const card = { width: 188, height: 230 };
+	const lips = { x: 100, y: 330, width: 80, height: 60 }; // bottom left
+	const velum = { x: 560, y: 180, width: 120, height: 140 }; // right, lower half
+	assert.equal( chooseCorner( stage, card, lips ), 'top-left' );
+	assert.equal( chooseCorner( stage, card, lips, 16, velum ), 'top-left' );
+	const nose = { x: 40, y: 40, width: 160, height: 120 }; // lips at the top left instead
+	assert.equal( chooseCorner( stage, card, nose, 16, velum ), 'bottom-left', 'clear of both' );
+	assert.equal( chooseCorner( stage, card, { x: 0, y: 0, width: 300, height: 500 }, 16, { x: 560, y: 0, width: 208, height: 260 } ), 'bottom-right', 'the lips first, then the velum' );
+
+} );

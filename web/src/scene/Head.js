@@ -304,18 +304,13 @@ export class Head {
 
 	}
 
-	/**
-	 * World box around the lips (the mouth), and with the cutaway on, the velum too: the section
-	 * shows the mouth from the lips to the soft palate, which panels over the view keep clear of.
-	 * Falls back to the frame origin, which is in the mouth.
-	 */
+	/** World box around the lips (the mouth), falling back to the frame origin, which is in the mouth. */
 	mouthBox( target = new Box3() ) {
 
 		target.makeEmpty();
-		const parts = [ this.parts.get( 'upper_lip' ), this.parts.get( 'lower_lip' ) ];
-		if ( this.cutaway ) parts.push( ...[ ...this.parts.values() ].filter( ( part ) => part.tissue === 'velum' && part.group.visible ) );
-		for ( const part of parts ) {
+		for ( const name of [ 'upper_lip', 'lower_lip' ] ) {
 
+			const part = this.parts.get( name );
 			if ( ! part ) continue;
 			part.geometry.computeBoundingBox();
 			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
@@ -324,6 +319,26 @@ export class Head {
 
 		if ( target.isEmpty() ) target.setFromCenterAndSize( new Vector3( 20, - 5, 0 ), new Vector3( 40, 40, 50 ) );
 		return target;
+
+	}
+
+	/**
+	 * World box around the velum while the cutaway shows it in section, else null: with the lips,
+	 * what panels over the view keep clear of when they can.
+	 */
+	velumBox( target = new Box3() ) {
+
+		if ( ! this.cutaway ) return null;
+		target.makeEmpty();
+		for ( const part of this.parts.values() ) {
+
+			if ( part.tissue !== 'velum' || ! part.group.visible ) continue;
+			part.geometry.computeBoundingBox();
+			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
+
+		}
+
+		return target.isEmpty() ? null : target;
 
 	}
 

@@ -16,6 +16,7 @@ import { currentSession } from '../../session.js';
 import { h } from '../shared/dom.js';
 import { joinCodeFromHash, PracticeRound } from './ChildPracticeFlow.js';
 import { bigButton, signInMethods } from './ChildPracticeSignIn.js';
+import { GROWN_UP_LOCK, grownUpLock } from './grownUpLock.js';
 import { KEEPING_LABEL, PracticeAudio, uploadFailureMessage } from './PracticeAudio.js';
 import { picture, RATINGS } from '../shared/ChildPracticePictures.js';
 import { soundPicture } from '../shared/soundPictures.js';
@@ -44,6 +45,8 @@ export class ChildPractice extends View {
 		this.joinCode = null;
 		this.round = null;
 		this.error = null;
+		/** Every message said aloud, in order (what window.glasshead.practice reports). */
+		this.spoken = [];
 		this.audio = new PracticeAudio( { api: this.api } );
 
 	}
@@ -51,6 +54,9 @@ export class ChildPractice extends View {
 	mount( container ) {
 
 		this.attach( container, h( 'div', { className: 'child-practice' } ) );
+		// A kiosk: no adult navigation while a child practises; a grown-up holds the lock to leave.
+		this.window.document.body.classList.add( 'cp-kiosk' );
+		this.onUnmount( () => this.window.document.body.classList.remove( 'cp-kiosk' ) );
 		this.debugFields( { practice: () => this.report() } );
 		this.start();
 		return this;
@@ -67,7 +73,7 @@ export class ChildPractice extends View {
 			lesson: round?.lesson.id ?? null, item: round ? round.index : null, items: round?.lesson.items.length ?? 0,
 			replays: round?.replays ?? 0, recorded: round?.records.map( ( r ) => r.id ) ?? [], ready: this.ready ?? false,
 			listening: this.listener?.listening ?? false, attempt: this.attempt ? { zone: this.attempt.zone, measures: this.attempt.measures } : null,
-			audio: this.audio.report(),
+			audio: this.audio.report(), spoken: [ ...this.spoken ],
 		};
 
 	}
@@ -107,24 +113,57 @@ export class ChildPractice extends View {
 			this.keepingSign = h( 'p', { className: 'cp-keeping', role: 'status' }, h( 'span', { className: 'cp-keeping-dot', 'aria-hidden': 'true' } ), h( 'span', {}, KEEPING_LABEL ) );
 			this.keepingSign.hidden = ! this.audio.enabled;
 			top.append( h( 'span', { className: 'cp-me' }, picture( child.avatar, { label: child.avatar } ), h( 'span', {}, child.display_name ) ),
-				this.keepingSign, bigButton( 'back', 'Not me: sign out', () => this.signOut(), { className: 'cp-button cp-small' } ) );
+				this.keepingSign, bigButton( 'notme', 'Not me: sign out', () => this.signOut(), { className: 'cp-button cp-small' } ) );
 
 		}
 
+		top.append( grownUpLock( () => this.leave(), () => this.showError( GROWN_UP_LOCK ), this.window ) );
 		this.errorLine = h( 'p', { className: 'cp-error', role: 'alert', hidden: '' } );
 		this.root.replaceChildren( top, ...content, this.errorLine );
 
 	}
 
+	/**
+	 * Say what is wrong, or nothing for ''/null: the words with their picture (`icon`, one of the
+	 * practice's pictures, or `picture`, one of the listening page's), and aloud.
+	 */
 	showError( message ) {
 
-		this.error = message || null;
+		const { text = '', icon = null, picture: drawn = null } = typeof message === 'string' ? { text: message } : ( message ?? {} );
+		this.error = text || null;
 		if ( this.errorLine ) {
 
-			this.errorLine.textContent = message ?? '';
-			this.errorLine.hidden = ! message;
+			const art = icon ? picture( icon, { className: 'cp-error-picture' } ) : drawn ? messagePicture( drawn, text, { className: 'cp-error-picture' } ) : null;
+			this.errorLine.replaceChildren( ...( art ? [ art ] : [] ), h( 'span', {}, text ) );
+			this.errorLine.hidden = ! text;
 
 		}
+
+		if ( text ) this.sayAloud( text );
+
+	}
+
+	/** Say `text` in the head's voice (POST /utterances); the words stay on screen if it cannot. */
+	async sayAloud( text ) {
+
+		this.spoken.push( text );
+		try {
+
+			const said = await this.api.post( 'utterances', { text, audio: { kind: 'natural' } } );
+			if ( said.audio_url ) await new this.window.Audio( said.audio_url ).play();
+
+		} catch {
+
+			// No voice (no espeak-ng, or the browser refused to play): the words and picture remain.
+
+		}
+
+	}
+
+	/** Out of the kiosk, to the start page (a grown-up held the lock). */
+	leave() {
+
+		this.window.location.hash = '#/';
 
 	}
 
@@ -282,7 +321,7 @@ export class ChildPractice extends View {
 
 			this.askNote.hidden = true;
 			this.sayButton.setAttribute( 'aria-pressed', 'false' );
-			return this.showError( listenMessage( error instanceof ListenError ? error.kind : 'unsupported' ).text );
+			return this.showError( listenMessage( error instanceof ListenError ? error.kind : 'unsupported' ) );
 
 		}
 
@@ -290,7 +329,7 @@ export class ChildPractice extends View {
 		if ( this.round !== round || round.item !== item ) return;
 		const zone = attemptZone( summary, target, this.norms?.groups?.child ?? {}, 'child' );
 		this.attempt = { zone, measures: attemptMeasures( summary, zone, target ), recording: this.listener.recording };
-		if ( ! summary.vowel && ! summary.fricative ) return this.showError( listenMessage( 'silent' ).text );
+		if ( ! summary.vowel && ! summary.fricative ) return this.showError( listenMessage( 'silent' ) );
 		this.verdict.replaceChildren( ...( zone ? [ picture( VERDICT_FACES[ zone ], { label: VERDICT_LABELS[ zone ] } ) ] : [] ) );
 		this.verdict.dataset.zone = zone ?? '';
 		this.verdict.setAttribute( 'aria-label', zone ? VERDICT_LABELS[ zone ] : 'Heard' );
@@ -353,7 +392,7 @@ export class ChildPractice extends View {
 		this.setScreen( 'done', h( 'div', { className: 'cp-empty' }, picture( 'star', { label: 'Well done' } ) ),
 			h( 'div', { className: 'cp-actions' },
 				bigButton( 'replay', 'Again', () => this.startLesson( this.round.lesson.id ), { className: 'cp-button cp-replay' } ),
-				bigButton( 'back', 'My lessons', () => this.showLessons(), { className: 'cp-button' } ) ) );
+				bigButton( 'lessons', 'My lessons', () => this.showLessons(), { className: 'cp-button' } ) ) );
 
 	}
 

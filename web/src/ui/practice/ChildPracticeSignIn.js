@@ -6,7 +6,8 @@
 
 import { clearSession, saveSession } from '../../session.js';
 import { h } from '../shared/dom.js';
-import { looksLikeJoinCode, normaliseJoinCode } from './ChildPracticeFlow.js';
+import { normaliseJoinCode } from './ChildPracticeFlow.js';
+import { codeMessage, NO_CLASS } from './practiceMessages.js';
 import { picture } from '../shared/ChildPracticePictures.js';
 
 /** A big button: a picture, and words under it when given (the name is always there for a screen reader). */
@@ -41,7 +42,8 @@ export const signInMethods = {
 	async findClass( typed ) {
 
 		const code = normaliseJoinCode( typed );
-		if ( ! looksLikeJoinCode( code ) ) return this.showError( 'A class code has six letters and numbers.' );
+		const wrong = codeMessage( typed );
+		if ( wrong ) return this.showError( wrong );
 		this.showError( '' );
 		try {
 
@@ -49,7 +51,7 @@ export const signInMethods = {
 
 		} catch ( error ) {
 
-			return this.showError( error.status === 404 || error.status === 401 ? 'There is no class with this code.' : error.message );
+			return this.showError( error.status === 404 || error.status === 401 ? NO_CLASS : error.message );
 
 		}
 

@@ -52,6 +52,14 @@ const ICON_SHAPES = Object.freeze( {
 	next: [ [ 'path', { d: 'M18 50 L76 50 M52 24 L80 50 L52 76', stroke: '#1f2328', 'stroke-width': 10, fill: 'none', 'stroke-linecap': 'round', 'stroke-linejoin': 'round' } ] ],
 	/** Go back, or not me. */
 	back: [ [ 'path', { d: 'M82 50 L24 50 M48 24 L20 50 L48 76', stroke: '#1f2328', 'stroke-width': 10, fill: 'none', 'stroke-linecap': 'round', 'stroke-linejoin': 'round' } ] ],
+	/** Not me: a person stepping out through a door. */
+	notme: [ [ 'rect', { x: 52, y: 10, width: 38, height: 80, rx: 3, fill: '#8d6e63' } ], [ 'circle', { cx: 82, cy: 52, r: 3.5, fill: '#f4c430' } ], [ 'circle', { cx: 30, cy: 26, r: 11, fill: '#1f2328' } ], [ 'path', { d: 'M30 40 L30 66 M30 66 L18 88 M30 66 L42 88 M30 46 L14 58 M30 46 L46 40', stroke: '#1f2328', 'stroke-width': 7, fill: 'none', 'stroke-linecap': 'round' } ] ],
+	/** My lessons: cards laid out to choose from. */
+	lessons: [ [ 'rect', { x: 10, y: 12, width: 36, height: 34, rx: 6, fill: '#4aa3f0' } ], [ 'rect', { x: 54, y: 12, width: 36, height: 34, rx: 6, fill: '#f4c430' } ], [ 'rect', { x: 10, y: 54, width: 36, height: 34, rx: 6, fill: '#4caf50' } ], [ 'rect', { x: 54, y: 54, width: 36, height: 34, rx: 6, fill: '#ec407a' } ] ],
+	/** For grown-ups: a padlock. */
+	lock: [ [ 'path', { d: 'M32 46 L32 32 Q32 14 50 14 Q68 14 68 32 L68 46', stroke: '#1f2328', 'stroke-width': 8, fill: 'none' } ], [ 'rect', { x: 22, y: 44, width: 56, height: 44, rx: 8, fill: '#1f2328' } ], [ 'circle', { cx: 50, cy: 64, r: 6, fill: '#ffffff' } ] ],
+	/** Ask a grown-up: a tall person beside a small one. */
+	'ask-adult': [ [ 'circle', { cx: 34, cy: 18, r: 10, fill: '#6d4c41' } ], [ 'path', { d: 'M34 30 L34 62 M34 62 L24 92 M34 62 L44 92 M34 38 L52 52', stroke: '#6d4c41', 'stroke-width': 8, fill: 'none', 'stroke-linecap': 'round' } ], [ 'circle', { cx: 70, cy: 48, r: 8, fill: '#2f7fd1' } ], [ 'path', { d: 'M70 58 L70 76 M70 76 L62 94 M70 76 L78 94 M70 62 L56 54', stroke: '#2f7fd1', 'stroke-width': 7, fill: 'none', 'stroke-linecap': 'round' } ] ],
 	/** Done: a star. */
 	star: [ [ 'polygon', { points: '50,6 62,36 94,38 69,58 78,90 50,72 22,90 31,58 6,38 38,36', fill: '#f4c430', stroke: '#b38600', 'stroke-width': 3 } ] ],
 } );

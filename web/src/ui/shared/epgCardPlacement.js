@@ -1,5 +1,5 @@
 // Where the EPG card sits over the 3D view: in a corner of the stage that does not cover the
-// head's lips. On a tablet the head fills the stage and the lips come close to the bottom-left
+// head's lips, nor, with the cutaway on, the velum where it can help it. On a tablet the head fills the stage and the lips come close to the bottom-left
 // corner the card started in, so the card moves, whenever the camera or the stage's size changes,
 // to the first corner (bottom left, top left, bottom right, top right) clear of the lips; if
 // none is, to the one that covers least of them.
@@ -36,15 +36,20 @@ export function overlapArea( a, b ) {
 
 }
 
-/** The first corner whose card misses `mouth` (null: no lips known), else the one covering least. */
-export function chooseCorner( stage, card, mouth, margin = MARGIN_PX ) {
+/**
+ * The corner for the card: of those whose card misses `mouth` (null: no lips known), the first
+ * that misses `also` too (the velum in the cutaway's section; null: nothing else), else the one
+ * covering least of it; when every corner covers the lips, the one covering least of them.
+ */
+export function chooseCorner( stage, card, mouth, margin = MARGIN_PX, also = null ) {
 
-	if ( ! mouth ) return CORNERS[ 0 ];
-	let best = CORNERS[ 0 ], least = Infinity;
-	for ( const corner of CORNERS ) {
+	const cover = ( corner, rect ) => ( rect ? overlapArea( cornerRect( corner, stage, card, margin ), rect ) : 0 );
+	const clear = CORNERS.filter( ( corner ) => cover( corner, mouth ) === 0 );
+	const [ among, rect ] = clear.length ? [ clear, also ] : [ CORNERS, mouth ];
+	let best = among[ 0 ], least = Infinity;
+	for ( const corner of among ) {
 
-		const area = overlapArea( cornerRect( corner, stage, card, margin ), mouth );
-		if ( area === 0 ) return corner;
+		const area = cover( corner, rect );
 		if ( area < least ) [ best, least ] = [ corner, area ];
 
 	}
@@ -68,7 +73,8 @@ export function keepCardClearOfLips( view, panel ) {
 		const stage = view.stage.getBoundingClientRect();
 		const card = { width: panel.offsetWidth, height: panel.offsetHeight };
 		mouth = viewer.screenRect( view.head.mouthBox() );
-		const next = chooseCorner( { x: stage.left, y: stage.top, width: stage.width, height: stage.height }, card, mouth );
+		const velum = view.head.velumBox?.();
+		const next = chooseCorner( { x: stage.left, y: stage.top, width: stage.width, height: stage.height }, card, mouth, MARGIN_PX, velum ? viewer.screenRect( velum ) : null );
 		if ( next === corner ) return;
 		corner = next;
 		panel.dataset.corner = corner;
