@@ -125,11 +125,13 @@ export class ChildPractice extends View {
 
 	/**
 	 * Say what is wrong, or nothing for ''/null: the words with their picture (`icon`, one of the
-	 * practice's pictures, or `picture`, one of the listening page's), and aloud.
+	 * practice's pictures, or `picture`, one of the listening page's; plain words get the picture
+	 * of asking a grown-up), and aloud.
 	 */
 	showError( message ) {
 
-		const { text = '', icon = null, picture: drawn = null } = typeof message === 'string' ? { text: message } : ( message ?? {} );
+		// A message without a picture of its own (the server's words) asks for a grown-up.
+		const { text = '', icon = null, picture: drawn = null } = typeof message === 'string' ? { text: message, icon: 'ask-adult' } : ( message ?? {} );
 		this.error = text || null;
 		if ( this.errorLine ) {
 
