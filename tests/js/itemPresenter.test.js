@@ -18,7 +18,10 @@ function fakeView( { sayDelays = [] } = {} ) {
 		state: { skin: false, transparency: 70, cutaway: true, hold: null },
 		root: { classList: { toggle: ( name, on ) => log.push( [ 'class', name, on ] ) } },
 		epg: { panel: { hidden: false }, electrodes: { group: { visible: true } } },
-		viewer: { requestRender() {}, onFrame: ( hook ) => ( hooks.push( hook ), () => hooks.splice( hooks.indexOf( hook ), 1 ) ) },
+		viewer: {
+			requestRender() {}, onFrame: ( hook ) => ( hooks.push( hook ), () => hooks.splice( hooks.indexOf( hook ), 1 ) ),
+			camera: { fov: 40 }, aspect: 1.5, animating: false, flyTo: ( pose, ms ) => log.push( [ 'fly', pose.target.map( Math.round ), ms ] ),
+		},
 		clock: { playing: false, time: 0, duration: 0.6, pause() {
 
 			this.playing = false;
@@ -30,7 +33,7 @@ function fakeView( { sayDelays = [] } = {} ) {
 			const delay = sayDelays[ says ++ ] ?? 0;
 			log.push( [ 'say', body ] );
 			await new Promise( ( resolve ) => setTimeout( resolve, delay ) );
-			view.utterance = { phones: [ { symbol: 'sil' }, { symbol: body.phonemes ?? 'W' }, { symbol: 'sil' } ] };
+			view.utterance = { phones: body.phones ?? [ { symbol: 'sil' }, { symbol: body.phonemes ?? 'W' }, { symbol: 'sil' } ] };
 
 		},
 		setSpeed: ( speed ) => log.push( [ 'speed', speed ] ),
@@ -54,7 +57,10 @@ function fakeView( { sayDelays = [] } = {} ) {
 
 }
 
-const phoneme = { target: { kind: 'phoneme', text: 'S' }, presentation: 'static', views: { skin_transparency: 0.8, epg: false }, speed: 1 };
+const phoneme = { target: { kind: 'phoneme', text: 'S' }, presentation: 'static', views: { skin_transparency: 0.8, epg: false, zoom: 2 }, speed: 1 };
+/** The inventory as GET /phonemes gives it, for the one sound the tests say. */
+const inventory = async () => new Map( [ [ 'S', { ipa: 's', arpabet: 'S', manner: 'fricative' } ] ] );
+const presenterOf = ( view ) => new ItemPresenter( view, { inventory } );
 const word = { target: { kind: 'word', text: 'sip' }, speed: 0.5 };
 
 test( 'the first spoken phone is the first that is not silence', () => {
@@ -67,16 +73,19 @@ test( 'the first spoken phone is the first that is not silence', () => {
 test( 'a static item sets its views before it is said, then its speed, and holds its first spoken phone', async () => {
 
 	const view = fakeView();
-	const presenter = new ItemPresenter( view );
+	const presenter = presenterOf( view );
 	assert.equal( await presenter.present( phoneme ), true );
 	assert.deepEqual( view.log, [
+		[ 'fly', [ - 8, 4, 0 ], 0 ],
 		[ 'apply', true, 80, false ],
 		[ 'class', 'with-diagram', false ],
-		[ 'say', { phonemes: 'S', audio: { kind: 'natural' }, dominance: true } ],
+		[ 'say', { phones: [ { symbol: 'sil', start_s: 0, end_s: 0.2 }, { symbol: 'S', start_s: 0.2, end_s: 0.9 }, { symbol: 'sil', start_s: 0.9, end_s: 1.1 } ], audio: { kind: 'natural' }, dominance: true } ],
 		[ 'speed', 1 ],
 		[ 'goTo', 1 ],
 		[ 'hold' ],
 	] );
+	await presenter.present( phoneme );
+	assert.deepEqual( view.log.filter( ( [ what ] ) => what === 'fly' ).map( ( entry ) => entry[ 2 ] ), [ 0, 500 ], 'the camera jumps to the first item and flies to the next' );
 	assert.deepEqual( [ view.epg.panel.hidden, view.epg.electrodes.group.visible ], [ true, false ] );
 
 } );
@@ -84,7 +93,7 @@ test( 'a static item sets its views before it is said, then its speed, and holds
 test( 'a static item played to its end is held again; a dynamic one is left where it ended', async () => {
 
 	const view = fakeView();
-	const presenter = new ItemPresenter( view );
+	const presenter = presenterOf( view );
 	await presenter.present( phoneme );
 	presenter.replay();
 	assert.equal( view.clock.playing, true );
@@ -109,7 +118,7 @@ test( 'a static item played to its end is held again; a dynamic one is left wher
 test( 'every play counts, from the start after a replay; a new item starts the count again', async () => {
 
 	const view = fakeView();
-	const presenter = new ItemPresenter( view );
+	const presenter = presenterOf( view );
 	await presenter.present( word );
 	presenter.replay();
 	presenter.togglePlay(); // pause: no play
@@ -124,7 +133,7 @@ test( 'every play counts, from the start after a replay; a new item starts the c
 test( 'a newer item wins over an older one whose target is still being said', async () => {
 
 	const view = fakeView( { sayDelays: [ 30, 0 ] } );
-	const presenter = new ItemPresenter( view );
+	const presenter = presenterOf( view );
 	const older = presenter.present( phoneme );
 	const newer = presenter.present( word );
 	assert.deepEqual( await Promise.all( [ older, newer ] ), [ false, true ] );

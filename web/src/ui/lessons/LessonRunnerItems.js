@@ -82,11 +82,12 @@ export function itemRequest( item, inventory = new Map() ) {
 	const request = utteranceRequest( `/${ text }/`, audio );
 	if ( ! phoneme || UNHELD_MANNERS.has( phoneme.manner ) ) return request;
 	const { phonemes, ...rest } = request;
-	const end = HELD_QUIET_S + HELD_S;
+	const ms = ( seconds ) => Math.round( seconds * 1000 ) / 1000; // 0.9, not 0.8999999999999999
+	const end = ms( HELD_QUIET_S + HELD_S );
 	return { phones: [
 		{ symbol: 'sil', start_s: 0, end_s: HELD_QUIET_S },
 		{ symbol: phonemes, start_s: HELD_QUIET_S, end_s: end },
-		{ symbol: 'sil', start_s: end, end_s: end + HELD_QUIET_S },
+		{ symbol: 'sil', start_s: end, end_s: ms( end + HELD_QUIET_S ) },
 	], ...rest };
 
 }

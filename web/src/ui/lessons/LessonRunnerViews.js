@@ -42,13 +42,15 @@ export class ItemPresenter {
 
 	/**
 	 * @param {object} view a mounted SpeechView
-	 * @param {{ obstacles?: () => Array<Element|null> }} options what lies over the head that the
-	 *   labels keep off (the target in big letters)
+	 * @param {{ obstacles?: () => Array<Element|null>, inventory?: () => Promise<Map> }} options
+	 *   what lies over the head that the labels keep off (the target in big letters), and the
+	 *   phoneme inventory's reader (GET /phonemes, once per page)
 	 */
-	constructor( view, { obstacles = () => [] } = {} ) {
+	constructor( view, { obstacles = () => [], inventory = () => phonemeInventory() } = {} ) {
 
 		this.view = view;
 		this.obstacles = obstacles;
+		this.inventory = inventory;
 		this.settings = null;
 		this.item = null;
 		this.presenting = 0;
@@ -68,7 +70,7 @@ export class ItemPresenter {
 		this.item = item;
 		this.settings = itemSettings( item );
 		this.plays = 0;
-		const [ phonemes ] = await Promise.all( [ phonemeInventory(), this.applyViews( this.settings ) ] );
+		const [ phonemes ] = await Promise.all( [ this.inventory(), this.applyViews( this.settings ) ] );
 		if ( presenting !== this.presenting ) return false;
 		await view.say( itemRequest( item, phonemes ) );
 		if ( presenting !== this.presenting || ! view.viewer || ! view.utterance || view.busy ) return false;
