@@ -294,3 +294,15 @@ LESSON_ZOOM_RANGE = (1.0, 2.5)
 LESSON_VIEW_DEFAULTS: dict[str, Any] = {
     "skin_transparency": 0.6, "cutaway": False, "diagram": False, "cues": True, "labels": False,
     "epg": False, "camera": "profile", "zoom": 1.0}
+
+# --- The tract as a lossy tube (glasshead.acoustics.tube, web/src/core/tubeAcoustics.js) -------
+#: Air in the warm, moist tract (SI): density kg/m³, speed of sound m/s, viscosity Pa·s, heat
+#: conductivity W/(m·K), specific heat J/(kg·K), and the ratio of specific heats.
+TUBE_AIR = {"density": 1.14, "sound_speed": 350.0, "viscosity": 1.86e-5,
+            "heat_conductivity": 0.0055, "specific_heat": 1005.0, "heat_ratio": 1.4}
+#: The walls per unit area, as Ishizaka, French and Flanagan (1975) measured the relaxed cheek:
+#: mass kg/m², resistance Pa·s/m, stiffness Pa/m.
+TUBE_WALL = {"mass": 21.0, "resistance": 8000.0, "stiffness": 8.45e6}
+#: The band searched for formants, Hz, and the step of the grid they are found on, Hz.
+TUBE_FORMANT_BAND_HZ = (100.0, 5000.0)
+TUBE_GRID_STEP_HZ = 20.0

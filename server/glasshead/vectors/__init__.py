@@ -37,6 +37,7 @@ GENERATORS = (
     Generator("glasshead.vectors.epg_indices:files", ("epg-indices.json",)),
     Generator("glasshead.vectors.epg_contacts:files",
               ("epg-contacts-tables.bin", "epg-contacts.json")),
+    Generator("glasshead.vectors.tube_acoustics:files", ("tube-acoustics.json",)),
 )
 
 #: Every file the package writes, in generation order.

@@ -22,7 +22,7 @@ CASE_KEYS = ("description", "input", "expected")
 TOLERANCE_KEYS = ("value", "unit", "reason")
 #: Units a tolerance may have: millimetres, cubic millimetres, relative (a fraction of the
 #: expected magnitude), "1" (absolute, for dimensionless numbers), radians, degrees.
-UNITS = ("mm", "mm2", "mm3", "relative", "1", "rad", "deg")
+UNITS = ("mm", "mm2", "mm3", "relative", "1", "rad", "deg", "Hz")
 GENERATOR_PREFIX = "glasshead vectors"
 
 

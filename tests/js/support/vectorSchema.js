@@ -7,7 +7,7 @@ const OPTIONAL = [ 'fixtures' ];
 const CASE_KEYS = [ 'description', 'input', 'expected' ];
 const TOLERANCE_KEYS = [ 'value', 'unit', 'reason' ];
 /** Units a tolerance may have: mm, mm^3, relative, "1" (absolute, dimensionless), rad, deg. */
-export const UNITS = [ 'mm', 'mm2', 'mm3', 'relative', '1', 'rad', 'deg' ];
+export const UNITS = [ 'mm', 'mm2', 'mm3', 'relative', '1', 'rad', 'deg', 'Hz' ];
 const GENERATOR_PREFIX = 'glasshead vectors';
 
 /** The error a document that breaks the schema is refused with; the message lists every problem. */

@@ -352,3 +352,23 @@ export const LESSON_VIEW_DEFAULTS = Object.freeze( {
 	camera: 'profile',
 	zoom: 1.0,
 } );
+/**
+ * Air in the warm, moist tract (SI): density kg/m³, speed of sound m/s, viscosity Pa·s, heat
+ * conductivity W/(m·K), specific heat J/(kg·K), and the ratio of specific heats.
+ */
+export const TUBE_AIR = Object.freeze( {
+	density: 1.14,
+	sound_speed: 350.0,
+	viscosity: 1.86e-5,
+	heat_conductivity: 0.0055,
+	specific_heat: 1005.0,
+	heat_ratio: 1.4,
+} );
+/**
+ * The walls per unit area, as Ishizaka, French and Flanagan (1975) measured the relaxed cheek: mass
+ * kg/m², resistance Pa·s/m, stiffness Pa/m.
+ */
+export const TUBE_WALL = Object.freeze( { mass: 21.0, resistance: 8000.0, stiffness: 8450000.0 } );
+/** The band searched for formants, Hz, and the step of the grid they are found on, Hz. */
+export const TUBE_FORMANT_BAND_HZ = Object.freeze( [ 100.0, 5000.0 ] );
+export const TUBE_GRID_STEP_HZ = 20.0;
