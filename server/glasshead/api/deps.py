@@ -35,6 +35,15 @@ def get_built_url(request: Request) -> Callable[[str], str]:
 BuiltUrlDep = Annotated[Callable[[str], str], Depends(get_built_url)]
 
 
+def get_public_url() -> str | None:
+    """Where the school reaches this server (``public_url``), without a trailing slash; None
+    when it is not set."""
+    return get_settings().public_url.rstrip("/") or None
+
+
+PublicUrlDep = Annotated[str | None, Depends(get_public_url)]
+
+
 def get_compute_pool(request: Request) -> ComputePool:
     """The application's compute pool, made in ``create_app``."""
     return request.app.state.compute

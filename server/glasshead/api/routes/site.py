@@ -3,7 +3,7 @@
 from fastapi import APIRouter
 from pydantic import BaseModel, Field
 
-from glasshead.settings import get_settings
+from glasshead.api.deps import PublicUrlDep
 
 router = APIRouter(tags=["health"])
 
@@ -15,7 +15,6 @@ class Site(BaseModel):
 
 
 @router.get("/site", operation_id="getSite", response_model=Site)
-def site() -> Site:
+def site(public_url: PublicUrlDep) -> Site:
     """Where children's tablets reach this server, for the join link a teacher shows."""
-    public_url = get_settings().public_url.rstrip("/")
-    return Site(public_url=public_url or None)
+    return Site(public_url=public_url)
