@@ -39,6 +39,12 @@ const K = new Float64Array( 8 );
 export function tubeTransfer( lengths, areas, frequency, lossy = true, out = new Float64Array( 2 ) ) {
 
 	const omega = 2 * Math.PI * frequency;
+	// What depends on the frequency alone: the boundary layers' depth and the walls' admittance.
+	const viscousRoot = Math.sqrt( omega * VISCOUS );
+	const thermalRoot = THERMAL * Math.sqrt( THERMAL_ROOT * omega );
+	const wr = TUBE_WALL.resistance, wi = omega * TUBE_WALL.mass - TUBE_WALL.stiffness / omega;
+	const wn = wr * wr + wi * wi;
+	const wallR = wr / wn, wallI = - wi / wn;
 	K.fill( 0 );
 	K[ 0 ] = 1;
 	K[ 6 ] = 1;
@@ -51,17 +57,13 @@ export function tubeTransfer( lengths, areas, frequency, lossy = true, out = new
 		let yr = 0, yi = omega * area / ( RHO * C * C ); // shunt admittance per unit length
 		if ( lossy ) {
 
-			const viscous = perimeter / ( area * area ) * Math.sqrt( omega * VISCOUS );
+			const viscous = perimeter / ( area * area ) * viscousRoot;
 			zr += viscous;
 			zi += viscous;
-			const thermal = perimeter * THERMAL * Math.sqrt( THERMAL_ROOT * omega );
-			yr += thermal;
-			yi += thermal;
+			const thermal = perimeter * thermalRoot;
 			// The walls: perimeter / (R + j(ωM - K/ω)).
-			const wr = TUBE_WALL.resistance, wi = omega * TUBE_WALL.mass - TUBE_WALL.stiffness / omega;
-			const wn = wr * wr + wi * wi;
-			yr += perimeter * wr / wn;
-			yi -= perimeter * wi / wn;
+			yr += thermal + perimeter * wallR;
+			yi += thermal + perimeter * wallI;
 
 		}
 
@@ -71,7 +73,8 @@ export function tubeTransfer( lengths, areas, frequency, lossy = true, out = new
 		const yn = yr * yr + yi * yi;
 		csqrt( ( zr * yr + zi * yi ) / yn, ( zi * yr - zr * yi ) / yn );
 		const z0r = S[ 0 ], z0i = S[ 1 ];
-		const ch = Math.cosh( gr ), sh = Math.sinh( gr ), cs = Math.cos( gi ), sn = Math.sin( gi );
+		const e = Math.exp( gr ), ch = ( e + 1 / e ) / 2, sh = ( e - 1 / e ) / 2;
+		const cs = Math.cos( gi ), sn = Math.sin( gi );
 		const coshR = ch * cs, coshI = sh * sn; // cosh(γl)
 		const sinhR = sh * cs, sinhI = ch * sn; // sinh(γl)
 		const br = z0r * sinhR - z0i * sinhI, bi = z0r * sinhI + z0i * sinhR; // Z0 sinh
