@@ -52,12 +52,13 @@ describe( 'the label layer', { timeout: 240_000 }, () => {
 
 	test( 'the labels switch on and off', async () => {
 
-		assert.deepEqual( ( await readDebug( page ) ).labels, { visible: false, count: 0, hovered: null, overlapping: 0 } );
+		assert.deepEqual( ( await readDebug( page ) ).labels, { visible: false, count: 0, names: [], hidden: [], hovered: null, overlapping: 0 } );
 		await setLabels( true );
 		const shown = landmarks.landmarks.filter( ( e ) => e.kind !== 'reference' ).length;
 		let state = await readDebug( page );
 		assert.equal( state.labels.visible, true );
 		assert.equal( state.labels.count, shown );
+		assert.equal( state.labels.names.length, shown, 'every label is on show' );
 		assert.ok( await page.getByText( 'alveolar ridge', { exact: true } ).isVisible() );
 		await setLabels( false );
 		state = await readDebug( page );

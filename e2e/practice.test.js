@@ -76,6 +76,7 @@ describe( 'the child\'s practice', { timeout: 900_000 }, () => {
 
 		await page.goto( `${ server.baseUrl }/#/practice` );
 		const code = page.getByRole( 'textbox', { name: 'Class code' } );
+		await code.waitFor( { timeout: 60_000 } );
 		assert.equal( await page.locator( '.nav-bar' ).isVisible(), false, 'a kiosk: no adult navigation' );
 		await code.fill( 'ABC123' );
 		await page.getByRole( 'button', { name: 'Go' } ).tap();

@@ -104,6 +104,7 @@ export class HeadView extends View {
 		await ( await import( '../shared/HeadEpg.js' ) ).attachHeadEpg( this, { api: this.api } ); // electrodes on the palate, live palatogram
 		await this.attachLabels();
 		await this.attachTargets();
+		if ( ! this.viewer ) return; // unmounted while loading: someone went to another view
 		// `?still` in the page's address: no blinks (tests that a still head draws nothing use it).
 		this.eyes = new EyeMotion( this.head, this.viewer, { blink: ! new URLSearchParams( location.search ).has( 'still' ) } );
 		this.head.setTransparency( this.state.transparency );
