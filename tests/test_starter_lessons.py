@@ -87,3 +87,10 @@ def test_the_starter_lessons_name_no_value_the_format_gives_by_default():
         for k, item in enumerate(lesson["items"]):
             found += spelled_defaults(Item, item, f"{lesson['title']} item {k}")
     assert found == []
+
+
+def test_the_label_names_a_lesson_may_list_are_the_parts_and_places_the_build_labels():
+    from glasshead.constants import LABEL_NAMES
+    from glasshead.pipeline.landmarks import PARTS, PLACES
+
+    assert list(LABEL_NAMES) == [part[0] for part in PARTS] + [place[0] for place in PLACES]

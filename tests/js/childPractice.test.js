@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
-import { looksLikeJoinCode, normaliseJoinCode, PracticeRound } from '../../web/src/ui/practice/ChildPracticeFlow.js';
+import { JOIN_CODE_ALPHABET, looksLikeJoinCode, normaliseJoinCode, PracticeRound } from '../../web/src/ui/practice/ChildPracticeFlow.js';
 import { codeMessage, NO_CLASS } from '../../web/src/ui/practice/practiceMessages.js';
 import { AVATAR_NAMES, pictureShapes, RATINGS } from '../../web/src/ui/shared/ChildPracticePictures.js';
 
@@ -71,5 +71,12 @@ test( 'a typed code is said wrong with what to do: letters codes never have name
 	assert.equal( codeMessage( '' ).text, 'Type the class code: six letters and numbers.' );
 	for ( const typed of [ 'ABC123', 'ACD', '' ] ) assert.equal( codeMessage( typed ).icon, 'ask-adult', 'every message has its picture' );
 	assert.equal( NO_CLASS.icon, 'ask-adult' );
+
+} );
+
+test( 'the page\'s code alphabet is the server\'s', () => {
+
+	const server = readFileSync( new URL( '../../server/glasshead/store/lessons.py', import.meta.url ), 'utf8' );
+	assert.equal( /^JOIN_CODE_ALPHABET = "([^"]+)"/m.exec( server )[ 1 ], JOIN_CODE_ALPHABET );
 
 } );

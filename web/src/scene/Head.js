@@ -23,6 +23,22 @@ const NO_CUT = 1e6;
 /** Skin vertices closer than this (mm) are the same point of the seam. */
 const WELD_TOLERANCE_MM = 0.01;
 
+/** `target` set to the world box around `parts` (null entries skipped); empty when there are none. */
+function partsBox( parts, target ) {
+
+	target.makeEmpty();
+	for ( const part of parts ) {
+
+		if ( ! part ) continue;
+		part.geometry.computeBoundingBox();
+		target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
+
+	}
+
+	return target;
+
+}
+
 export class Head {
 
 	constructor() {
@@ -307,16 +323,7 @@ export class Head {
 	/** World box around the lips (the mouth), falling back to the frame origin, which is in the mouth. */
 	mouthBox( target = new Box3() ) {
 
-		target.makeEmpty();
-		for ( const name of [ 'upper_lip', 'lower_lip' ] ) {
-
-			const part = this.parts.get( name );
-			if ( ! part ) continue;
-			part.geometry.computeBoundingBox();
-			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
-
-		}
-
+		partsBox( [ this.parts.get( 'upper_lip' ), this.parts.get( 'lower_lip' ) ], target );
 		if ( target.isEmpty() ) target.setFromCenterAndSize( new Vector3( 20, - 5, 0 ), new Vector3( 40, 40, 50 ) );
 		return target;
 
@@ -329,16 +336,8 @@ export class Head {
 	velumBox( target = new Box3() ) {
 
 		if ( ! this.cutaway ) return null;
-		target.makeEmpty();
-		for ( const part of this.parts.values() ) {
-
-			if ( part.tissue !== 'velum' || ! part.group.visible ) continue;
-			part.geometry.computeBoundingBox();
-			target.union( part.geometry.boundingBox.clone().applyMatrix4( part.group.matrixWorld ) );
-
-		}
-
-		return target.isEmpty() ? null : target;
+		const velum = [ ...this.parts.values() ].filter( ( part ) => part.tissue === 'velum' && part.group.visible );
+		return partsBox( velum, target ).isEmpty() ? null : target;
 
 	}
 

@@ -120,8 +120,7 @@ export function toggleLabel( labels, name, chosen ) {
 	return LABEL_NAMES.filter( ( n ) => names.has( n ) );
 
 }
-/** The schema's defaults for what an item leaves out. */
-export const DEFAULT_VIEWS = LESSON_VIEW_DEFAULTS;
+
 /** Ranges the server accepts (schema.py): [low, high]. */
 export const RANGES = Object.freeze( {
 	speed: Object.freeze( [ 0.1, 1 ] ),
@@ -156,7 +155,7 @@ export function normaliseItem( item = {} ) {
 		target: { kind: item.target?.kind ?? 'phoneme', text: item.target?.text ?? '' },
 		presentation: item.presentation ?? 'dynamic',
 		audio: { kind: audio.kind ?? 'natural', cutoff_hz: audio.cutoff_hz ?? null, channels: audio.channels ?? null },
-		views: { ...DEFAULT_VIEWS, ...( item.views ?? {} ) },
+		views: { ...LESSON_VIEW_DEFAULTS, ...( item.views ?? {} ) },
 		speed: item.speed ?? 1,
 		said_as: item.said_as ?? null,
 		listen: item.listen ? { ...item.listen } : null,

@@ -3,8 +3,12 @@
 // making the practice record (POST /practice) of each try. No DOM: ChildPractice.js shows it and
 // tests/js/childPractice.test.js reads it.
 
-/** The characters of a join code (docs/lessons.md): no 0/O, 1/I/L, 2/Z, 5/S, 8/B. */
-export const JOIN_CODE_PATTERN = /^[34679ACDEFGHJKMNPQRTUVWXY]{6}$/;
+/** The characters of a join code (docs/lessons.md; store/lessons.py JOIN_CODE_ALPHABET): no
+ * 0/O, 1/I/L, 2/Z, 5/S, 8/B. */
+export const JOIN_CODE_ALPHABET = '34679ACDEFGHJKMNPQRTUVWXY';
+/** How many characters a join code has. */
+export const JOIN_CODE_LENGTH = 6;
+const JOIN_CODE_PATTERN = new RegExp( `^[${ JOIN_CODE_ALPHABET }]{${ JOIN_CODE_LENGTH }}$` );
 
 /** What was typed as a class code, as the server compares it: capitals, no spaces or dashes. */
 export function normaliseJoinCode( typed ) {

@@ -33,29 +33,25 @@ export function grownUpLock( onLeave, onTap, win = globalThis.window ) {
 
 	};
 
-	const stop = () => {
+	/** Let go before HOLD_MS: the ring empties; whether it was held long enough is returned. */
+	const cancel = () => {
 
-		if ( timer === null ) return;
+		if ( timer === null ) return true;
 		win.clearTimeout( timer );
 		timer = null;
 		button.classList.remove( 'cp-holding' );
-		if ( ! held ) onTap();
+		return held;
+
+	};
+	const stop = () => {
+
+		if ( ! cancel() ) onTap();
 
 	};
 
 	button.addEventListener( 'pointerdown', start );
 	button.addEventListener( 'pointerup', stop );
-	button.addEventListener( 'pointerleave', () => {
-
-		if ( timer !== null ) {
-
-			win.clearTimeout( timer );
-			timer = null;
-			button.classList.remove( 'cp-holding' );
-
-		}
-
-	} );
+	button.addEventListener( 'pointerleave', cancel );
 	button.addEventListener( 'keydown', ( event ) => {
 
 		if ( ( event.key === 'Enter' || event.key === ' ' ) && ! event.repeat ) start( event );

@@ -2,10 +2,7 @@
 // says aloud (a child may not read): a class code that cannot be one, and what to do about it.
 // Pure: ChildPracticeSignIn.js shows them, tests/js/childPractice.test.js reads them.
 
-import { JOIN_CODE_PATTERN, normaliseJoinCode } from './ChildPracticeFlow.js';
-
-/** Letters and numbers a class code never has (docs/lessons.md): look-alikes of others. */
-const NEVER_IN_A_CODE = '0O1IL2Z5S8B';
+import { JOIN_CODE_ALPHABET, JOIN_CODE_LENGTH, normaliseJoinCode } from './ChildPracticeFlow.js';
 
 /** A list read aloud: 'B', 'B and 1', 'B, 1 and 2'. */
 function spoken( items ) {
@@ -23,12 +20,13 @@ export function codeMessage( typed ) {
 
 	const code = normaliseJoinCode( typed );
 	if ( code === '' ) return { text: 'Type the class code: six letters and numbers.', icon: 'ask-adult' };
-	const never = [ ...new Set( [ ...code ].filter( ( c ) => NEVER_IN_A_CODE.includes( c ) ) ) ];
+	// Letters and numbers outside the alphabet: the look-alikes it leaves out.
+	const never = [ ...new Set( [ ...code ].filter( ( c ) => /[A-Z0-9]/.test( c ) && ! JOIN_CODE_ALPHABET.includes( c ) ) ) ];
 	if ( never.length ) return { text: `A class code never has ${ spoken( never ) }. Ask a grown-up to read the code again.`, icon: 'ask-adult' };
 	const odd = [ ...new Set( [ ...code ].filter( ( c ) => ! /[A-Z0-9]/.test( c ) ) ) ];
 	if ( odd.length ) return { text: `A class code has only letters and numbers, not ${ spoken( odd ) }. Ask a grown-up to read the code again.`, icon: 'ask-adult' };
-	if ( code.length !== 6 ) return { text: `A class code has 6 letters and numbers; this one has ${ code.length }. Ask a grown-up to check it.`, icon: 'ask-adult' };
-	return JOIN_CODE_PATTERN.test( code ) ? null : { text: 'Ask a grown-up to check the class code.', icon: 'ask-adult' };
+	if ( code.length !== JOIN_CODE_LENGTH ) return { text: `A class code has ${ JOIN_CODE_LENGTH } letters and numbers; this one has ${ code.length }. Ask a grown-up to check it.`, icon: 'ask-adult' };
+	return null; // every character is of the alphabet, and there are six
 
 }
 
