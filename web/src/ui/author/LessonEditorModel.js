@@ -80,7 +80,7 @@ const CAMERA_WORDS = Object.freeze( { profile: 'Profile (the cut side)', 'three-
 export const CAMERA_CHOICES = Object.freeze( CAMERA_VIEWS.map( ( value ) => Object.freeze( { value, label: CAMERA_WORDS[ value ] ?? value } ) ) );
 /** How a phoneme target is said (the format's `said_as`). */
 export const SAID_AS_CHOICES = Object.freeze( [
-	Object.freeze( { value: '', label: 'By its sound: held alone, or a stop in a syllable' } ),
+	Object.freeze( { value: '', label: 'By its sound (held, or "ta")' } ),
 	Object.freeze( { value: 'alone', label: 'Alone (held when it can be)' } ),
 	Object.freeze( { value: 'syllable', label: 'In a syllable (ta)' } ),
 	Object.freeze( { value: 'repeated', label: 'Three times (t-t-t)' } ),
