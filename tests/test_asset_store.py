@@ -29,7 +29,8 @@ ROUTES = {
                   ("post", "/api/v1/tongue/surface", {"params": {"velum_opening": 0.5}})],
     "landmarks": [("get", "/api/v1/anatomy/landmarks", None)],
     "velum_mesh": [("post", "/api/v1/collision/correct",
-                    {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
+                    {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5}),
+                   ("post", "/api/v1/tract/acoustics", {"params": {"velum_opening": 0.5}})],
     "pharynx_mesh": [("post", "/api/v1/collision/correct",
                       {"vertices": [[0.0, 0.0, 0.0]], "velum_opening": 0.5})],
     "upper_lip_mesh": [("post", "/api/v1/utterances", FLESH_POINTS)],
@@ -38,6 +39,7 @@ ROUTES = {
     "vtl_observations": [("get", "/api/v1/observations", None),
                          ("get", "/api/v1/observations/a", None)],
     "fit_report": [("get", "/api/v1/observations", None), ("get", "/api/v1/observations/a", None)],
+    "tract_section": [("post", "/api/v1/tract/acoustics", {"params": {"jaw_opening": 2.0}})],
 }
 
 

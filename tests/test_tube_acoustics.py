@@ -48,16 +48,6 @@ def test_a_narrowing_at_the_lips_lowers_the_formants_and_a_narrow_back_gives_the
     assert open_a[0] > 600 > front_i[0] and front_i[1] > 1800 > open_a[1]
 
 
-def _vtl_peaks(state, count=3):
-    api = vtl_speaker.api()
-    spectrum = api.tract_state_to_transfer_function(
-        state, n_spectrum_samples=8192, paranasal_sinuses=False, piriform_fossa=False)
-    magnitude = np.asarray(spectrum["magnitude_spectrum"])
-    frequency = np.arange(len(magnitude)) * api.get_constants()["sr_audio"] / len(magnitude)
-    db = 20.0 * np.log10(magnitude + 1e-12)
-    peaks = np.flatnonzero((frequency[1:-1] > 100) & (db[1:-1] > db[:-2])
-                           & (db[1:-1] >= db[2:])) + 1
-    return frequency[peaks][:count]
 
 
 def test_vocaltractlabs_own_tubes_of_its_vowels_give_its_own_formants():
@@ -71,7 +61,7 @@ def test_vocaltractlabs_own_tubes_of_its_vowels_give_its_own_formants():
         lengths = np.asarray(tubes["tube_length"]) * 10.0  # cm -> mm
         areas = np.asarray(tubes["tube_area"]) * 100.0  # cm² -> mm²
         ours = tube.formants(lengths, areas)[0][:3]
-        theirs = _vtl_peaks(state)
+        theirs = vtl_speaker.formant_peaks(state)
         errors.append(np.abs(ours - theirs) / theirs)
     medians = np.median(errors, axis=0)
     for k, name in enumerate(("F1", "F2", "F3")):

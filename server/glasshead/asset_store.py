@@ -41,6 +41,8 @@ from glasshead.constants import (
     PHONEME_TARGETS_FORMAT_VERSION,
     REBUILD_COMMAND,
     TONGUE_RIG_FILE,
+    TRACT_SECTION_FILE,
+    TRACT_SECTION_FORMAT_VERSION,
     UPPER_LIP_GLB,
     VELUM_REST_GLB,
     VELUM_RIG_FILE,
@@ -113,16 +115,21 @@ PHONEME_TARGET_KEYS = ("arpabet", "ipa", "kind", "examples", "features", "params
                        "source", "volume_change_pct", "epg")
 
 
+def _versioned(data: bytes, what: str, format_version: int) -> dict:
+    """A JSON object in the given format version (ValueError naming ``what`` otherwise)."""
+    document = _json(data)
+    if not isinstance(document, dict):
+        raise ValueError(f"the {what} must be a JSON object")
+    version = document.get("format_version")
+    if version != format_version:
+        raise ValueError(f"{what} format_version {version!r} is not {format_version}")
+    return document
+
+
 def read_phoneme_targets(data: bytes) -> dict:
     """The phoneme targets: format version, one target per phoneme with its parameters and
     synthetic EPG (8 rows of 0/1, R1 first)."""
-    document = _json(data)
-    if not isinstance(document, dict):
-        raise ValueError("the phoneme targets must be a JSON object")
-    version = document.get("format_version")
-    if version != PHONEME_TARGETS_FORMAT_VERSION:
-        raise ValueError(f"phoneme targets format_version {version!r} is not "
-                         f"{PHONEME_TARGETS_FORMAT_VERSION}")
+    document = _versioned(data, "phoneme targets", PHONEME_TARGETS_FORMAT_VERSION)
     targets = document.get("targets")
     if not isinstance(targets, list) or not targets:
         raise ValueError("the phoneme targets list no targets")
@@ -151,6 +158,19 @@ def _points_of(value, width: int) -> bool:
     return isinstance(value, list) \
         and all(type(p) is list and len(p) == width for p in value) \
         and set(map(type, itertools.chain.from_iterable(value))) <= {int, float}
+
+
+def read_tract_section(data: bytes) -> dict:
+    """The tract's still section and stations (glasshead.pipeline.tract_section), checked."""
+    document = _versioned(data, "tract section", TRACT_SECTION_FORMAT_VERSION)
+    stations = document.get("stations")
+    if not isinstance(stations, list) or len(stations) < 2 or any(
+            not isinstance(p, list) or len(p) != 2 for p in stations):
+        raise ValueError("the tract section needs at least two [x, y] stations")
+    for key in ("still", "mandible", "incisor_x", "uvula_y"):
+        if key not in document:
+            raise ValueError(f"the tract section lacks {key}")
+    return document
 
 
 def read_vtl_observations(data: bytes) -> dict:
@@ -251,6 +271,7 @@ ASSETS: tuple[AssetSpec, ...] = (
     AssetSpec("phoneme_targets", PHONEME_TARGETS_FILE, read_phoneme_targets),
     AssetSpec("vtl_observations", VTL_OBSERVATIONS_FILE, read_vtl_observations),
     AssetSpec("fit_report", FIT_REPORT_FILE, read_fit_report),
+    AssetSpec("tract_section", TRACT_SECTION_FILE, read_tract_section),
 )
 
 

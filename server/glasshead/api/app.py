@@ -25,7 +25,7 @@ API_PREFIX = "/api/v1"
 ROUTE_MODULES = ["health", "site", "anatomy", "recordings", "epg_compare", "epg_coarticulated",
                  "epg_indices", "ema", "poses",
                  "collision", "tongue", "epg", "face", "landmarks", "velum",
-                 "phonemes", "observations", "fits", "utterances", "auth", "users",
+                 "phonemes", "observations", "fits", "utterances", "tract", "auth", "users",
                  "lessons", "classes", "class_staff", "practice", "practice_audio",
                  "child_records"]
 

@@ -141,6 +141,11 @@ def vowel_norms_step(ctx):
     return build_step(ctx)
 
 
+def tract_section_step(ctx):
+    from glasshead.pipeline.tract_section import build_step
+    return build_step(ctx)
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -160,6 +165,7 @@ STEPS = [
     ("phoneme-targets", phoneme_targets_step),
     ("fit-report", fit_report_step),
     ("vowel-norms", vowel_norms_step),
+    ("tract-section", tract_section_step),
 ]
 
 

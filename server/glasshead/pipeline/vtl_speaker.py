@@ -118,6 +118,19 @@ def tract_params(name):
     return np.asarray(api().get_shape(name, "tract"), dtype=np.float64)
 
 
+def formant_peaks(params, count=3):
+    """The first ``count`` peaks above 100 Hz (Hz) of VocalTractLab's own transfer function of
+    a tract state (glottis to lips, no sinuses or piriform fossa), on an 8192-point spectrum."""
+    spectrum = api().tract_state_to_transfer_function(
+        params, n_spectrum_samples=8192, paranasal_sinuses=False, piriform_fossa=False)
+    magnitude = np.asarray(spectrum["magnitude_spectrum"])
+    frequency = np.arange(len(magnitude)) * api().get_constants()["sr_audio"] / len(magnitude)
+    db = 20.0 * np.log10(magnitude + 1e-12)
+    peaks = np.flatnonzero((frequency[1:-1] > 100) & (db[1:-1] > db[:-2])
+                           & (db[1:-1] >= db[2:])) + 1
+    return frequency[peaks][:count]
+
+
 @lru_cache(maxsize=1)
 def param_names():
     """The 19 tract parameter names in VTL's order (HX, HY, JX, JA, LP, LD, VS, VO, TCX, ...)."""

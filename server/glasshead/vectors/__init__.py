@@ -38,6 +38,7 @@ GENERATORS = (
     Generator("glasshead.vectors.epg_contacts:files",
               ("epg-contacts-tables.bin", "epg-contacts.json")),
     Generator("glasshead.vectors.tube_acoustics:files", ("tube-acoustics.json",)),
+    Generator("glasshead.vectors.area_function:files", ("area-function.json",)),
 )
 
 #: Every file the package writes, in generation order.

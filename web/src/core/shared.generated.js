@@ -287,6 +287,12 @@ export const VOWEL_NORMS_FILE = 'vowel-norms.json';
 /** Format version of the vowel norms; its readers refuse any other version. */
 export const VOWEL_NORMS_FORMAT_VERSION = 1;
 /**
+ * The tract's still mid-sagittal section and its stations (``glasshead.pipeline.tract_section``).
+ */
+export const TRACT_SECTION_FILE = 'tract-section.json';
+/** The format of ``TRACT_SECTION_FILE``. */
+export const TRACT_SECTION_FORMAT_VERSION = 1;
+/**
  * The vowels of the vowel norms, by Peterson & Barney's codes (ARPAbet in lower case): the vowels a
  * spoken try can be measured against (a lesson item's ``listen``).
  */
@@ -372,3 +378,25 @@ export const TUBE_WALL = Object.freeze( { mass: 21.0, resistance: 8000.0, stiffn
 /** The band searched for formants, Hz, and the step of the grid they are found on, Hz. */
 export const TUBE_FORMANT_BAND_HZ = Object.freeze( [ 100.0, 5000.0 ] );
 export const TUBE_GRID_STEP_HZ = 20.0;
+/** Stations along the tract's midline are this far apart, mm. */
+export const TRACT_STATION_STEP_MM = 2.0;
+/**
+ * Cross-section area from mid-sagittal width d, A = alpha d^beta (A in cm², d in cm), in the mouth
+ * and in the pharynx (below the uvula); the lips' opening is an ellipse of the lips' gap by a mouth
+ * width_mm narrowed by narrowing_mm per unit of lip_rounding, never below min_mm.
+ */
+export const TRACT_AREA_LAWS = Object.freeze( {
+	oral: Object.freeze( { alpha: 2.5, beta: 1.5 } ),
+	pharynx: Object.freeze( { alpha: 1.0, beta: 1.5 } ),
+	lips: Object.freeze( { width_mm: 45.0, narrowing_mm: 4.0, min_mm: 8.0 } ),
+} );
+/** The larynx's tube from the glottis to the airway's lower end: length mm and area mm². */
+export const TRACT_LARYNX_TUBE = Object.freeze( { length_mm: 10.0, area_mm2: 50.0 } );
+/**
+ * A section narrower than this (mm, mid-sagittal) is shut: the rigs do not press tissue together,
+ * so a stop's section keeps a gap (the targets' stops leave 0.28 to 0.71 mm, the narrowest
+ * fricative, /ʃ/, 1.57 mm).
+ */
+export const TRACT_CLOSURE_MM = 1.0;
+/** A shut section still passes this area (mm²), so that a closed tract has a transfer function. */
+export const TRACT_MIN_AREA_MM2 = 0.1;

@@ -25,6 +25,7 @@ import { DiagramSection } from '../../scene/DiagramSection.js';
 import { drawDiagram } from '../shared/DiagramPanel.js';
 import { WorkbenchCues } from '../shared/WorkbenchCues.js';
 import { mountObservationPanels } from './ObservationOverlay.js';
+import { FormantPanel } from './FormantPanel.js';
 
 /** The part of the head the 3D view frames: the oral cavity, tongue and jaw (mm). */
 const FOCUS = Object.freeze( { center: [ - 8, - 4, 0 ], radius: 46 } );
@@ -204,12 +205,17 @@ export class WorkbenchView extends View {
 		this.viewButtons = new Map( VIEWS.map( ( name ) => [ name, h( 'button', {
 			type: 'button', className: 'wb-toggle', 'aria-pressed': String( name === this.state.view ), onClick: () => this.setView( name ),
 		}, VIEW_LABELS[ name ] ) ] ) );
+		// The head's own formants, from the diagram's section; loaded beside the panels.
+		this.formants = new FormantPanel( { api: this.api, diagram: this.diagram, state } );
+		this.onUnmount( () => this.formants.dispose() );
+		this.formants.load();
 		this.side.append(
 			h( 'div', { className: 'wb-buttons', role: 'group', 'aria-label': 'Show' }, ...this.toggles.values() ),
 			h( 'div', { className: 'wb-buttons', role: 'group', 'aria-label': 'View' }, ...this.viewButtons.values() ),
 			this.sagittalCanvas.element,
 			this.sectionsCanvas.element,
 			this.diagramCanvas.element,
+			this.formants.element,
 			this.poseBox.element,
 		);
 
@@ -288,6 +294,7 @@ export class WorkbenchView extends View {
 		this.diagram.update();
 		drawDiagram( this.diagramCanvas.ctx, { parts: this.diagramParts, air: this.diagram.polygon, constriction: this.diagram.constriction() }, this.diagramCanvas );
 		this.diagramDraws = ( this.diagramDraws ?? 0 ) + 1;
+		this.formants?.update();
 
 	}
 
