@@ -61,6 +61,22 @@ def built_assets(data_dir) -> Path:
 
 
 @pytest.fixture(scope="session")
+def built_store(built_assets):
+    """An asset store of the built assets, shared by the session's tests that read them."""
+    from glasshead.asset_store import AssetStore
+
+    return AssetStore(built_assets)
+
+
+@pytest.fixture(scope="session")
+def head_tract(built_store):
+    """The head's tract shape (speech.tract_shape) of the built assets."""
+    from glasshead.tract_assets import tract_shape
+
+    return tract_shape(built_store)
+
+
+@pytest.fixture(scope="session")
 def migrated_sqlite(tmp_path_factory) -> Path:
     """A SQLite database at the newest migration, with nothing else in it, its WAL folded into
     the file: each app of ``start_app`` starts on a copy (migrating a new file for each of

@@ -98,10 +98,8 @@ def test_the_shared_vectors_are_what_the_kernel_gives():
 
 
 @pytest.fixture(scope="module")
-def shape(built_assets):
-    from glasshead.asset_store import AssetStore
-    from glasshead.tract_assets import tract_shape
-    return tract_shape(AssetStore(built_assets))
+def shape(head_tract):
+    return head_tract
 
 
 @pytest.fixture(scope="module")

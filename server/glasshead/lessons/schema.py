@@ -78,7 +78,7 @@ class Audio(BaseModel):
     """The audio played with the target (options as in ``POST /utterances``)."""
 
     model_config = ConfigDict(extra="forbid")
-    kind: Literal["natural", "lowpass", "vocoded", "articulatory", "none"] = "natural"
+    kind: Literal["natural", "lowpass", "vocoded", "articulatory", "tract", "none"] = "natural"
     cutoff_hz: float | None = Field(None, ge=CUTOFF_RANGE_HZ[0], le=CUTOFF_RANGE_HZ[1],
                                     description="lowpass: the cut-off, Hz")
     channels: int | None = Field(None, ge=CHANNEL_RANGE[0], le=CHANNEL_RANGE[1],

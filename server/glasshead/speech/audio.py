@@ -12,6 +12,8 @@
   survives; the harmonics (the voice's pitch and the formants' fine structure) do not.
 - ``none``: no audio (tracks only).
 - ``articulatory``: VocalTractLab's articulatory synthesis of the same phones (``vtl_voice``).
+- ``tract``: the head's own tract, frame by frame, through VocalTractLab's tube synthesis
+  (``tract_voice``).
 """
 
 import wave
@@ -21,7 +23,7 @@ import numpy as np
 
 from glasshead.speech import time_stretch
 
-KINDS = ("natural", "lowpass", "vocoded", "none", "articulatory")
+KINDS = ("natural", "lowpass", "vocoded", "none", "articulatory", "tract")
 #: Default and accepted low-pass cut-off, Hz.
 DEFAULT_CUTOFF_HZ = 1000.0
 CUTOFF_RANGE_HZ = (100.0, 8000.0)

@@ -15,7 +15,7 @@ The nasal branch is given by its port's area (``geometry.velum.nasal_port_area``
 formants are those of the oral tract alone.
 """
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -94,6 +94,13 @@ class TractShape:
                                lip_rounding=parts["lip_rounding"])
         result["nasal_port_mm2"] = nasal_port_area(self.velum, parts["velum_opening"])
         return result
+
+    def frames(self, tracks: Mapping[str, Sequence[float]]) -> list[dict]:
+        """The area function of every frame of parameter tracks {name: (n_frames,) values}."""
+        arrays = {k: np.asarray(v, dtype=np.float64) for k, v in tracks.items()}
+        count = min((len(a) for a in arrays.values()), default=0)
+        return [self.area_function({k: float(a[i]) for k, a in arrays.items()})
+                for i in range(count)]
 
     def acoustics(self, params: Mapping[str, float]) -> dict:
         """The area function and the tube's formants: {"area_function": ..., "formants":

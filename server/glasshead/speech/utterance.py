@@ -31,6 +31,7 @@ from glasshead.phonemes import UnknownPhonemeError, lookup
 from glasshead.speech import audio, espeak, vtl_voice
 from glasshead.speech.espeak_phones import PAUSE, VOWELS
 from glasshead.speech.pronounce import pronounce
+from glasshead.speech.tract_voice import VOICE as TRACT_VOICE
 
 #: Bump when the response changes for the same request.
 FORMAT_VERSION = 4
@@ -247,13 +248,16 @@ def cached_answer(request: dict, targets_sha256: str, cache: UtteranceCache) -> 
 
 
 def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCache,
-         flesh_points=None) -> bytes:
+         flesh_points=None, tract_voice=None) -> bytes:
     """The response's JSON bytes for a validated request (``text`` | ``phonemes`` | ``phones``,
     ``rate``, ``audio``, ``dominance``, ``flesh_points``), from ``cache`` or made and kept there.
     ``flesh_points``: what a request with ``"flesh_points": true`` needs, a function of the
     tracks ({name: [float] * n_frames}) giving {point: (n_frames, 3) mm}
     (``geometry.flesh_points.FleshPointRig.tracks``); ``targets_sha256`` must then also stand for
-    what that function reads. UtteranceInputError for input that cannot be spoken;
+    what that function reads. ``tract_voice``: what audio of kind ``tract`` needs, a function of
+    the tracks, their rate and the timed phones giving (samples, sample rate)
+    (``speech.tract_voice.speak`` on the head's tract shape); ``targets_sha256`` must then stand
+    for what it reads too. UtteranceInputError for input that cannot be spoken;
     espeak.EspeakUnavailableError when espeak-ng is needed and missing."""
     hit = cached_answer(request, targets_sha256, cache)
     if hit is not None:
@@ -297,6 +301,11 @@ def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCach
     if kind == "articulatory":
         samples, sample_rate = vtl_voice.synthesize(phones)
         voice = vtl_voice.VOICE
+    elif kind == "tract":
+        if tract_voice is None:
+            raise ValueError("audio of kind tract needs the tract_voice function")
+        samples, sample_rate = tract_voice(result["tracks"], result["rate_hz"], timed)
+        voice = TRACT_VOICE
     elif kind != "none":
         seed = int(utterance_id[:8], 16)
         samples = audio.degrade(synthesis.samples, synthesis.sample_rate, kind,

@@ -24,10 +24,11 @@ from glasshead.asset_store import AssetStore
 from glasshead.flesh_point_assets import FLESH_POINT_ASSETS, flesh_point_rig
 from glasshead.geometry.flesh_points import FLESH_POINT_NAMES
 from glasshead.jobs.compute import ComputePool
-from glasshead.speech import audio, utterance
+from glasshead.speech import audio, tract_voice, utterance
 from glasshead.speech.espeak import EspeakUnavailableError
 from glasshead.speech.pronounce import MAX_TEXT_CHARS
 from glasshead.speech.textgrid import TextGridError, read_textgrid
+from glasshead.tract_assets import TRACT_ASSETS, tract_shape
 
 router = APIRouter(tags=["utterances"])
 
@@ -37,7 +38,7 @@ MAX_TEXTGRID_BYTES = 1024 * 1024
 TEXTGRID_EXAMPLE = ('File type = "ooTextFile"\nObject class = "TextGrid"\n\n0\n0.5\n<exists>\n1\n'
                     '"IntervalTier"\n"phones"\n0\n0.5\n4\n0\n0.05\n""\n0.05\n0.22\n"s"\n'
                     '0.22\n0.34\n"ɪ"\n0.34\n0.5\n"p"\n')
-AudioKind = Literal["natural", "lowpass", "vocoded", "none", "articulatory"]
+AudioKind = Literal["natural", "lowpass", "vocoded", "none", "articulatory", "tract"]
 FleshPoint = Literal[FLESH_POINT_NAMES]
 Rate = Field(1.0, ge=0.5, le=2.0, description="speaking rate: 1 is espeak-ng's 175 words a "
                                               "minute; timed phones are divided by it")
@@ -45,8 +46,9 @@ Rate = Field(1.0, ge=0.5, le=2.0, description="speaking rate: 1 is espeak-ng's 1
 
 class AudioOptions(BaseModel):
     kind: AudioKind = Field("natural", description="natural (espeak-ng), lowpass (hearing "
-                            "loss), vocoded (cochlear implant), none, or articulatory "
-                            "(VocalTractLab)")
+                            "loss), vocoded (cochlear implant), none, articulatory "
+                            "(VocalTractLab's JD3 speaker), or tract (the head's own tract "
+                            "through VocalTractLab's tube synthesis)")
     cutoff_hz: float = Field(audio.DEFAULT_CUTOFF_HZ, ge=audio.CUTOFF_RANGE_HZ[0],
                              le=audio.CUTOFF_RANGE_HZ[1], description="lowpass: the cut-off")
     channels: int = Field(audio.DEFAULT_CHANNELS, ge=audio.CHANNEL_RANGE[0],
@@ -140,9 +142,12 @@ def content_key(store: AssetStore, request: dict) -> str:
     """What the answer to ``request`` is made from, as the cache key takes it: the phoneme
     targets' hash, or with ``flesh_points`` a hash of it and of every asset the points read."""
     targets = store.entry("phoneme_targets").sha256
-    if not request.get("flesh_points"):
+    names = list(FLESH_POINT_ASSETS) if request.get("flesh_points") else []
+    if request["audio"]["kind"] == "tract":
+        names += [n for n in FLESH_POINT_ASSETS + TRACT_ASSETS if n not in names]
+    if not names:
         return targets
-    hashes = [targets] + [store.entry(name).sha256 for name in FLESH_POINT_ASSETS]
+    hashes = [targets] + [store.entry(name).sha256 for name in names]
     return hashlib.sha256("\0".join(hashes).encode()).hexdigest()
 
 
@@ -155,10 +160,14 @@ def speak(store: AssetStore, payload: dict) -> bytes:
     def flesh(tracks):  # prepared only when the answer is not cached
         return flesh_point_rig(store).tracks(tracks)
 
+    def tract(tracks, rate_hz, phones):
+        return tract_voice.speak(tract_shape(store), tracks, rate_hz, phones)
+
     try:
         return utterance.make(request, entry.value, content_key(store, request),
                               open_cache(payload),
-                              flesh_points=flesh if request.get("flesh_points") else None)
+                              flesh_points=flesh if request.get("flesh_points") else None,
+                              tract_voice=tract)
     except utterance.UtteranceInputError as exc:
         raise HTTPException(status_code=422, detail=str(exc)) from None
     except EspeakUnavailableError as exc:

@@ -66,6 +66,7 @@ export const AUDIO_KINDS = Object.freeze( [
 	Object.freeze( { value: 'lowpass', label: 'Low-pass (muffled)' } ),
 	Object.freeze( { value: 'vocoded', label: 'Vocoded' } ),
 	Object.freeze( { value: 'articulatory', label: 'Articulatory synthesis' } ),
+	Object.freeze( { value: 'tract', label: 'The head\'s own tract' } ),
 	Object.freeze( { value: 'none', label: 'No sound' } ),
 ] );
 /** The on/off views of an item, in the form's order. */

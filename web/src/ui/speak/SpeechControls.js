@@ -24,6 +24,7 @@ export const AUDIO_KINDS = Object.freeze( [
 	[ 'vocoded', 'Vocoded (cochlear implant)' ],
 	[ 'none', 'No sound' ],
 	[ 'articulatory', 'Articulatory (VocalTractLab)' ],
+	[ 'tract', 'The head\'s own tract' ],
 ] );
 
 /**
