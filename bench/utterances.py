@@ -3,9 +3,10 @@ same run (the uncached request is the cached one's baseline).
 
 The requests go through the whole application in-process (FastAPI's test client, the built
 phoneme targets, a temporary cache directory). Uncached: the cache directory is emptied before
-each request, so each one pronounces, synthesises (espeak-ng), coarticulates and writes the JSON
-and WAV. Cached: the same request again, answered with the stored JSON. The first request of the
-process (CMUdict loaded, espeak-ng initialised) is printed apart. Also printed: the uncached
+each request, so each one pronounces, synthesises (espeak-ng, then the natural voice, aligned
+with it), coarticulates and writes the JSON and WAV. Cached: the same request again, answered
+with the stored JSON. The first request of the process (CMUdict loaded, espeak-ng initialised,
+the natural voice loaded) is printed apart. Also printed: the uncached
 request's parts, timed alone. Checked: the cached answer is the uncached answer it stored. Also
 printed: whether every uncached answer was the same (a fresh espeak-ng engine has been seen to
 time its first sentence differently from the next ones, so an answer can depend on which worker
@@ -71,7 +72,7 @@ def main():
     from glasshead.api.app import create_app
     from glasshead.api.security import allowed_host_names
     from glasshead.settings import get_settings
-    from glasshead.speech import coarticulation, espeak, pronounce
+    from glasshead.speech import align, coarticulation, espeak, neural_voice, pronounce
     from glasshead.speech.utterance import RATE_HZ
 
     body = {"text": SENTENCE}
@@ -113,6 +114,13 @@ def main():
             coart_ms = median_ms(lambda: coarticulation.coarticulate(phones, targets,
                                                                      rate_hz=RATE_HZ),
                                  part_runs)
+            synthesis = engine.synthesize(words, 1.0)
+            speech = neural_voice.synthesize(SENTENCE)
+            neural_ms = median_ms(lambda: neural_voice.synthesize(SENTENCE), part_runs)
+            bounds = [synthesis.phones[0]["start_s"]] + [p["end_s"] for p in synthesis.phones]
+            align_ms = median_ms(lambda: align.map_times(
+                bounds, (synthesis.samples, synthesis.sample_rate),
+                (speech.samples, speech.sample_rate)), part_runs)
     finally:
         shutil.rmtree(cache, ignore_errors=True)
 
@@ -124,8 +132,9 @@ def main():
     print(f"  uncached {uncached:8.2f} ms   goal < {UNCACHED_GOAL_MS:.0f} ms: "
           f"{'met' if uncached < UNCACHED_GOAL_MS else 'MISSED'}")
     print(f"    pronounce {pronounce_ms:.2f} ms, espeak-ng synthesis {synth_ms:.2f} ms, "
+          f"natural voice {neural_ms:.2f} ms, alignment {align_ms:.2f} ms, "
           f"coarticulation {coart_ms:.2f} ms")
-    print(f"  first request of the process (CMUdict loaded, espeak-ng started) {cold_ms:.0f} ms")
+    print(f"  first request of the process (CMUdict loaded, espeak-ng started, the voice loaded) {cold_ms:.0f} ms")
     print(f"  uncached answers: {variants} different of {1 + uncached_runs}")
     print(f"check: the cached answer is the uncached one it stored: {'ok' if same else 'FAILED'}")
     return 0 if same else 1

@@ -82,7 +82,7 @@ describe( 'the speech player', { timeout: 600_000 }, () => {
 		for ( const symbol of [ 'T', 'D', 'K', 'P', 'B', 'M', 'N', 'NG' ] ) assert.ok( symbols.includes( symbol ), `no /${ symbol }/ in ${ symbols.join( ' ' ) }` );
 		assert.equal( await page.getByRole( 'group', { name: 'Phonemes' } ).getByRole( 'button' ).count(), symbols.length );
 		assert.ok( utterance.audioUrl, 'natural audio by default' );
-		assert.equal( utterance.voice, 'espeak-ng en-us' );
+		assert.equal( utterance.voice, 'Piper en_US joe (medium)' );
 		assert.deepEqual( [ utterance.time, utterance.frame, utterance.playing ], [ 0, 0, false ] );
 
 	} );

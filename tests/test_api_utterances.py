@@ -9,7 +9,7 @@ import pytest
 from fastapi import HTTPException
 
 from glasshead.api.routes.utterances import UtteranceRequest, speak
-from glasshead.speech import espeak
+from glasshead.speech import espeak, neural_voice
 
 API = "/api/v1"
 TEXTGRID = """File type = "ooTextFile"
@@ -73,7 +73,7 @@ def test_text_gives_timed_phones_tracks_cues_and_audio(client):
     assert {"velum_opening", "jaw_opening", "lip_opening"} <= set(body["tracks"])
     assert all(len(track) == n for track in body["tracks"].values())
     assert set(body["cues"]) == {"voicing", "nasal_airflow", "frication"}
-    assert body["voice"] == "espeak-ng en-us" and body["warnings"] == []
+    assert body["voice"] == neural_voice.VOICE and body["warnings"] == []
     wav = client.get(body["audio_url"])
     assert wav.status_code == 200 and wav.headers["content-type"] == "audio/wav"
     with wave.open(io.BytesIO(wav.content)) as audio:

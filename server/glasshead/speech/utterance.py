@@ -2,8 +2,10 @@
 
 The three inputs meet in one list of timed phones:
 
-- text: ``pronounce`` (CMUdict, espeak-ng), then one espeak-ng synthesis times the phones and
-  makes the audio;
+- text: ``pronounce`` (CMUdict, espeak-ng), then one espeak-ng synthesis times the phones; the
+  natural voice (``neural_voice``, for the natural, low-pass and vocoded audio) says the text
+  and the phones are moved onto its clock by aligning the two syntheses (``align``); with it
+  missing or failing, espeak-ng's audio stands;
 - phonemes (IPA or ARPAbet): the same synthesis of exactly those phones;
 - phones with ``start_s``/``end_s`` (a forced alignment, a TextGrid): taken as given, divided by
   the rate; the espeak-ng voice, when asked for, is synthesised and stretched phone by phone onto
@@ -28,15 +30,17 @@ from pathlib import Path
 from typing import Protocol
 
 from glasshead.phonemes import UnknownPhonemeError, lookup
-from glasshead.speech import audio, espeak, vtl_voice
+from glasshead.speech import align, audio, espeak, neural_voice, vtl_voice
 from glasshead.speech.espeak_phones import PAUSE, VOWELS
 from glasshead.speech.pronounce import pronounce
 from glasshead.speech.tract_voice import VOICE as TRACT_VOICE
 
 #: Bump when the response changes for the same request.
-FORMAT_VERSION = 4
+FORMAT_VERSION = 5
 #: The tracks' frame rate, Hz.
 RATE_HZ = 100.0
+#: The audio kinds made from the natural voice (the neural one for text; espeak-ng otherwise).
+NEURAL_KINDS = ("natural", "lowpass", "vocoded")
 #: Phone times are compared with this tolerance, s (a TextGrid's boundaries are written rounded).
 TIME_TOLERANCE_S = 1e-6
 _PAUSE_SYMBOLS = {"sil", "sp", "spn", "_", ""}
@@ -240,6 +244,39 @@ def _spoken(words, rate: float, word_names: list[str | None]) -> tuple[list[dict
     return phones, synthesis
 
 
+def _neural(text: str, rate: float, phones: list[dict], synthesis, warnings: list[str]):
+    """The natural voice saying ``text``, with ``phones`` (timed on espeak-ng's ``synthesis``)
+    moved onto its clock (``align.map_times``); None, with a warning, when it is not installed
+    or fails (espeak-ng's audio then stands)."""
+    if not neural_voice.available():
+        warnings.append("the natural voice is not installed: espeak-ng speaks")
+        return None
+    try:
+        speech = neural_voice.synthesize(text, rate)
+    except Exception as exc:  # a model that cannot say it: espeak-ng speaks instead
+        warnings.append(f"the natural voice could not say it ({type(exc).__name__}): "
+                        "espeak-ng speaks")
+        return None
+    if len(speech.samples) == 0:
+        warnings.append("the natural voice said nothing: espeak-ng speaks")
+        return None
+    import numpy as np
+
+    bounds = [phones[0]["start_s"]] + [p["end_s"] for p in phones]
+    moved = align.map_times(bounds, (synthesis.samples, synthesis.sample_rate),
+                            (speech.samples, speech.sample_rate))
+    # The phones end with the audio (the voice's own closing silence joins the last phone).
+    length = len(speech.samples) / speech.sample_rate
+    moved[-1] = max(moved[-1], length)
+    if moved[-1] > length:
+        speech.samples = np.concatenate([speech.samples, np.zeros(
+            int(np.ceil((moved[-1] - length) * speech.sample_rate)))])
+        moved[-1] = len(speech.samples) / speech.sample_rate
+    for phone, start, end in zip(phones, moved[:-1], moved[1:], strict=True):
+        phone["start_s"], phone["end_s"] = float(start), float(end)
+    return speech
+
+
 def cached_answer(request: dict, targets_sha256: str, cache: UtteranceCache) -> bytes | None:
     """The cached response's JSON bytes for a validated request, or None when it (or the audio
     it names) is not cached."""
@@ -267,6 +304,7 @@ def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCach
     kind = options["kind"]
     warnings, word_names = [], []
     synthesis = None
+    voice_name = f"espeak-ng {espeak.VOICE}"
     if request.get("text") is not None:
         engine = espeak.get_engine()
         said = pronounce(request["text"], engine)
@@ -279,6 +317,10 @@ def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCach
         word_names = [None if w.text == PAUSE else w.text for w in said.items]
         phones, synthesis = _spoken([w.phones for w in said.items], rate, word_names)
         sources = {w.text: w.source for w in said.words}
+        if kind in NEURAL_KINDS:
+            natural = _neural(request["text"], rate, phones, synthesis, warnings)
+            if natural is not None:
+                synthesis, voice_name = natural, neural_voice.VOICE
     elif request.get("phonemes") is not None:
         parsed = parse_phonemes(request["phonemes"])
         phones, synthesis = _spoken([parsed], rate, [None])
@@ -312,7 +354,7 @@ def make(request: dict, targets: dict, targets_sha256: str, cache: UtteranceCach
                                 cutoff_hz=options.get("cutoff_hz"),
                                 channels=options.get("channels"), seed=seed)
         sample_rate = synthesis.sample_rate
-        voice = f"espeak-ng {espeak.VOICE}"
+        voice = voice_name
     wav = None
     if voice is not None:
         wav = wav_bytes(samples, sample_rate)
