@@ -134,7 +134,8 @@ def main():
     print(f"    pronounce {pronounce_ms:.2f} ms, espeak-ng synthesis {synth_ms:.2f} ms, "
           f"natural voice {neural_ms:.2f} ms, alignment {align_ms:.2f} ms, "
           f"coarticulation {coart_ms:.2f} ms")
-    print(f"  first request of the process (CMUdict loaded, espeak-ng started, the voice loaded) {cold_ms:.0f} ms")
+    print(f"  first request of the process (CMUdict loaded, espeak-ng started, the voice "
+          f"loaded) {cold_ms:.0f} ms")
     print(f"  uncached answers: {variants} different of {1 + uncached_runs}")
     print(f"check: the cached answer is the uncached one it stored: {'ok' if same else 'FAILED'}")
     return 0 if same else 1
