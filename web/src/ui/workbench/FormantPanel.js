@@ -1,11 +1,14 @@
-// The workbench's formants: the head's own tract as a tube (scene/TractAcoustics.js), its F1 and
-// F2 as a dot on the vowel chart the listening page shows a learner (the men's vowel norms, as
-// the head is a man's), with F1 to F3 written out. Redrawn after each frame's diagram section.
+// The workbench's acoustics: the head's own tract as a tube (scene/TractAcoustics.js), its area
+// function drawn from the glottis to the lips, and its F1 and F2 as a dot on the vowel chart the
+// listening page shows a learner (the men's vowel norms, as the head is a man's), with F1 to F3
+// written out. Redrawn after each frame's diagram section.
 
 import { TractAcoustics, TRACT_SECTION_URL } from '../../scene/TractAcoustics.js';
 import { VowelChart } from '../listen/ListenDisplays.js';
 import { NORMS_URL } from '../listen/listenScales.js';
 import { h } from '../shared/dom.js';
+import { drawAreaFunction } from '../shared/AreaFunctionPlot.js';
+import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 
 /** The norms' group the head is drawn against. */
 export const HEAD_GROUP = 'man';
@@ -33,9 +36,10 @@ export class FormantPanel {
 		this.chart = new VowelChart( { width: 380, height: 300 } );
 		this.chart.canvas.element.classList.add( 'wb-canvas' );
 		this.readout = h( 'p', { className: 'wb-formants-text', 'aria-live': 'off' }, formantText( null ) );
+		this.areaCanvas = new HiDpiCanvas( { width: 380, height: 150, ariaLabel: 'The area function: the air\'s cross-section from the glottis to the lips', className: 'wb-canvas' } );
 		this.element = h( 'section', { className: 'wb-formants', 'aria-label': 'Formants of the head\'s tract' },
 			h( 'h2', { className: 'wb-formants-title' }, 'Formants of the head\'s tract' ),
-			this.chart.element, this.readout,
+			this.areaCanvas.element, this.chart.element, this.readout,
 			h( 'p', { className: 'wb-formants-note' }, 'The dot is the head\'s vowel as its tract sounds; the ellipses are men\'s vowels (Peterson and Barney, 1952).' ) );
 		this.removeDebug = null;
 
@@ -69,6 +73,8 @@ export class FormantPanel {
 		const summary = this.tract.update().summary();
 		const [ f1, f2 ] = summary.formants;
 		this.chart.draw( [], summary.closed ? null : { f1, f2, zone: null } );
+		const ctx = this.areaCanvas.clear();
+		if ( ctx ) drawAreaFunction( ctx, this.tract.tube, this.areaCanvas );
 		this.readout.textContent = formantText( summary );
 
 	}
