@@ -220,6 +220,13 @@ export class SpeechView extends View {
 		const u = this.utterance;
 		if ( ! u ) return;
 		this.shownTime = t;
+		// The phone and the voicing first: the articulation's update draws the cues, whose air
+		// is this phone's (a phone's first frame showed the phone before it).
+		this.phone = phoneIndexAt( u.phones, t );
+		this.panels.phoneSymbol = u.phones[ this.phone ]?.symbol ?? null;
+		// The voice buzzes at the glottis only while the utterance is voiced (its voicing cue).
+		const voicing = u.cues?.voicing;
+		this.panels.voiced = voicing ? voicing[ Math.min( Math.max( Math.round( t * u.rate_hz ), 0 ), voicing.length - 1 ) ] > VOICED : true;
 		const state = this.articulation.state;
 		if ( this.state.hold === null ) {
 
@@ -229,11 +236,6 @@ export class SpeechView extends View {
 
 		}
 
-		this.phone = phoneIndexAt( u.phones, t );
-		this.panels.phoneSymbol = u.phones[ this.phone ]?.symbol ?? null;
-		// The voice buzzes at the glottis only while the utterance is voiced (its voicing cue).
-		const voicing = u.cues?.voicing;
-		this.panels.voiced = voicing ? voicing[ Math.min( Math.max( Math.round( t * u.rate_hz ), 0 ), voicing.length - 1 ) ] > VOICED : true;
 		this.strip.show( t, this.phone );
 		this.dominance.show( t );
 		this.transport.show( { playing: this.clock.playing, loop: this.clock.loop, hold: this.state.hold !== null, frame: this.clock.frame, time: t, speed: this.clock.speed } );
