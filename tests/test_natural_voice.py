@@ -74,6 +74,8 @@ def test_post_utterances_speaks_text_with_the_natural_voice_on_its_own_clock(sta
     assert body["voice"] == neural_voice.VOICE and body["warnings"] == []
     starts = [p["start_s"] for p in body["phones"]]
     assert starts == sorted(starts) and body["phones"][0]["start_s"] == 0.0
+    # Boundaries to 0.1 ms, so that one on a frame is that frame's time to the last bit.
+    assert all(round(t, 4) == t for p in body["phones"] for t in (p["start_s"], p["end_s"]))
     assert abs(body["n_frames"] - body["duration_s"] * body["rate_hz"]) <= 1
     low = client.post("/api/v1/utterances", json={"text": SENTENCE,
                                                   "audio": {"kind": "lowpass"}}).json()

@@ -272,6 +272,9 @@ def _neural(text: str, rate: float, phones: list[dict], synthesis, warnings: lis
         speech.samples = np.concatenate([speech.samples, np.zeros(
             int(np.ceil((moved[-1] - length) * speech.sample_rate)))])
         moved[-1] = len(speech.samples) / speech.sample_rate
+    # To 0.1 ms: a boundary on a frame's time is then that time's own number (140 frames of
+    # 10 ms make 1.4000000000000001 s, which a player's 140 / 100 would put before it).
+    moved = np.round(moved, 4)
     for phone, start, end in zip(phones, moved[:-1], moved[1:], strict=True):
         phone["start_s"], phone["end_s"] = float(start), float(end)
     return speech
