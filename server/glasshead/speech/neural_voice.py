@@ -17,6 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 
 VOICE = "Piper en_US joe (medium)"
+#: The voice's random variation of its phones' durations, off: the same sentence keeps its
+#: rhythm from one synthesis to the next (a child hears the same timing each time, and the
+#: aligned phones stay where they were); the variation of its sound (noise_scale) stays.
+DURATION_NOISE = 0.0
 
 _LOCK = threading.Lock()
 _VOICE = None
@@ -55,7 +59,8 @@ def synthesize(text: str, rate: float = 1.0) -> NeuralSpeech:
 
     with _LOCK:
         voice = _voice()
-        chunks = list(voice.synthesize(text, SynthesisConfig(length_scale=1.0 / rate)))
+        chunks = list(voice.synthesize(text, SynthesisConfig(length_scale=1.0 / rate,
+                                                             noise_w_scale=DURATION_NOISE)))
     if not chunks:
         return NeuralSpeech(np.zeros(0), 22050)
     samples = np.concatenate([np.asarray(c.audio_float_array, dtype=np.float64) for c in chunks])
