@@ -20,8 +20,8 @@ PHONE_S = 0.15
 
 
 @pytest.fixture(scope="module")
-def store(built_assets):
-    return AssetStore(built_assets)
+def store(built_store):
+    return built_store
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,8 @@ from glasshead.vectors.common import decode_f32, read
 from glasshead.vectors.schema import check
 
 VECTORS_DIR = Path(__file__).parent / "vectors"
-__all__ = ["VECTORS_DIR", "assert_same_document", "decode_f32", "read_vectors", "tol"]
+__all__ = ["VECTORS_DIR", "assert_generated", "assert_same_document", "decode_f32",
+           "read_vectors", "tol"]
 
 
 def read_vectors(name):
@@ -55,3 +56,12 @@ def assert_same_document(actual, expected, atol=0.0, rtol=0.0, path=""):
                                          f"{sorted(expected)}"
         for key in expected:
             assert_same_document(actual[key], expected[key], atol, rtol, f"{path}.{key}")
+
+
+def assert_generated(name, document, vectors, atol=0.0, rtol=0.0):
+    """``document``, as the generator makes it now, is the committed vector file ``vectors``
+    (``name``); a difference names the command that writes the file again."""
+    try:
+        assert_same_document(document, vectors, atol=atol, rtol=rtol)
+    except AssertionError as exc:
+        raise AssertionError(f"{exc}: run `glasshead vectors {name}`") from None

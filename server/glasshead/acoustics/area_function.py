@@ -95,7 +95,7 @@ def _segments(parts: Sequence[Part]) -> tuple[Floats, Floats, list[tuple[int, in
     return np.vstack(starts), np.vstack(ends), solids
 
 
-def _nearest(points: Floats, a: Floats, b: Floats) -> tuple[Floats, Floats]:
+def nearest_on_segments(points: Floats, a: Floats, b: Floats) -> tuple[Floats, Floats]:
     """Distance (n,) from each point to the nearest segment (inf without segments), and that
     nearest point (n, 2)."""
     if len(a) == 0:
@@ -132,7 +132,8 @@ def tract_widths(stations: npt.ArrayLike, floor: Sequence[Part],
     points = np.asarray(stations, dtype=np.float64).reshape(-1, 2)
     fa, fb, f_solids = _segments(floor)
     ra, rb, r_solids = _segments(roof)
-    (to_floor, floor_at), (to_roof, roof_at) = _nearest(points, fa, fb), _nearest(points, ra, rb)
+    to_floor, floor_at = nearest_on_segments(points, fa, fb)
+    to_roof, roof_at = nearest_on_segments(points, ra, rb)
     in_floor, in_roof = _inside(points, fa, fb, f_solids), _inside(points, ra, rb, r_solids)
     # Inside a solid, the other side's nearest point inside it too means the two overlap there.
     overlap = (in_floor & _inside(roof_at, fa, fb, f_solids)) \

@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from glasshead.acoustics.area_function import nearest_on_segments
 from glasshead.constants import (
     LANDMARKS_FILE,
     TRACT_SECTION_FILE,
@@ -70,13 +71,7 @@ def airway_walls(chains):
 def midline_stations(upper, lower, incisor_x, step_mm=TRACT_STATION_STEP_MM):
     """Stations (n, 2) along the airway's midline from its laryngeal end to ``incisor_x``."""
     dense = resample(upper, 0.5)
-    segments_a, segments_b = lower[:-1], lower[1:]
-    ab = segments_b - segments_a
-    t = np.clip(np.einsum("kmj,mj->km", dense[:, None] - segments_a[None], ab)
-                / np.maximum(np.einsum("mj,mj->m", ab, ab), 1e-12), 0.0, 1.0)
-    closest = segments_a[None] + t[..., None] * ab[None]
-    nearest = closest[np.arange(len(dense)),
-                      np.linalg.norm(dense[:, None] - closest, axis=2).argmin(axis=1)]
+    _, nearest = nearest_on_segments(dense, lower[:-1], lower[1:])
     midline = (dense + nearest) / 2.0
     ahead = np.flatnonzero(midline[:, 0] >= incisor_x)
     if len(ahead) == 0 or ahead[0] < 2:

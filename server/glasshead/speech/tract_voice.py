@@ -16,7 +16,11 @@ the areas interpolated between frames. What is heard is the tract that is drawn.
   ``F0_START_HZ`` to ``F0_END_HZ`` over the utterance; the lungs' pressure rises over
   ``ONSET_S`` at the start and after each pause, and falls before each pause and at the end.
 
-The VocalTractLab library holds one synthesiser: calls are serialised (``vtl_voice._LOCK``).
+- A fricative's narrowest sections pass at most ``FRICATIVE_CHANNEL_MM2``: the mid-sagittal
+  width cannot see the groove of an /s/.
+
+The VocalTractLab library holds one synthesiser: calls are serialised
+(``vtl_voice.VTL_LOCK``).
 """
 
 from collections.abc import Mapping, Sequence
@@ -178,7 +182,7 @@ def synthesize(frames: dict, rate_hz: float, phones: Sequence[Mapping]) -> tuple
     phones are."""
     import vocaltractlab_cython as vtl
 
-    from glasshead.speech.vtl_voice import _LOCK
+    from glasshead.speech.vtl_voice import VTL_LOCK
 
     duration = phones[-1]["end_s"]
     states = max(1, int(np.ceil(duration * SAMPLE_RATE / SAMPLES_PER_STATE)))
@@ -187,7 +191,7 @@ def synthesize(frames: dict, rate_hz: float, phones: Sequence[Mapping]) -> tuple
     first = np.minimum(at.astype(np.int64), len(frames["areas"]) - 1)
     second = np.minimum(first + 1, len(frames["areas"]) - 1)
     share = (at - first)[:, None]
-    with _LOCK:
+    with VTL_LOCK:
         shapes = {kind: np.asarray(vtl.get_shape(name, "glottis"), dtype=np.float64)
                   for kind, name in GLOTTIS_SHAPES.items()}
         source = source_tracks(phones, shapes, times)

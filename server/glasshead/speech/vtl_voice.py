@@ -27,7 +27,8 @@ VTL_NAMES = {
 #: JD3 has these as one gesture each only through their parts.
 _SPLIT = {"tS": ("t", "S"), "dZ": ("d", "Z")}
 
-_LOCK = threading.Lock()
+#: VocalTractLab holds one speaker and one synthesiser: every voice that calls it holds this.
+VTL_LOCK = threading.Lock()
 
 
 def segment_file_text(phones: list[dict]) -> str:
@@ -48,7 +49,7 @@ def synthesize(phones: list[dict]) -> tuple[np.ndarray, int]:
     of ``phones``, as long as they are."""
     import vocaltractlab_cython as vtl
 
-    with _LOCK, tempfile.TemporaryDirectory(prefix="glasshead-vtl-") as folder:
+    with VTL_LOCK, tempfile.TemporaryDirectory(prefix="glasshead-vtl-") as folder:
         segments = Path(folder) / "segments.txt"
         gestures = Path(folder) / "gestures.txt"
         segments.write_text(segment_file_text(phones))

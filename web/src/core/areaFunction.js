@@ -34,21 +34,18 @@ export function chainPart( points, closed ) {
 
 }
 
-// Nearest distance from (x, y) to the parts' segments, and whether the point lies inside one
-// of the solids (ray crossings toward +x, counted per solid); written into NEAR.
-const NEAR = { distance: Infinity, inside: false, x: 0, y: 0 };
+// Nearest distance from (x, y) to the parts' segments and the nearest point; written into NEAR.
+const NEAR = { distance: Infinity, x: 0, y: 0 };
 function nearest( parts, x, y ) {
 
 	let best = Infinity, bx = x, by = y;
-	let inside = false;
 	for ( const part of parts ) {
 
 		const s = part.segments;
-		let crossings = 0;
 		for ( let k = 0; k < part.count; k ++ ) {
 
-			const x0 = s[ 4 * k ], y0 = s[ 4 * k + 1 ], x1 = s[ 4 * k + 2 ], y1 = s[ 4 * k + 3 ];
-			const dx = x1 - x0, dy = y1 - y0;
+			const x0 = s[ 4 * k ], y0 = s[ 4 * k + 1 ];
+			const dx = s[ 4 * k + 2 ] - x0, dy = s[ 4 * k + 3 ] - y0;
 			const t = Math.min( 1, Math.max( 0, ( ( x - x0 ) * dx + ( y - y0 ) * dy ) / Math.max( dx * dx + dy * dy, 1e-12 ) ) );
 			const ex = x - x0 - t * dx, ey = y - y0 - t * dy;
 			const d2 = ex * ex + ey * ey;
@@ -60,23 +57,18 @@ function nearest( parts, x, y ) {
 
 			}
 
-			if ( part.solid && ( y0 > y ) !== ( y1 > y ) && x < x0 + ( y - y0 ) * dx / ( dy === 0 ? 1 : dy ) ) crossings ++;
-
 		}
-
-		if ( crossings % 2 === 1 ) inside = true;
 
 	}
 
 	NEAR.distance = Math.sqrt( best );
-	NEAR.inside = inside;
 	NEAR.x = bx;
 	NEAR.y = by;
 	return NEAR;
 
 }
 
-/** Whether (x, y) lies inside one of the parts' solids. */
+/** Whether (x, y) lies inside one of the parts' solids (ray crossings toward +x, per solid). */
 function insideSolids( parts, x, y ) {
 
 	for ( const part of parts ) {
@@ -103,8 +95,9 @@ function insideSolids( parts, x, y ) {
 /** The air's mid-sagittal width (mm) at (x, y) between the floor's and the roof's parts. */
 export function tractWidth( floor, roof, x, y ) {
 
-	const { distance: toFloor, inside: inFloor, x: fx, y: fy } = nearest( floor, x, y );
-	const { distance: toRoof, inside: inRoof, x: rx, y: ry } = nearest( roof, x, y );
+	const { distance: toFloor, x: fx, y: fy } = nearest( floor, x, y );
+	const { distance: toRoof, x: rx, y: ry } = nearest( roof, x, y );
+	const inFloor = insideSolids( floor, x, y ), inRoof = insideSolids( roof, x, y );
 	let width;
 	// Inside a solid, the other side's nearest point inside it too: the two overlap there.
 	if ( ( inFloor && inRoof ) || ( inFloor && insideSolids( floor, rx, ry ) ) || ( inRoof && insideSolids( roof, fx, fy ) ) ) width = 0;

@@ -8,6 +8,7 @@
 // frame allocates nothing but the tube's subarray views.
 
 import { areaFunction, chainPart, createAreaFunction } from '../core/areaFunction.js';
+import { chainSegmentCount } from '../core/midSection.js';
 import { tubeFormants, FORMANT_COUNT } from '../core/tubeAcoustics.js';
 import { registerDebug } from '../debug.js';
 
@@ -33,9 +34,8 @@ function refreshView( view ) {
 	for ( let c = 0; c < chainCount; c ++ ) {
 
 		const first = starts[ c ], n = starts[ c + 1 ] - first;
-		const loop = closed[ c ] === 1;
-		if ( ! loop ) solid = false;
-		const segments = loop ? n : n - 1;
+		if ( closed[ c ] !== 1 ) solid = false;
+		const segments = chainSegmentCount( view.section, c );
 		for ( let k = 0; k < segments; k ++ ) {
 
 			const a = 2 * ( first + k ), b = 2 * ( first + ( k + 1 ) % n );

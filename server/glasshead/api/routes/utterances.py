@@ -140,7 +140,8 @@ class Utterance(BaseModel):
 
 def content_key(store: AssetStore, request: dict) -> str:
     """What the answer to ``request`` is made from, as the cache key takes it: the phoneme
-    targets' hash, or with ``flesh_points`` a hash of it and of every asset the points read."""
+    targets' hash, or with ``flesh_points`` or the ``tract`` voice a hash of it and of every
+    asset the points or the tract read."""
     targets = store.entry("phoneme_targets").sha256
     names = list(FLESH_POINT_ASSETS) if request.get("flesh_points") else []
     if request["audio"]["kind"] == "tract":
