@@ -146,6 +146,11 @@ def tract_section_step(ctx):
     return build_step(ctx)
 
 
+def inversion_codebook_step(ctx):
+    from glasshead.pipeline.inversion_codebook import build_step
+    return build_step(ctx)
+
+
 def landmarks_step(ctx):
     from glasshead.pipeline.landmarks import build_step
     return build_step(ctx.assets_dir)
@@ -166,6 +171,7 @@ STEPS = [
     ("fit-report", fit_report_step),
     ("vowel-norms", vowel_norms_step),
     ("tract-section", tract_section_step),
+    ("inversion-codebook", inversion_codebook_step),
 ]
 
 

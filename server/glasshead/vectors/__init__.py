@@ -39,6 +39,7 @@ GENERATORS = (
               ("epg-contacts-tables.bin", "epg-contacts.json")),
     Generator("glasshead.vectors.tube_acoustics:files", ("tube-acoustics.json",)),
     Generator("glasshead.vectors.area_function:files", ("area-function.json",)),
+    Generator("glasshead.vectors.inversion:files", ("inversion.json",)),
 )
 
 #: Every file the package writes, in generation order.

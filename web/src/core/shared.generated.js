@@ -293,6 +293,13 @@ export const TRACT_SECTION_FILE = 'tract-section.json';
 /** The format of ``TRACT_SECTION_FILE``. */
 export const TRACT_SECTION_FORMAT_VERSION = 1;
 /**
+ * The inversion's codebook: poses of the head's vowel space with their tube's formants
+ * (``glasshead.pipeline.inversion_codebook``).
+ */
+export const INVERSION_CODEBOOK_FILE = 'inversion-codebook.json';
+/** The format of ``INVERSION_CODEBOOK_FILE``. */
+export const INVERSION_CODEBOOK_FORMAT_VERSION = 1;
+/**
  * The vowels of the vowel norms, by Peterson & Barney's codes (ARPAbet in lower case): the vowels a
  * spoken try can be measured against (a lesson item's ``listen``).
  */
@@ -400,3 +407,24 @@ export const TRACT_LARYNX_TUBE = Object.freeze( { length_mm: 10.0, area_mm2: 50.
 export const TRACT_CLOSURE_MM = 1.0;
 /** A shut section still passes this area (mm²), so that a closed tract has a transfer function. */
 export const TRACT_MIN_AREA_MM2 = 0.1;
+/**
+ * How far a measured formant may lie from a codebook pose's, in natural-log units, for one unit of
+ * cost (F1, F2, F3): a frame's acoustic cost is the mean of the three squared ratios.
+ */
+export const INVERSION_FORMANT_SD = Object.freeze( [ 0.1, 0.08, 0.15 ] );
+/**
+ * Weight of the prior: the pose's mean squared distance, in each parameter's spread over the
+ * anchors, from its nearest anchor target.
+ */
+export const INVERSION_PRIOR_WEIGHT = 1.0;
+/**
+ * Weight of continuity: the mean squared distance, in the same units, from the frame before's pose.
+ */
+export const INVERSION_CONTINUITY_WEIGHT = 2.0;
+/** Poses kept per frame for the search over a whole track (the best by acoustic cost and prior). */
+export const INVERSION_CANDIDATES = 16;
+/**
+ * A frame whose best pose costs more than this acoustically is one the tract cannot make: no tongue
+ * is estimated for it.
+ */
+export const INVERSION_REJECT_COST = 9.0;
