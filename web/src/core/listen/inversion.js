@@ -18,7 +18,7 @@ import {
 
 /**
  * The codebook of an inversion-codebook.json document, in typed arrays (allocates; once).
- * @returns {{ parameters: string[], fixed: object, count: number, size: number,
+ * @returns {{ parameters: string[], fixed: object, spread: Float64Array, count: number, size: number,
  *   logFormants: Float64Array, prior: Float64Array, scaled: Float64Array, values: Float64Array,
  *   groupScale: object, anchors: object }}
  */
@@ -50,7 +50,7 @@ export function readCodebook( document ) {
 	}
 
 	return {
-		parameters: [ ...parameters ], fixed: { ...fixed }, count, size, values, scaled, logFormants,
+		parameters: [ ...parameters ], fixed: { ...fixed }, spread: Float64Array.from( spread ), count, size, values, scaled, logFormants,
 		prior: Float64Array.from( entries.prior ), groupScale: { ...document.group_scale },
 		anchors: [ ...document.anchors ], blends: entries.anchors.map( ( used ) => [ ...used ] ),
 	};

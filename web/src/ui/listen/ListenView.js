@@ -332,7 +332,7 @@ export class ListenView extends View {
 			const vowel = this.currentVowel();
 			this.chart.setNorms( this.norms?.groups?.[ this.state.group ] ?? null, this.state.target || null );
 			this.chart.draw( this.hops, vowel );
-			this.mouth.update( { vowels: this.norms?.groups?.[ this.state.group ], target: this.state.target, summary: this.state.summary } );
+			this.mouth.update( { vowels: this.norms?.groups?.[ this.state.group ], target: this.state.target, summary: this.state.summary, hops: this.hops, group: this.state.group } );
 			const latestHiss = this.state.summary?.fricative?.centroid ?? [ ...this.hops ].reverse().find( ( hop ) => ! hop.voiced && hop.centroid > 0 )?.centroid ?? null;
 			this.meter.draw( latestHiss, this.state.group );
 			this.traces.draw( this.hops );

@@ -1,18 +1,19 @@
 // "The mouth" on the listening page: the 3D head in profile, cut away, posed at the target vowel's
-// phoneme target (ui/shared/ProfileHead.js), and beside it a mid-sagittal drawing of the target's tongue
-// with the learner's tongue as estimated from the attempt's F1 and F2 (mouthDrawing.js;
-// core/listen/articulationEstimate.js). Until an attempt is measured only the target shows.
+// phoneme target (ui/shared/ProfileHead.js), with the learner's tongue as a ghost in it; and beside
+// it a mid-sagittal drawing of the target's tongue with the learner's (mouthDrawing.js). The
+// learner's tongue is estimated from their voice (tongueEstimate.js, core/listen/inversion.js):
+// live while they speak, then from the whole attempt. Without a voiced sound there is none.
 //
-// The panel works from what the page hands it (the group's norms, the target vowel, the
-// attempt's summary) and redraws only when one of them, its size or its data changes.
+// The panel works from what the page hands it (the group's norms, the target vowel, the hops so
+// far, the attempt's summary) and redraws only when one of them, its size or its data changes.
 
-import { estimateArticulation } from '../../core/listen/articulationEstimate.js';
 import { h } from '../shared/dom.js';
 import { HiDpiCanvas } from '../shared/hidpiCanvas.js';
 import { loadArticulationData, loadPhonemeTarget } from '../shared/loaders.js';
 import { ProfileHead } from '../shared/ProfileHead.js';
 import { drawMouth } from './mouthDrawing.js';
 import { TongueProfile } from './tongueProfile.js';
+import { CODEBOOK_URL, TongueEstimator } from './tongueEstimate.js';
 
 /** Below this width (CSS pixels) of the displays, the chart and the mouth each take the whole width. */
 export const SIDE_BY_SIDE_PX = 1000;
@@ -57,12 +58,14 @@ export class MouthPanel {
 		this.element = h( 'figure', { className: 'ls-mouth' }, h( 'figcaption', {}, 'The mouth' ),
 			h( 'div', { className: 'ls-mouth-views' }, h( 'div', { className: 'ls-mouth-head-box' }, this.stage, this.headLabel, this.headMessage ), this.drawing.element ),
 			this.note, this.blend );
-		this.input = { vowels: null, target: null, summary: null };
+		this.input = { vowels: null, target: null, summary: null, hops: null, newest: null, group: null };
 		/** Phoneme target parameters by vowel code, as they arrive; `targetsSettled` once all have. */
 		this.targets = {};
 		this.targetsSettled = false;
 		this.profile = null;
+		this.estimator = null;
 		this.estimate = null;
+		this.estimateCurve = null;
 		this.drawCount = 0;
 		this.head = new ProfileHead( this.stage, { api, onChange: () => this.refresh() } );
 		this.load();
@@ -73,8 +76,9 @@ export class MouthPanel {
 
 		try {
 
-			const data = await loadArticulationData( { api: this.api } );
+			const [ data, codebook ] = await Promise.all( [ loadArticulationData( { api: this.api } ), this.api.get( CODEBOOK_URL ) ] );
 			if ( ! this.head ) return;
+			this.estimator = new TongueEstimator( codebook );
 			this.profile = new TongueProfile( data.definition, data.tables );
 			this.head.load( data );
 
@@ -107,13 +111,15 @@ export class MouthPanel {
 
 	/**
 	 * What the page shows: the group's norms ({ code: entry }), the target vowel's code (null for
-	 * none) and the attempt's summary (summariseAttempt; null until an attempt is measured).
+	 * none), the group ('child', 'woman', 'man'), the attempt's hops so far (the listening
+	 * kernels', oldest first) and its summary (summariseAttempt; null until the attempt ends).
 	 * Cheap when nothing changed: the page calls it with every block of sound.
 	 */
-	update( { vowels, target, summary } ) {
+	update( { vowels, target, summary, hops = null, group = null } ) {
 
-		const input = { vowels: vowels ?? null, target: target || null, summary: summary ?? null };
-		if ( input.vowels === this.input.vowels && input.target === this.input.target && input.summary === this.input.summary ) return;
+		const input = { vowels: vowels ?? null, target: target || null, summary: summary ?? null, hops, newest: hops?.at( - 1 )?.t ?? null, group };
+		const same = [ 'vowels', 'target', 'summary', 'hops', 'newest', 'group' ].every( ( key ) => input[ key ] === this.input[ key ] );
+		if ( same ) return;
 		this.input = input;
 		if ( input.vowels && ! this.loadingTargets ) this.loadTargets( input.vowels );
 		this.refresh();
@@ -127,18 +133,35 @@ export class MouthPanel {
 		const { vowels, target, summary } = this.input;
 		const targetParams = ( target && this.targets[ target ] ) ?? null;
 		this.head.pose( targetParams ?? {} );
-		const vowel = summary?.vowel;
-		this.estimate = this.targetsSettled && vowels && vowel ? estimateArticulation( vowel, vowels, this.targets ) : null;
+		this.estimate = this.estimateTongue();
+		this.estimateCurve = this.profile && this.estimate ? this.profile.curve( this.estimate.params ) : null;
+		this.head.ghost( this.estimateCurve );
 		this.headMessage.textContent = this.head.status === 'loading' ? 'Loading the head…' : this.head.message;
 		this.headMessage.hidden = this.head.status === 'ready';
 		this.headLabel.textContent = target ? `Target /${ vowels?.[ target ]?.ipa ?? target }/` : 'No target: the tongue at rest';
 		this.headLabel.hidden = this.head.status !== 'ready';
 		this.headLabel.dataset.target = String( Boolean( target ) );
 		this.note.textContent = this.estimate
-			? '“Yours” is a guess from the sound you made, not a picture of your tongue.'
-			: 'Say the vowel: “Yours” will show how your tongue probably moved, guessed from the sound.';
-		this.blend.textContent = this.estimate ? `Nearest sounds: ${ blendWords( this.estimate.weights, vowels ) }` : '';
+			? '“Yours” (blue) is a guess from the sound you made, not a picture of your tongue.'
+			: summary && this.estimator
+				? 'No tongue could be guessed from that sound: it needs a voiced vowel.'
+				: 'Say the vowel: “Yours” will show how your tongue probably moved, guessed from the sound.';
+		this.blend.textContent = this.estimate ? `Closest to ${ this.estimate.nearest.map( ( ipa ) => `/${ ipa }/` ).join( ', then ' ) }` : '';
 		this.draw( targetParams );
+
+	}
+
+	/**
+	 * The learner's tongue: the finished attempt's, else the live one while hops come, else none.
+	 * { params, nearest, live, frames? } or null.
+	 */
+	estimateTongue() {
+
+		const { summary, hops, group, target } = this.input;
+		if ( ! this.estimator || ! hops?.length || ! group ) return null;
+		const options = { group, target };
+		const found = summary ? this.estimator.attempt( hops, options ) : this.estimator.live( hops, options );
+		return found && { params: found.params, nearest: this.estimator.nearestAnchors( found.params ), live: ! summary, frames: found.frames ?? null };
 
 	}
 
@@ -149,7 +172,7 @@ export class MouthPanel {
 		const profile = this.profile;
 		drawMouth( ctx, {
 			target: profile && targetParams ? profile.curve( targetParams ) : null,
-			estimate: profile && this.estimate ? profile.curve( this.estimate.params ) : null,
+			estimate: this.estimateCurve,
 			outlines: this.head?.palate ? [ this.head.palate ] : [],
 		}, this.drawing );
 		this.drawCount ++;
@@ -176,7 +199,8 @@ export class MouthPanel {
 
 		return {
 			target: this.input.target,
-			estimate: this.estimate && { weights: this.estimate.weights, params: this.estimate.params },
+			estimate: this.estimate && { nearest: this.estimate.nearest, params: this.estimate.params, live: this.estimate.live, frames: this.estimate.frames },
+			ghost: this.head?.ghostShown ?? false,
 			head: this.head?.status ?? null,
 			headFrames: this.head?.frames.drawn ?? 0,
 			headPending: this.head?.frames.pending ?? false,
@@ -191,13 +215,5 @@ export class MouthPanel {
 		this.head = null;
 
 	}
-
-}
-
-/** The blend in words, heaviest first: '/i/ 81 %, /ɪ/ 15 %, /ɛ/ 4 %'. */
-export function blendWords( weights, vowels ) {
-
-	return Object.entries( weights ).filter( ( [ , w ] ) => w >= 0.005 ).sort( ( a, b ) => b[ 1 ] - a[ 1 ] )
-		.map( ( [ code, w ] ) => `/${ vowels?.[ code ]?.ipa ?? code }/ ${ Math.round( 100 * w ) } %` ).join( ', ' );
 
 }

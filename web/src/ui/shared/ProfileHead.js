@@ -1,6 +1,6 @@
 // A still 3D head in profile: the whole head with the sagittal cutaway, framed on the mouth, posed
 // at the parameters it is given (the listening page's phoneme target, the clinician's EMA
-// recording frame by frame). It draws only when something changes (the viewer draws on demand: a
+// recording frame by frame), with another tongue as a ghost when it is given one (the learner's). It draws only when something changes (the viewer draws on demand: a
 // pose, a resize); the camera stays still, so the page scrolls over it.
 //
 // Without WebGL2 there is no 3D view: `status` says 'no-webgl' and `message` why, and the palate
@@ -8,6 +8,7 @@
 
 import { getAnatomy } from '../../api.js';
 import { createArticulation } from '../../scene/Articulation.js';
+import { GhostTongue } from '../../scene/GhostTongue.js';
 import { Head } from '../../scene/Head.js';
 import { viewPose } from '../../scene/viewPresets.js';
 import { createHeadStage } from './headStage.js';
@@ -47,6 +48,8 @@ export class ProfileHead {
 			this.viewer.controls.enabled = false;
 			this.viewer.renderer.domElement.style.touchAction = 'auto';
 			this.viewer.renderer.domElement.setAttribute( 'aria-label', label );
+			this.ghostTongue = new GhostTongue();
+			this.head.group.add( this.ghostTongue.group );
 
 		} else {
 
@@ -106,6 +109,25 @@ export class ProfileHead {
 
 	}
 
+	/**
+	 * Show another tongue's mid-sagittal curve as a ghost in the cut head (x y per point, mm; the
+	 * learner's, estimated from their voice), or none for null.
+	 */
+	ghost( curve ) {
+
+		if ( ! this.ghostTongue || ( ! curve && ! this.ghostTongue.visible ) ) return;
+		this.ghostTongue.set( curve );
+		this.viewer.requestRender();
+
+	}
+
+	/** Whether a ghost tongue shows. */
+	get ghostShown() {
+
+		return this.ghostTongue?.visible ?? false;
+
+	}
+
 	/** Frame the mouth in profile for the stage's present shape (after a resize). */
 	frame() {
 
@@ -134,6 +156,7 @@ export class ProfileHead {
 	dispose() {
 
 		this.disposed = true;
+		this.ghostTongue?.dispose();
 		this.articulation?.dispose();
 		this.viewer?.dispose();
 		this.head?.dispose();
