@@ -248,10 +248,10 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 
 	} );
 
-	test( 'the head\'s formants follow the sliders: /i/ and /ɑ/ where the vowel chart puts them, as the server computes them', async () => {
+	test( 'the head\'s formants follow the sliders: /i/ and /ɑ/ where the vowel chart puts them, and /m/ through the nose, as the server computes them', async () => {
 
 		const shown = {};
-		for ( const vowel of [ 'i', 'ɑ' ] ) {
+		for ( const vowel of [ 'i', 'ɑ', 'm' ] ) {
 
 			const target = await ( await fetch( `${ server.baseUrl }/api/v1/phonemes/${ encodeURIComponent( vowel ) }` ) ).json();
 			const state = await pose( target.params );
@@ -259,10 +259,20 @@ describe( 'the workbench', { timeout: 300_000 }, () => {
 			const answer = await ( await fetch( `${ server.baseUrl }/api/v1/tract/acoustics`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify( { params: target.params } ) } ) ).json();
 			answer.formants.slice( 0, 3 ).forEach( ( f, k ) => assert.ok( Math.abs( shown[ vowel ].formants[ k ] - f.frequency_hz ) <= 0.03 * f.frequency_hz, `/${ vowel }/ F${ k + 1 }: ${ shown[ vowel ].formants[ k ] } Hz shown, ${ f.frequency_hz } Hz from the server` ) );
 			assert.match( await page.locator( '.wb-formants-text' ).textContent(), new RegExp( `F1 ${ shown[ vowel ].formants[ 0 ] } Hz` ) );
+			assert.equal( shown[ vowel ].nasalAt, answer.area_function.nasal?.at ?? null, `/${ vowel }/: the nose leaves where the server says` );
+			if ( vowel === 'm' ) {
+
+				assert.match( await page.locator( '.wb-formants-text' ).textContent(), /through the nose/ );
+				await page.locator( '.wb-formants' ).scrollIntoViewIfNeeded();
+				await saveScreenshot( page, 'workbench-formants-m' );
+
+			}
 
 		}
 
 		assert.ok( shown.i.formants[ 0 ] < shown[ 'ɑ' ].formants[ 0 ] && shown.i.formants[ 1 ] > shown[ 'ɑ' ].formants[ 1 ], JSON.stringify( shown ) );
+		assert.ok( shown.m.nasalAt > 0 && shown.m.formants[ 0 ] < 450 && shown.i.nasalAt === null, JSON.stringify( shown ) );
+		await pose( ( await ( await fetch( `${ server.baseUrl }/api/v1/phonemes/i` ) ).json() ).params );
 		await page.locator( '.wb-formants' ).scrollIntoViewIfNeeded();
 		await saveScreenshot( page, 'workbench-formants' );
 

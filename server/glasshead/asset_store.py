@@ -167,7 +167,7 @@ def read_tract_section(data: bytes) -> dict:
     if not isinstance(stations, list) or len(stations) < 2 or any(
             not isinstance(p, list) or len(p) != 2 for p in stations):
         raise ValueError("the tract section needs at least two [x, y] stations")
-    for key in ("still", "mandible", "incisor_x", "uvula_y"):
+    for key in ("still", "mandible", "incisor_x", "uvula_y", "nose"):
         if key not in document:
             raise ValueError(f"the tract section lacks {key}")
     return document

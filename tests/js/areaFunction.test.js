@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { near, nearRelative, readVectors, tolerance } from './support/vectors.js';
 
-import { areaFunction, chainPart, createAreaFunction, lipWidthMm, widthToArea } from '../../web/src/core/areaFunction.js';
+import { areaFunction, chainPart, createAreaFunction, lipWidthMm, nasalBranch, widthToArea } from '../../web/src/core/areaFunction.js';
 import { TRACT_AREA_LAWS } from '../../web/src/core/constants.js';
 
 const VECTORS = readVectors( 'area-function.json' );
@@ -36,7 +36,20 @@ test( 'every tract of the shared vectors: the same tube as Python', () => {
 
 		}
 
+		const nasal = nasalBranch( out, VECTORS.fixtures.nose, VECTORS.fixtures.port_mm2 );
+		assert.deepEqual( nasal && { at: nasal.at, length_mm: nasal.lengths, area_mm2: nasal.areas }, expected.nasal, `${ description }: nasal branch` );
+
 	}
+
+} );
+
+test( 'a shut port or a tube without a mouth makes no nasal branch', () => {
+
+	const tube = { count: 3, regions: Int8Array.of( - 1, 0, 1 ) };
+	const nose = VECTORS.fixtures.nose;
+	assert.equal( nasalBranch( tube, nose, 0 ), null );
+	assert.equal( nasalBranch( { count: 2, regions: Int8Array.of( - 1, 0 ) }, nose, 40 ), null );
+	assert.equal( nasalBranch( tube, nose, 40 ).at, 2 );
 
 } );
 

@@ -48,3 +48,32 @@ test( 'drawing fills the air, marks the shut sections red and names the ends', (
 	assert.ok( texts.includes( 'glottis' ) && texts.some( ( t ) => t.startsWith( 'lips' ) ), texts.join( ', ' ) );
 
 } );
+
+test( 'with the port open the nose is drawn dashed from the junction and named; without it, not', () => {
+
+	const record = () => {
+
+		const calls = [];
+		const ctx = new Proxy( { fillStyle: '', strokeStyle: '' }, {
+			get: ( target, name ) => ( name in target ? target[ name ] : ( ...args ) => calls.push( { name, args, strokeStyle: target.strokeStyle } ) ),
+			set: ( target, name, value ) => ( ( target[ name ] = value ), true ),
+		} );
+		return { ctx, calls };
+
+	};
+
+	const t = tube();
+	const nasal = { at: 5, lengths: [ 6, 6, 6 ], areas: [ 40, 300, 80 ] };
+	const open = record();
+	drawAreaFunction( open.ctx, t, { width: 400, height: 160 }, nasal );
+	const strokes = open.calls.filter( ( c ) => c.name === 'stroke' && c.strokeStyle === AREA_COLORS.nose );
+	assert.equal( strokes.length, 1 );
+	assert.ok( open.calls.some( ( c ) => c.name === 'setLineDash' && c.args[ 0 ].length === 2 ) );
+	const from = open.calls.find( ( c, k ) => c.name === 'moveTo' && open.calls[ k - 1 ]?.name === 'beginPath' && open.calls.slice( k ).some( ( d ) => d.strokeStyle === AREA_COLORS.nose ) && c.args[ 0 ] === areaSteps( t, 400, 160 ).steps[ 5 ].x0 );
+	assert.ok( from, 'the nose starts where its junction is' );
+	assert.ok( open.calls.some( ( c ) => c.name === 'fillText' && c.args[ 0 ] === 'nose' ) );
+	const shut = record();
+	drawAreaFunction( shut.ctx, t, { width: 400, height: 160 } );
+	assert.ok( ! shut.calls.some( ( c ) => c.name === 'fillText' && c.args[ 0 ] === 'nose' ) );
+
+} );

@@ -15,7 +15,7 @@ const json = ( name ) => JSON.parse( readFileSync( new URL( name, BUILD ) ).toSt
 
 const { head, articulation, landmarks } = await loadBuiltHead();
 const diagram = new DiagramSection( head, { landmarks } );
-const tract = new TractAcoustics( diagram, json( 'tract-section.json' ), articulation.state );
+const tract = new TractAcoustics( diagram, json( 'tract-section.json' ), articulation.state, { velumRig: articulation.velum.rig } );
 const targets = Object.fromEntries( json( 'phoneme-targets.json' ).targets.map( ( t ) => [ t.ipa, t ] ) );
 
 function pose( params ) {
@@ -60,5 +60,24 @@ test( 'a stop shuts the tube and a vowel does not; the tube runs from the glotti
 	assert.equal( vowel.closed, false );
 	assert.ok( vowel.lengthMm > 150 && vowel.lengthMm < 200, `${ vowel.lengthMm } mm` );
 	assert.ok( tract.lastMs < 50 );
+
+} );
+
+test( 'the nasals open the nose: a branch behind the velum\'s port, and the murmur\'s low first peak', () => {
+
+	const oral = pose( targets[ 'ɑ' ].params );
+	assert.equal( oral.nasalAt, null, 'a raised velum: no branch' );
+	for ( const nasal of [ 'm', 'n', 'ŋ' ] ) {
+
+		const summary = pose( targets[ nasal ].params );
+		assert.ok( summary.nasalPortMm2 > 50 && summary.nasalAt > 10, `/${ nasal }/: ${ JSON.stringify( summary ) }` );
+		assert.ok( summary.formants[ 0 ] < 450, `/${ nasal }/ murmur: ${ summary.formants }` );
+
+	}
+
+	// The same /m/ with the velum raised: a shut tube and no nose.
+	const shut = pose( { ...targets.m.params, velum_opening: 0 } );
+	assert.equal( shut.nasalAt, null );
+	assert.notDeepEqual( shut.formants, pose( targets.m.params ).formants );
 
 } );

@@ -13,17 +13,19 @@ const FREQUENCY = tolerance( VECTORS, 'frequency' );
 
 test( 'every tube of the shared vectors: the same transfer function, formants and bandwidths as Python', () => {
 
-	assert.ok( VECTORS.cases.length >= 8 );
+	assert.ok( VECTORS.cases.length >= 12 );
+	assert.ok( VECTORS.cases.filter( ( c ) => c.input.nasal ).length >= 4, 'tubes with a nose' );
 	for ( const { description, input, expected } of VECTORS.cases ) {
 
+		const nasal = input.nasal && { at: input.nasal.at, lengths: input.nasal.length_mm, areas: input.nasal.area_mm2 };
 		input.frequencies_hz.forEach( ( f, k ) => {
 
-			const h = tubeTransfer( input.lengths_mm, input.areas_mm2, f, input.lossy );
+			const h = tubeTransfer( input.lengths_mm, input.areas_mm2, f, input.lossy, undefined, nasal );
 			nearRelative( h[ 0 ], expected.transfer[ k ][ 0 ], TRANSFER, `${ description }: Re H(${ f })` );
 			nearRelative( h[ 1 ], expected.transfer[ k ][ 1 ], TRANSFER, `${ description }: Im H(${ f })` );
 
 		} );
-		const { frequencies, bandwidths } = tubeFormants( input.lengths_mm, input.areas_mm2, { lossy: input.lossy } );
+		const { frequencies, bandwidths } = tubeFormants( input.lengths_mm, input.areas_mm2, { lossy: input.lossy, nasal } );
 		expected.formants_hz.forEach( ( f, k ) => ( f === null ? assert.ok( Number.isNaN( frequencies[ k ] ) ) : near( frequencies[ k ], f, FREQUENCY, `${ description }: F${ k + 1 }` ) ) );
 		expected.bandwidths_hz.forEach( ( b, k ) => {
 

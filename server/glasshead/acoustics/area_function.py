@@ -23,6 +23,11 @@ chosen so that the head's vowels fitted to VocalTractLab's JD3 shapes give that 
 formants (docs/acoustics.md); below the airway's lower end a fixed larynx tube
 (``TRACT_LARYNX_TUBE``) completes the tract. Pure numpy; the browser's twin is
 ``web/src/core/areaFunction.js``, held to the same numbers by the shared vectors.
+
+The nasal branch (``nasal_branch``) is the nose of VocalTractLab's JD3 speaker (its sections from
+the port to the nostrils, ``tract-section.json``), its first section the velum's port: it leaves
+the tract where the pharynx ends and the mouth begins, below the uvula, as VocalTractLab's nose
+leaves its tract above its 16th of 40 sections.
 """
 
 import math
@@ -220,3 +225,18 @@ def area_function(stations: npt.ArrayLike, floor: Sequence[Part], roof: Sequence
             "width_mm": np.concatenate([[np.nan], section_width]),
             "region": np.concatenate([[-1], regions]),
             "closed": bool(np.any(section_width < TRACT_CLOSURE_MM))}
+
+
+def nasal_branch(region: npt.ArrayLike, nose: dict, port_mm2: float) -> dict | None:
+    """The nose as a side branch of the tube whose sections have the regions ``region`` (as
+    ``area_function`` gives them): {"at": the sections before the junction (those of the larynx
+    and the pharynx), "length_mm", "area_mm2": the port (``nose["port_length_mm"]`` long, of
+    ``port_mm2``) then the nose's sections}; None while the port is shut (narrower than
+    ``TRACT_MIN_AREA_MM2``) or the tube has no mouth."""
+    regions = np.asarray(region)
+    mouth = np.flatnonzero(regions >= REGIONS.index("oral"))
+    if port_mm2 < TRACT_MIN_AREA_MM2 or len(mouth) == 0 or mouth[0] == 0:
+        return None
+    return {"at": int(mouth[0]),
+            "length_mm": [float(nose["port_length_mm"]), *map(float, nose["length_mm"])],
+            "area_mm2": [float(port_mm2), *map(float, nose["area_mm2"])]}

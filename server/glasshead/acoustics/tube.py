@@ -19,6 +19,18 @@ own impedance taken as infinite); the lips radiate into a piston-in-a-baffle loa
 128ρc/(9π²A) in parallel with an inertance 8ρ/(3π·sqrt(πA)). Then, with the chain matrix K of
 all sections from the glottis to the lips, U_lips/U_glottis = 1/(K₂₁·Z_rad + K₂₂).
 
+With a nasal branch, the nose is a second chain N that leaves the tract at a junction J after
+its first ``at`` sections (the velopharyngeal port is N's first section) and radiates from the
+nostrils as a piston of its last section's area. With K₁ the chain up to J and K₂ the chain
+from J to the lips, write a = K₂₁₁·Z_lips + K₂₁₂, b = K₂₂₁·Z_lips + K₂₂₂ (J's pressure and the
+flow into the mouth per unit of lip flow) and c, d likewise for N and its nostrils. With the
+lips' flow c and the nostrils' flow a, J's pressure is a·c on both sides, and the flow that
+reaches J from the glottis is b·c + a·d, so
+
+    (U_lips + U_nose) / U_glottis = (a + c) / (K₁₂₁·a·c + K₁₂₂·(b·c + a·d)).
+
+Without the branch (``nasal`` None) it is the oral tube's 1/(K₂₁·Z_rad + K₂₂).
+
 Formants are the peaks of |H| in a band: found on a grid, then each refined by a parabola through
 the dB values of its three grid points; the bandwidth is the width of the peak 3 dB down. Pure
 numpy; the browser's twin is ``web/src/core/tubeAcoustics.js``, held to the same numbers by the
@@ -84,22 +96,43 @@ def radiation_impedance(area_mm2, frequencies_hz):
     return resistance * 1j * omega * inertance / (resistance + 1j * omega * inertance)
 
 
-def transfer_function(lengths_mm, areas_mm2, frequencies_hz, *, lossy=True):
-    """U_lips / U_glottis at each frequency (complex). ``lossy=False``: no losses and an ideal
-    open end (the textbook tube)."""
+def transfer_function(lengths_mm, areas_mm2, frequencies_hz, *, lossy=True, nasal=None):
+    """U_lips / U_glottis at each frequency (complex), or (U_lips + U_nose) / U_glottis with a
+    nasal branch ``nasal`` = {"at": sections before the junction (1 or more), "length_mm",
+    "area_mm2": the nose's sections from the port to the nostrils}. ``lossy=False``: no losses
+    and ideal open ends (the textbook tube)."""
     frequencies = np.asarray(frequencies_hz, dtype=np.float64)
-    k = chain(lengths_mm, areas_mm2, frequencies, lossy=lossy)
-    load = radiation_impedance(areas_mm2[-1], frequencies) if lossy else 0.0
-    return 1.0 / (k[:, 1, 0] * load + k[:, 1, 1])
+    areas = np.asarray(areas_mm2, dtype=np.float64)
+
+    def load(area):
+        return radiation_impedance(area, frequencies) if lossy else 0.0
+
+    if nasal is None:
+        k = chain(lengths_mm, areas, frequencies, lossy=lossy)
+        return 1.0 / (k[:, 1, 0] * load(areas[-1]) + k[:, 1, 1])
+    at = int(nasal["at"])
+    if not 1 <= at < len(areas):
+        raise ValueError(f"a nasal branch must leave the tract between two of its sections, "
+                         f"not after section {at} of {len(areas)}")
+    lengths = np.asarray(lengths_mm, dtype=np.float64)
+    before = chain(lengths[:at], areas[:at], frequencies, lossy=lossy)
+    after = chain(lengths[at:], areas[at:], frequencies, lossy=lossy)
+    nose = chain(nasal["length_mm"], nasal["area_mm2"], frequencies, lossy=lossy)
+    lips, nostrils = load(areas[-1]), load(float(nasal["area_mm2"][-1]))
+    a = after[:, 0, 0] * lips + after[:, 0, 1]
+    b = after[:, 1, 0] * lips + after[:, 1, 1]
+    c = nose[:, 0, 0] * nostrils + nose[:, 0, 1]
+    d = nose[:, 1, 0] * nostrils + nose[:, 1, 1]
+    return (a + c) / (before[:, 1, 0] * a * c + before[:, 1, 1] * (b * c + a * d))
 
 
-def formants(lengths_mm, areas_mm2, *, lossy=True, count=FORMANT_COUNT,
+def formants(lengths_mm, areas_mm2, *, lossy=True, nasal=None, count=FORMANT_COUNT,
              band_hz=FORMANT_BAND_HZ, step_hz=GRID_STEP_HZ):
-    """The first ``count`` formants of the tube: (frequencies Hz, bandwidths Hz), each (count,)
-    float64, NaN where the band holds fewer peaks."""
+    """The first ``count`` formants of the tube (with its nasal branch, if any): (frequencies
+    Hz, bandwidths Hz), each (count,) float64, NaN where the band holds fewer peaks."""
     grid = np.arange(band_hz[0], band_hz[1] + step_hz / 2, step_hz)
-    db = 20.0 * np.log10(np.abs(transfer_function(lengths_mm, areas_mm2, grid, lossy=lossy))
-                         + 1e-300)
+    transfer = transfer_function(lengths_mm, areas_mm2, grid, lossy=lossy, nasal=nasal)
+    db = 20.0 * np.log10(np.abs(transfer) + 1e-300)
     peaks = np.flatnonzero((db[1:-1] > db[:-2]) & (db[1:-1] >= db[2:])) + 1
     frequencies = np.full(count, np.nan)
     bandwidths = np.full(count, np.nan)

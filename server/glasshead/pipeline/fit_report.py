@@ -26,7 +26,6 @@ writers) is the one the report records and every plot and the page are there.
 import hashlib
 import inspect
 import json
-import multiprocessing
 import sys
 import time
 from pathlib import Path
@@ -48,6 +47,7 @@ from glasshead.fitting.objective2d import MidSagittalSection, Objective2D
 from glasshead.geometry import midsagittal, tongue_surface
 from glasshead.geometry.tongue_surface import TongueRig
 from glasshead.pipeline import fit_report_html, overlay_svg
+from glasshead.pipeline.forked import WORKERS, forked_map
 from glasshead.pipeline.outputs import current_output, write_json
 
 #: Bump when the output changes in a way that must rebuild it.
@@ -61,8 +61,6 @@ CODE = (fit2d, objective2d, optimizer, tongue_surface, overlay_svg, fit_report_h
         midsagittal)
 #: Digits kept of the outline points and per-ray errors (mm): 0.1 micrometre.
 DIGITS = 4
-#: Worker processes for the fits (each fit is single-threaded numpy).
-WORKERS = 2
 
 
 def shape_label(shape: dict) -> str:
@@ -159,12 +157,8 @@ def plot_svg(entry: dict, drawing: dict) -> str:
         title=title, subtitle=subtitle)
 
 
-_POOL_CONTEXT: Context | None = None
-
-
-def _job(index: int) -> tuple[dict, str | None]:
-    assert _POOL_CONTEXT is not None
-    entry, drawing = fit_entry(_POOL_CONTEXT, _POOL_CONTEXT.shapes[index])
+def _fit_and_plot(ctx: Context, index: int) -> tuple[dict, str | None]:
+    entry, drawing = fit_entry(ctx, ctx.shapes[index])
     return entry, None if drawing is None else plot_svg(entry, drawing)
 
 
@@ -172,15 +166,7 @@ def fit_every_shape(ctx: Context, workers: int = WORKERS) -> list[tuple[dict, st
     """(entry, plot SVG or None) of every shape, in order, over ``workers`` forked processes
     that share the context (one process where fork is missing). The fits are deterministic, so
     only their ``seconds`` depend on the workers."""
-    global _POOL_CONTEXT
-    _POOL_CONTEXT = ctx
-    try:
-        if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
-            with multiprocessing.get_context("fork").Pool(workers) as pool:
-                return pool.map(_job, range(len(ctx.shapes)), chunksize=1)
-        return [_job(k) for k in range(len(ctx.shapes))]
-    finally:
-        _POOL_CONTEXT = None
+    return forked_map(_fit_and_plot, range(len(ctx.shapes)), ctx, workers)
 
 
 def input_key(assets_dir: Path) -> str:

@@ -40,6 +40,7 @@ from glasshead.constants import (
     VOWEL_NORMS_FILE,
 )
 from glasshead.flesh_point_assets import FLESH_POINT_ASSETS
+from glasshead.pipeline.forked import forked_map
 from glasshead.pipeline.outputs import current_output, write_json
 from glasshead.tract_assets import TRACT_ASSETS, tract_shape
 
@@ -110,6 +111,10 @@ def codebook_poses(anchors: Mapping[str, Mapping[str, float]], count: int = ENTR
     return poses[:count]
 
 
+def _formants(shape, pose: Mapping[str, float]) -> list[float]:
+    return [float(f) for f in shape.acoustics(pose)["formants"][:3]]
+
+
 def group_scales(anchor_formants: Mapping[str, Sequence[float]], norms: Mapping) -> dict:
     """{group: [F1, F2, F3 factors]} mapping each group's formants onto the head's (see the
     module)."""
@@ -138,7 +143,7 @@ def build_codebook(shape, anchors: Mapping[str, Mapping[str, float]], norms: Map
     values = matrix[:, varying]
     scaled = values / spread[varying]
     to_anchor = ((scaled[:, None, :] - scaled[None, :first, :]) ** 2).mean(axis=2)
-    formants = np.array([shape.acoustics(p)["formants"][:3] for p in poses])
+    formants = np.array(forked_map(_formants, poses, shape))
     anchor_formants = {ipa: formants[i] for i, ipa in enumerate(anchors)}
     return {
         "parameters": [names[i] for i in varying],

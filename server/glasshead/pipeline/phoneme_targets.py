@@ -33,7 +33,6 @@ the others of ``CODE``) is the one the file records.
 
 import hashlib
 import inspect
-import multiprocessing
 import sys
 import time
 from pathlib import Path
@@ -67,6 +66,7 @@ from glasshead.fitting import (
 )
 from glasshead.geometry import midsagittal, tongue_surface
 from glasshead.pipeline import jaw_openings, target_contact, target_fits, target_realism
+from glasshead.pipeline.forked import WORKERS, forked_map
 from glasshead.pipeline.outputs import current_output, write_json
 from glasshead.pipeline.target_contact import (
     EPG_WEIGHT_OF_GOAL,
@@ -184,32 +184,12 @@ def shape_names() -> list[str]:
     return names
 
 
-#: Worker processes for the fits (each fit is single-threaded numpy).
-WORKERS = 2
-_POOL_CONTEXT: Context | None = None
-
-
-def _tongue_job(shape_name: str) -> dict:
-    assert _POOL_CONTEXT is not None
-    return tongue_fit(_POOL_CONTEXT, shape_name)
-
-
 def fit_tongues(ctx: Context, names: list[str], workers: int = WORKERS) -> dict[str, dict]:
     """``tongue_fit`` of every shape named, by name; the contact fits (the slow ones) first, over
     ``workers`` forked processes that share the context (one process where fork is missing). The
     fits are deterministic, so the result does not depend on the number of workers."""
-    global _POOL_CONTEXT
     order = sorted(names, key=lambda n: contact_goal(ctx, n) is None)
-    if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
-        _POOL_CONTEXT = ctx
-        try:
-            with multiprocessing.get_context("fork").Pool(workers) as pool:
-                made = pool.map(_tongue_job, order, chunksize=1)
-        finally:
-            _POOL_CONTEXT = None
-    else:
-        made = [tongue_fit(ctx, name) for name in order]
-    return dict(zip(order, made, strict=True))
+    return dict(zip(order, forked_map(tongue_fit, order, ctx, workers), strict=True))
 
 
 def build_targets(ctx: Context) -> tuple[list[dict], dict]:

@@ -13,6 +13,8 @@ sides.
 - ``mandible``: its section at rest, posed by the jaw on each side.
 - ``incisor_x`` and ``uvula_y``: where the lips' sections begin (in front of the upper incisors'
   edge) and the pharynx's (below the uvula), from the landmarks.
+- ``nose``: the nasal branch's sections after its port (the nose of VocalTractLab's JD3
+  speaker, ``vtl_speaker.nose_tube``): the head's CT has no nasal cavity.
 
 Each polyline is ``{"points": [[x, y], ...], "closed": bool}`` in mm, project frame.
 """
@@ -31,10 +33,11 @@ from glasshead.constants import (
     TRACT_STATION_STEP_MM,
 )
 from glasshead.geometry.midsagittal import midline_section, point_to_polylines, resample
+from glasshead.pipeline import vtl_speaker
 from glasshead.pipeline.outputs import current_output, load_built_meshes, write_json
 
 #: Bumped whenever the section is computed differently.
-BUILDER = 1
+BUILDER = 2
 #: The meshes read, by their manifest names.
 MESHES = ("airway", "maxilla", "pharynx", "mandible", "tongue_rest")
 #: Section points closer than this (mm) are the same point (a chain closes on itself).
@@ -93,6 +96,7 @@ def build_tract_section(assets_dir: Path) -> tuple[dict, bool]:
     meshes = load_built_meshes(assets_dir, MESHES)
     landmarks = json.loads((assets_dir / LANDMARKS_FILE).read_text())
     digest = hashlib.sha256("".join(meshes[n][2] for n in MESHES).encode()
+                            + vtl_speaker.speaker_file().read_bytes()
                             + json.dumps(landmarks, sort_keys=True).encode()).hexdigest()
     path = assets_dir / TRACT_SECTION_FILE
     existing = current_output(path, digest, BUILDER, TRACT_SECTION_FORMAT_VERSION)
@@ -119,6 +123,7 @@ def build_tract_section(assets_dir: Path) -> tuple[dict, bool]:
         "length_mm": round(float(np.linalg.norm(np.diff(stations, axis=0), axis=1).sum()), 2),
         "still": {"floor": _polylines(floor), "roof": _polylines(roof)},
         "mandible": _polylines(sections["mandible"]),
+        "nose": {**vtl_speaker.nose_tube(), "source": "VocalTractLab JD3 speaker's nose"},
         "roof_clearance_mm": {"min": round(float(clearance.min()), 2),
                               "max": round(float(clearance.max()), 2)},
     }

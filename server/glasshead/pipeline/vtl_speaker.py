@@ -131,6 +131,23 @@ def formant_peaks(params, count=3):
     return frequency[peaks][:count]
 
 
+#: The nose's sections in VocalTractLab's full tube of 93 (trachea 23, glottis 2, pharynx and
+#: mouth 40, then the nose from its port to the nostrils, then the sinuses and the fossa).
+NOSE_SECTIONS = slice(65, 84)
+
+
+def nose_tube() -> dict:
+    """The speaker's nose: {"port_length_mm": its first section's length, "length_mm",
+    "area_mm2": the sections after the port, to the nostrils}. The nose does not move; its
+    first section, the port, takes the velum's opening."""
+    full = api().tract_state_to_full_tube(tract_params("a"))
+    lengths = np.asarray(full["tube_length"], dtype=np.float64)[NOSE_SECTIONS] * 10.0
+    areas = np.asarray(full["tube_area"], dtype=np.float64)[NOSE_SECTIONS] * 100.0
+    return {"port_length_mm": round(float(lengths[0]), 4),
+            "length_mm": np.round(lengths[1:], 4).tolist(),
+            "area_mm2": np.round(areas[1:], 4).tolist()}
+
+
 @lru_cache(maxsize=1)
 def param_names():
     """The 19 tract parameter names in VTL's order (HX, HY, JX, JA, LP, LD, VS, VO, TCX, ...)."""

@@ -11,8 +11,9 @@ The parts, as the browser's diagram cuts them (``scene/DiagramSection.js``):
 - the still parts (palate, pharyngeal wall, the larynx's entrance) and the stations, from
   ``tract-section.json``.
 
-The nasal branch is given by its port's area (``geometry.velum.nasal_port_area``); the tube's
-formants are those of the oral tract alone.
+The nasal branch is the nose of ``tract-section.json`` behind the velum's port
+(``geometry.velum.nasal_port_area``, ``area_function.nasal_branch``); with the port open, the
+formants are those of the tube with its nose.
 """
 
 from collections.abc import Mapping, Sequence
@@ -21,7 +22,13 @@ import numpy as np
 import numpy.typing as npt
 
 from glasshead.acoustics import tube
-from glasshead.acoustics.area_function import Part, area_function, chain_part, plane_segments
+from glasshead.acoustics.area_function import (
+    Part,
+    area_function,
+    chain_part,
+    nasal_branch,
+    plane_segments,
+)
 from glasshead.geometry import face_rig as face
 from glasshead.geometry.flesh_points import FleshPointRig, midline_outline
 from glasshead.geometry.jaw import apply_jaw_pose, jaw_pose
@@ -58,6 +65,7 @@ class TractShape:
         self.mandible = [(np.asarray(p["points"], dtype=np.float64), p["closed"])
                          for p in section["mandible"]]
         self.lip_ranges = flesh.lip_ranges
+        self.nose = section["nose"]
 
     def parts(self, params: Mapping[str, float]) -> dict:
         """The posed section: {"floor": [Part], "roof": [Part], "lip_front_x", "lip_rounding",
@@ -86,13 +94,14 @@ class TractShape:
 
     def area_function(self, params: Mapping[str, float]) -> dict:
         """``area_function.area_function`` of the pose, with the nasal port's area
-        (``nasal_port_mm2``)."""
+        (``nasal_port_mm2``) and the nasal branch (``nasal``, None while the port is shut)."""
         parts = self.parts(params)
         result = area_function(self.stations, parts["floor"], parts["roof"],
                                incisor_x=self.incisor_x, uvula_y=self.uvula_y,
                                lip_front_x=parts["lip_front_x"],
                                lip_rounding=parts["lip_rounding"])
         result["nasal_port_mm2"] = nasal_port_area(self.velum, parts["velum_opening"])
+        result["nasal"] = nasal_branch(result["region"], self.nose, result["nasal_port_mm2"])
         return result
 
     def frames(self, tracks: Mapping[str, Sequence[float]]) -> list[dict]:
@@ -106,5 +115,6 @@ class TractShape:
         """The area function and the tube's formants: {"area_function": ..., "formants":
         (4,) Hz, "bandwidths": (4,) Hz}."""
         result = self.area_function(params)
-        frequencies, bandwidths = tube.formants(result["length_mm"], result["area_mm2"])
+        frequencies, bandwidths = tube.formants(result["length_mm"], result["area_mm2"],
+                                                nasal=result["nasal"])
         return {"area_function": result, "formants": frequencies, "bandwidths": bandwidths}

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from glasshead.acoustics.area_function import area_function, chain_part
+from glasshead.acoustics.area_function import area_function, chain_part, nasal_branch
 from glasshead.constants import (
     TRACT_AREA_LAWS,
     TRACT_LARYNX_TUBE,
@@ -26,6 +26,11 @@ NAME = "area-function.json"
 FORMAT_VERSION = 1
 TOLERANCES = {"mm": tolerance(1e-9, "mm", "distances from the same few operations"),
               "area": tolerance(1e-9, "relative", "a power of a width")}
+
+
+#: A made-up nose for the nasal branch of every case, and the port it is given, mm².
+NOSE = {"port_length_mm": 6.0, "length_mm": [6.0, 6.0, 6.0], "area_mm2": [100.0, 300.0, 80.0]}
+PORT_MM2 = 40.0
 
 
 def _circle(cx, cy, radius, count=24):
@@ -77,7 +82,8 @@ def _tract_case(description, stations, floor, roof, *, incisor_x, uvula_y, lip_f
                  "area_mm2": result["area_mm2"].tolist(),
                  "position_mm": result["position_mm"].tolist(),
                  "width_mm": [None if np.isnan(w) else float(w) for w in result["width_mm"]],
-                 "region": [int(r) for r in result["region"]], "closed": result["closed"]})
+                 "region": [int(r) for r in result["region"]], "closed": result["closed"],
+                 "nasal": nasal_branch(result["region"], NOSE, PORT_MM2)})
 
 
 def build_document():
@@ -104,10 +110,12 @@ def build_document():
               "to the incisors, the floor's and the roof's polylines (closed: a solid), and the "
               "tube, glottis first: section lengths, areas, middles from the glottis, mean "
               "widths (null for the larynx tube), regions (-1 larynx, 0 pharynx, 1 mouth, "
-              "2 lips) and whether a section is shut",
+              "2 lips), whether a section is shut, and the nasal branch that the fixtures' nose "
+              "behind a port of port_mm2 makes of it (at: the sections before the junction)",
         FORMAT_VERSION, cases,
         constants={"laws": TRACT_AREA_LAWS, "larynx": TRACT_LARYNX_TUBE,
                    "min_area_mm2": TRACT_MIN_AREA_MM2, "step_mm": TRACT_STATION_STEP_MM},
+        fixtures={"nose": NOSE, "port_mm2": PORT_MM2},
         tolerances=TOLERANCES)
 
 

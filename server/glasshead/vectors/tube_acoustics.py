@@ -5,7 +5,9 @@ pytest (tests/test_tube_acoustics.py) checks that the file is what this module m
 ``tests/js/tubeAcoustics.test.js`` that the JavaScript twin gives the same numbers. The tubes are
 the textbook ones (Fant 1960, "Acoustic theory of speech production"): a uniform 17.5 cm tube, the
 two-tube /ɑ/ (a narrow back, a wide front) and /i/ (a wide back, a narrow front), and a three-tube
-/u/ (a narrow middle and lips), each with and without losses.
+/u/ (a narrow middle and lips), each with and without losses; then the uniform tube and the /ɑ/
+with a nose, a side branch of 19 sections 6 mm long (its port first, then a cavity that widens
+to 4 cm² and narrows to the nostrils), leaving the tract 7 cm above the glottis.
 """
 
 import numpy as np
@@ -34,6 +36,17 @@ TUBES = (
 )
 #: Each tube is cut into sections of about this length, mm, as an area function is.
 SECTION_MM = 5.0
+#: The nose of the nasal cases: its sections' areas from the port (given per case), mm², each
+#: 6 mm long, and how far above the glottis it leaves the tract, mm.
+NOSE_MM2 = (30.0, 100.0, 240.0, 400.0, 330.0, 300.0, 300.0, 270.0, 250.0, 240.0, 240.0, 185.0,
+            80.0, 140.0, 175.0, 130.0, 175.0, 80.0)
+NOSE_SECTION_MM = 6.0
+JUNCTION_MM = 70.0
+#: (description, the tube's parts as TUBES, the port's area mm²).
+NASAL_TUBES = (
+    ("the uniform tube with a nose, its port 0.5 cm² open", TUBES[0][1], 50.0),
+    ("the two-tube /ɑ/ with a nose, its port 0.2 cm² open", TUBES[1][1], 20.0),
+)
 
 
 def sections(tube_parts):
@@ -46,16 +59,27 @@ def sections(tube_parts):
     return lengths, areas
 
 
-def _case(description, parts, lossy):
+def nose(port_mm2):
+    """The nasal branch of the nasal cases for a port of ``port_mm2``, leaving after the
+    sections that reach ``JUNCTION_MM``."""
+    areas = [port_mm2, *NOSE_MM2]
+    return {"length_mm": [NOSE_SECTION_MM] * len(areas), "area_mm2": areas}
+
+
+def _case(description, parts, lossy, port_mm2=None):
     lengths, areas = sections(parts)
-    transfer = tube.transfer_function(lengths, areas, FREQUENCIES_HZ, lossy=lossy)
-    frequencies, bandwidths = tube.formants(lengths, areas, lossy=lossy)
+    nasal = None
+    if port_mm2 is not None:
+        nasal = {"at": int(np.searchsorted(np.cumsum(lengths), JUNCTION_MM - 1e-9) + 1),
+                 **nose(port_mm2)}
+    transfer = tube.transfer_function(lengths, areas, FREQUENCIES_HZ, lossy=lossy, nasal=nasal)
+    frequencies, bandwidths = tube.formants(lengths, areas, lossy=lossy, nasal=nasal)
     plain = [None if np.isnan(v) else float(v) for v in frequencies]
     # A lossless tube's peaks are poles: their width on a grid says nothing, so none is given.
     widths = [None if np.isnan(v) or not lossy else float(v) for v in bandwidths]
     return case(f"{description}, {'lossy' if lossy else 'lossless with an ideal open end'}",
                 {"lengths_mm": lengths, "areas_mm2": areas, "lossy": lossy,
-                 "frequencies_hz": list(FREQUENCIES_HZ)},
+                 "frequencies_hz": list(FREQUENCIES_HZ), "nasal": nasal},
                 {"transfer": [[float(z.real), float(z.imag)] for z in transfer],
                  "formants_hz": plain, "bandwidths_hz": widths})
 
@@ -63,10 +87,14 @@ def _case(description, parts, lossy):
 def build_document():
     cases = [_case(description, parts, lossy) for description, parts in TUBES
              for lossy in (False, True)]
+    cases += [_case(description, parts, lossy, port) for description, parts, port in NASAL_TUBES
+              for lossy in (False, True)]
     return document(
         NAME, "Tubes of known shape, glottis first, through the lossy tube model: U_lips/U_glottis "
               "(re, im) at frequencies_hz, and the first four formants and their 3 dB bandwidths "
-              "(null where the band holds fewer peaks, and for a lossless tube)",
+              "(null where the band holds fewer peaks, and for a lossless tube). With a nasal "
+              "branch (nasal: the nose's sections from its port, leaving the tract after its "
+              "first `at` sections), (U_lips + U_nose)/U_glottis",
         FORMAT_VERSION, cases,
         constants={"air": TUBE_AIR, "wall": TUBE_WALL, "band_hz": list(TUBE_FORMANT_BAND_HZ),
                    "grid_step_hz": TUBE_GRID_STEP_HZ},

@@ -216,3 +216,29 @@ export function areaFunction( stations, floor, roof, { incisorX, uvulaY, lipFron
 	return out;
 
 }
+
+/**
+ * The nose as a side branch of an area function (createAreaFunction's output): { at: the
+ * sections before the junction (the larynx's and the pharynx's), lengths, areas: the port
+ * (nose.port_length_mm long, of portMm2) then the nose's sections }, or null while the port is
+ * shut (under TRACT_MIN_AREA_MM2) or the tube has no mouth. Twin of area_function.nasal_branch.
+ * @param {{ port_length_mm: number, length_mm: number[], area_mm2: number[] }} nose tract-section.json's
+ */
+export function nasalBranch( tube, nose, portMm2 ) {
+
+	let at = - 1;
+	for ( let k = 0; k < tube.count; k ++ ) {
+
+		if ( tube.regions[ k ] >= REGIONS.indexOf( 'oral' ) ) {
+
+			at = k;
+			break;
+
+		}
+
+	}
+
+	if ( ! ( portMm2 >= TRACT_MIN_AREA_MM2 ) || at <= 0 ) return null;
+	return { at, lengths: [ nose.port_length_mm, ...nose.length_mm ], areas: [ portMm2, ...nose.area_mm2 ] };
+
+}

@@ -7,7 +7,9 @@
 // DiagramSection's, recut each frame. Their segments are copied into buffers sized once, so a
 // frame allocates nothing but the tube's subarray views.
 
-import { areaFunction, chainPart, createAreaFunction } from '../core/areaFunction.js';
+import { areaFunction, chainPart, createAreaFunction, nasalBranch } from '../core/areaFunction.js';
+import { VELUM_PARAMETER } from '../core/constants.js';
+import { nasalPortArea } from '../core/velum.js';
 import { chainSegmentCount } from '../core/midSection.js';
 import { tubeFormants, FORMANT_COUNT } from '../core/tubeAcoustics.js';
 import { registerDebug } from '../debug.js';
@@ -69,9 +71,11 @@ export class TractAcoustics {
 	/**
 	 * @param {object} diagram a DiagramSection (recut by its owner before each update)
 	 * @param {object} section tract-section.json
-	 * @param {object} state the articulation's ParamState (for lip_rounding)
+	 * @param {object} state the articulation's ParamState (for lip_rounding and velum_opening)
+	 * @param {{ velumRig?: object|null }} options the velum rig (core/velum.js) whose port opens
+	 *   the nose; without it the tube has no nasal branch
 	 */
-	constructor( diagram, section, state ) {
+	constructor( diagram, section, state, { velumRig = null } = {} ) {
 
 		this.diagram = diagram;
 		this.state = state;
@@ -86,6 +90,11 @@ export class TractAcoustics {
 		this.roof = [ ...this.movingRoof, ...still( section.still.roof ) ];
 		this.lips = [ ...diagram.parts( 'upperLip' ), ...diagram.parts( 'lowerLip' ) ];
 		this.roundingIndex = state.indexOf( 'lip_rounding' );
+		this.nose = section.nose;
+		this.velumRig = velumRig;
+		this.velumIndex = state.indexOf( VELUM_PARAMETER );
+		this.portMm2 = 0;
+		this.nasal = null;
 		this.tube = createAreaFunction( this.stations.length / 2 );
 		this.formants = { frequencies: new Float64Array( FORMANT_COUNT ), bandwidths: new Float64Array( FORMANT_COUNT ) };
 		this.where = { incisorX: this.incisorX, uvulaY: this.uvulaY, lipFrontX: this.incisorX, lipRounding: 0 };
@@ -130,11 +139,14 @@ export class TractAcoustics {
 
 	}
 
-	/** The formants of this.tube (into this.formants). */
+	/** The formants of this.tube with its nasal branch while the port is open (into this.formants). */
 	updateFormants() {
 
 		const n = this.tube.count;
-		return tubeFormants( this.tube.lengths.subarray( 0, n ), this.tube.areas.subarray( 0, n ), {}, this.formants );
+		const opening = this.velumIndex >= 0 ? this.state.values[ this.velumIndex ] : 0;
+		this.portMm2 = this.velumRig && opening > 0 ? nasalPortArea( this.velumRig, Math.min( opening, 1 ) ) : 0;
+		this.nasal = this.nose ? nasalBranch( this.tube, this.nose, this.portMm2 ) : null;
+		return tubeFormants( this.tube.lengths.subarray( 0, n ), this.tube.areas.subarray( 0, n ), { nasal: this.nasal }, this.formants );
 
 	}
 
@@ -148,6 +160,7 @@ export class TractAcoustics {
 			formants: Array.from( this.formants.frequencies, round ),
 			bandwidths: Array.from( this.formants.bandwidths, round ),
 			closed: this.tube.closed, sections: this.tube.count, lengthMm: Math.round( length * 10 ) / 10,
+			nasalPortMm2: Math.round( this.portMm2 * 10 ) / 10, nasalAt: this.nasal?.at ?? null,
 		};
 
 	}

@@ -34,6 +34,14 @@ class AcousticsRequest(BaseModel):
                     "left out are neutral")
 
 
+class NasalBranch(BaseModel):
+    at: int = Field(description="the tube's sections before the junction (the larynx's and the "
+                                "pharynx's): the nose leaves between section at - 1 and at")
+    length_mm: list[float] = Field(description="the nose's sections, the velum's port first, "
+                                               "to the nostrils")
+    area_mm2: list[float] = Field(description="their areas; the first is the port's")
+
+
 class AreaFunction(BaseModel):
     position_mm: list[float] = Field(description="the middle of each section, from the glottis")
     length_mm: list[float] = Field(description="each section's length along the midline")
@@ -43,7 +51,9 @@ class AreaFunction(BaseModel):
     region: list[str] = Field(description="larynx, pharynx, oral or lips")
     total_length_mm: float
     closed: bool = Field(description="some section is shut (its area is the least one passes)")
-    nasal_port_mm2: float = Field(description="the velum's port to the nose (not in the tube)")
+    nasal_port_mm2: float = Field(description="the velum's port to the nose")
+    nasal: NasalBranch | None = Field(description="the nose as a side branch of the tube, in "
+                                                  "the formants; null while the port is shut")
 
 
 class Formant(BaseModel):
@@ -84,7 +94,10 @@ def acoustics_json(assets: AssetStore, request: AcousticsRequest) -> bytes:
         width_mm=[_plain(w) for w in tube["width_mm"]],
         region=["larynx" if r < 0 else REGIONS[r] for r in tube["region"]],
         total_length_mm=round(float(np.sum(tube["length_mm"])), 3), closed=tube["closed"],
-        nasal_port_mm2=round(float(tube["nasal_port_mm2"]), 3))
+        nasal_port_mm2=round(float(tube["nasal_port_mm2"]), 3),
+        nasal=None if tube["nasal"] is None else NasalBranch(
+            at=tube["nasal"]["at"], length_mm=np.round(tube["nasal"]["length_mm"], 3).tolist(),
+            area_mm2=np.round(tube["nasal"]["area_mm2"], 3).tolist()))
     formants = [Formant(name=f"F{k + 1}", frequency_hz=_plain(f), bandwidth_hz=_plain(b))
                 for k, (f, b) in enumerate(zip(result["formants"], result["bandwidths"],
                                                strict=True))]

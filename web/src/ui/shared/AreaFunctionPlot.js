@@ -1,11 +1,12 @@
 // The tract's area function drawn flat: the cross-section area of each section of the tube
 // (core/areaFunction.js) along the tract, from the glottis (left) to the lips (right), as a filled
-// outline of steps; a shut section is marked red. Drawn into a 2D context in CSS pixels.
+// outline of steps; a shut section is marked red; with the velum's port open, the nose as a dashed
+// line of steps from where it leaves the tract. Drawn into a 2D context in CSS pixels.
 
 import { TRACT_CLOSURE_MM } from '../../core/constants.js';
 
 /** Colours of the plot. */
-export const AREA_COLORS = Object.freeze( { air: '#9fc9ea', edge: '#2f6f9f', shut: '#c62828', ink: '#1f2328', muted: '#6a737d', grid: '#d0d7de' } );
+export const AREA_COLORS = Object.freeze( { air: '#9fc9ea', edge: '#2f6f9f', shut: '#c62828', nose: '#7b3fa0', ink: '#1f2328', muted: '#6a737d', grid: '#d0d7de' } );
 /** The area at the top of the plot, mm² (a wide pharynx behind a fronted tongue passes 1000). */
 export const AREA_TOP_MM2 = 1600;
 /** The length at the right of the plot, mm (an adult's tract is 150 to 190). */
@@ -37,12 +38,14 @@ export function areaSteps( tube, width, height ) {
 }
 
 /**
- * Draw the area function of `tube` ({ count, lengths, areas, widths, regions }: createAreaFunction).
+ * Draw the area function of `tube` ({ count, lengths, areas, widths, regions }: createAreaFunction)
+ * and its nasal branch, if any ({ at, lengths, areas }: areaFunction.js nasalBranch).
  * @param {CanvasRenderingContext2D} ctx
  * @param {object} tube
  * @param {{ width: number, height: number }} size CSS pixels
+ * @param {object|null} [nasal]
  */
-export function drawAreaFunction( ctx, tube, { width, height } ) {
+export function drawAreaFunction( ctx, tube, { width, height }, nasal = null ) {
 
 	const { steps, baseline, lengthMm, x, y } = areaSteps( tube, width, height );
 	ctx.clearRect( 0, 0, width, height );
@@ -81,6 +84,8 @@ export function drawAreaFunction( ctx, tube, { width, height } ) {
 	ctx.fillStyle = AREA_COLORS.shut;
 	for ( const step of steps ) if ( step.shut ) ctx.fillRect( step.x0, baseline - 6, Math.max( 2, step.x1 - step.x0 ), 6 );
 
+	if ( nasal ) drawNose( ctx, nasal, steps[ nasal.at ].x0, x, y );
+
 	ctx.fillStyle = AREA_COLORS.ink;
 	ctx.textBaseline = 'alphabetic';
 	ctx.textAlign = 'left';
@@ -93,6 +98,34 @@ export function drawAreaFunction( ctx, tube, { width, height } ) {
 	ctx.textAlign = 'center';
 	ctx.fillStyle = AREA_COLORS.muted;
 	ctx.fillText( 'area, mm²', 0, 0 );
+	ctx.restore();
+
+}
+
+/** The nose's sections as a dashed line of steps from the junction at x = `from` (CSS pixels). */
+function drawNose( ctx, nasal, from, x, y ) {
+
+	const mm = ( px ) => ( px - x( 0 ) ) / ( x( 1 ) - x( 0 ) );
+	let at = mm( from );
+	ctx.save();
+	ctx.setLineDash( [ 4, 3 ] );
+	ctx.strokeStyle = AREA_COLORS.nose;
+	ctx.lineWidth = 2;
+	ctx.beginPath();
+	ctx.moveTo( from, y( 0 ) );
+	nasal.lengths.forEach( ( length, k ) => {
+
+		ctx.lineTo( x( at ), y( nasal.areas[ k ] ) );
+		at += length;
+		ctx.lineTo( x( at ), y( nasal.areas[ k ] ) );
+
+	} );
+	ctx.stroke();
+	ctx.setLineDash( [] );
+	ctx.fillStyle = AREA_COLORS.nose;
+	ctx.textAlign = 'left';
+	ctx.textBaseline = 'bottom';
+	ctx.fillText( 'nose', x( at ) + 3, y( nasal.areas[ nasal.areas.length - 1 ] ) );
 	ctx.restore();
 
 }

@@ -17,19 +17,25 @@ export const HEAD_GROUP = 'man';
 export function formantText( summary ) {
 
 	if ( ! summary ) return 'Formants: loading…';
-	if ( summary.closed ) return 'The tract is shut here: no vowel formants (a stop or a nasal closure).';
 	const [ f1, f2, f3 ] = summary.formants;
 	const hz = ( f ) => ( f === null ? '–' : `${ f }` );
-	return `F1 ${ hz( f1 )} Hz · F2 ${ hz( f2 ) } Hz · F3 ${ hz( f3 ) } Hz`;
+	const peaks = `F1 ${ hz( f1 )} Hz · F2 ${ hz( f2 ) } Hz · F3 ${ hz( f3 ) } Hz`;
+	if ( summary.closed && summary.nasalAt ) return `The mouth is shut and the sound goes through the nose (a nasal murmur): ${ peaks }`;
+	if ( summary.closed ) return 'The tract is shut here: no vowel formants (a stop).';
+	return summary.nasalAt ? `${ peaks }, with the nose open` : peaks;
 
 }
 
 export class FormantPanel {
 
-	/** @param {{ api: object, diagram: object, state: object }} options the HTTP client, the DiagramSection, the ParamState */
-	constructor( { api, diagram, state } ) {
+	/**
+	 * @param {{ api: object, diagram: object, state: object, velumRig?: object|null }} options the
+	 *   HTTP client, the DiagramSection, the ParamState, and the velum rig that opens the nose
+	 */
+	constructor( { api, diagram, state, velumRig = null } ) {
 
 		this.api = api;
+		this.velumRig = velumRig;
 		this.diagram = diagram;
 		this.state = state;
 		this.tract = null;
@@ -52,7 +58,7 @@ export class FormantPanel {
 
 			const [ section, norms ] = await Promise.all( [ this.api.get( TRACT_SECTION_URL ), this.api.get( NORMS_URL ) ] );
 			this.chart.setNorms( norms?.groups?.[ HEAD_GROUP ] ?? {} );
-			this.tract = new TractAcoustics( this.diagram, section, this.state );
+			this.tract = new TractAcoustics( this.diagram, section, this.state, { velumRig: this.velumRig } );
 			this.removeDebug = this.tract.registerDebugField();
 			this.update();
 			return true;
@@ -74,7 +80,7 @@ export class FormantPanel {
 		const [ f1, f2 ] = summary.formants;
 		this.chart.draw( [], summary.closed ? null : { f1, f2, zone: null } );
 		const ctx = this.areaCanvas.clear();
-		if ( ctx ) drawAreaFunction( ctx, this.tract.tube, this.areaCanvas );
+		if ( ctx ) drawAreaFunction( ctx, this.tract.tube, this.areaCanvas, this.tract.nasal );
 		this.readout.textContent = formantText( summary );
 
 	}

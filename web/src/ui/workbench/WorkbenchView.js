@@ -206,7 +206,7 @@ export class WorkbenchView extends View {
 			type: 'button', className: 'wb-toggle', 'aria-pressed': String( name === this.state.view ), onClick: () => this.setView( name ),
 		}, VIEW_LABELS[ name ] ) ] ) );
 		// The head's own formants, from the diagram's section; loaded beside the panels.
-		this.formants = new FormantPanel( { api: this.api, diagram: this.diagram, state } );
+		this.formants = new FormantPanel( { api: this.api, diagram: this.diagram, state, velumRig: articulation.velum?.rig ?? null } );
 		this.onUnmount( () => this.formants.dispose() );
 		this.formants.load();
 		this.side.append(
