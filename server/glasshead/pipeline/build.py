@@ -42,7 +42,8 @@ ANATOMY_SOURCES = ["constants.py", "geometry/frame.py", "geometry/meshio.py", "p
                    "pipeline/anatomy.py", "pipeline/face_skin.py", "pipeline/head_shell.py",
                    "geometry/register_cbct.py", "pipeline/maxilla_lods.py",
                    "geometry/surface_distance.py", "pipeline/tract.py", "pipeline/tract_checks.py",
-                   "pipeline/larynx.py", "pipeline/quantized_glb.py"]
+                   "pipeline/larynx.py", "pipeline/quantized_glb.py", "pipeline/neck.py",
+                   "pipeline/seam_fairing.py"]
 
 
 def inputs_digest(data_dir, package_files=None):

@@ -19,6 +19,7 @@ from glasshead.constants import MANIFEST_FILE, SKIN_NODES_FILE
 from glasshead.geometry.frame import badin_to_project
 from glasshead.geometry.meshio import MeshFormatError, read_face_elems, read_face_nodes
 from glasshead.pipeline import sources
+from glasshead.pipeline.anatomy import neck_from_sources
 from glasshead.pipeline.face_skin import extract_face_skin, head_centre, uncover_lips
 from glasshead.pipeline.outputs import load_built_meshes
 from glasshead.pipeline.seam_fairing import close_head
@@ -129,7 +130,9 @@ def load_face_sources(data_dir, assets_dir=None):
                 "lower_lip": sources.read_badin_mesh(data_dir, "lowerlip")}
         skin = extract_face_skin(node_ids, nodes_m, elem_ids, head_centre(cranium[0]))
         skin = uncover_lips(skin, list(lips.values()))
-        skin, shell = close_head(skin, cranium[0])
+        badin = {name: sources.read_badin_mesh(data_dir, stem)
+                 for stem, (name, _) in sources.BADIN_MESHES.items()}
+        skin, shell = close_head(skin, cranium[0], neck_from_sources(data_dir, badin))
         skin_node_ids = skin.node_ids
         meshes = {"face_skin": (skin.vertices, skin.faces),
                   "head_shell": (shell.vertices, shell.faces),

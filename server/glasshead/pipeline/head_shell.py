@@ -9,9 +9,10 @@ shell closes the head so that it reads as a head from every side. It is built li
    one, since the band stops above the brows and below the vertex), widened if needed so it is
    at least as wide as the face rim; the *lower* ellipsoid to the rim points more than
    ``LOWER_RIM_DROP_MM`` below the cranium centre (jaw line and under the chin), so that it
-   closes under the jaw like a short rounded neck. The target radius along a ray from the centre
-   H (the cranium ellipsoid's centre) is the smooth maximum (p-norm, ``UNION_POWER``) of the two
-   far intersections.
+   closes under the jaw; and the *neck* (``pipeline.neck``), a tube fitted round the larynx,
+   the hyoid and the upper spine. The target radius along a ray from the centre H (the cranium
+   ellipsoid's centre) is the smooth maximum (p-norm, ``UNION_POWER``) of the three far
+   intersections.
 2. Parameterisation. Directions from H are written in spherical coordinates about a pole b in
    the mid-sagittal plane, behind and above H: alpha (angle from b) and psi (azimuth about b).
    The rim, seen from H, is a closed curve going once around b; each rim vertex i starts a
@@ -47,6 +48,8 @@ LOWER_RIM_DROP_MM = 40.0
 UNION_POWER = 6.0
 #: Angle over which the shell turns from the skin's rim to the target surface.
 BLEND_RAD = np.radians(30.0)
+#: The same where the neck reaches more than NECK_STEP_MM beyond the rim.
+NECK_BLEND_RAD, NECK_STEP_MM = np.radians(6.0), 5.0
 #: Rim vertices on each side averaged when the rim offsets are carried along the meridians.
 RIM_SMOOTHING = 3
 #: Rings of vertices from the rim to the pole.
@@ -153,11 +156,12 @@ def _choose_pole(rays):
     return tilts[best], crossing[best]
 
 
-def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
+def build_head_shell(skin_vertices, skin_faces, cranium_vertices, neck=None):
     """Shell closing the head behind and below the face skin's outer rim.
 
     skin_vertices (n, 3) float, skin_faces (m, 3) int: the outer skin, project frame mm.
-    cranium_vertices (k, 3) float, project frame mm. Returns a ``HeadShell``.
+    cranium_vertices (k, 3) float, project frame mm. neck: a ``pipeline.neck.Neck`` the shell
+    takes into its outline (its third shape), or None. Returns a ``HeadShell``.
     """
     skin_vertices = np.asarray(skin_vertices, dtype=np.float64)
     cranium = np.asarray(cranium_vertices, dtype=np.float64)
@@ -190,7 +194,8 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
         p = UNION_POWER
         r1 = _far_radius(centre, dirs, c_up, a_up)
         r2 = _far_radius(centre, dirs, c_lo, a_lo)
-        return (r1**p + r2**p) ** (1.0 / p)
+        r3 = neck.far_radius(centre, dirs) if neck is not None else 0.0
+        return (r1**p + r2**p + r3**p) ** (1.0 / p)
 
     ray = rim - centre
     r0 = np.linalg.norm(ray, axis=1)
@@ -221,17 +226,22 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
     # meridians as ridges; the hand-over over a few rings keeps them from standing as a step.
     smooth0, smooth_slope = _smooth_loop(delta0), _smooth_loop(delta_slope)
 
+    # Where the neck takes the outline far beyond the rim (the throat under the chin), the shell
+    # turns from the rim within NECK_BLEND_RAD: the angle between chin and neck.
+    blend = np.full(len(rim), BLEND_RAD)
+    if neck is not None:
+        blend[neck.far_radius(centre, ray) > r0 + NECK_STEP_MM] = NECK_BLEND_RAD
     rings = [rim]
     for k in range(1, RINGS):
         a = alpha * (1.0 - k / RINGS)
         beta = alpha - a
         ring_psi = psi + (psi_mono - psi) * min(1.0, k / 3.0)
         dirs = _directions(a, ring_psi, axes)
-        s = np.clip(beta / BLEND_RAD, 0.0, 1.0)
+        s = np.clip(beta / blend, 0.0, 1.0)
         w = min(1.0, k / RIM_HANDOVER_RINGS)
         d0 = (1.0 - w) * delta0 + w * smooth0
         d1 = (1.0 - w) * delta_slope + w * smooth_slope
-        offset = (d0 + d1 * np.minimum(beta, BLEND_RAD)) * (1 - s) ** 2 * (1 + 2 * s)
+        offset = (d0 + d1 * np.minimum(beta, blend)) * (1 - s) ** 2 * (1 + 2 * s)
         rings.append(centre + dirs * (target(dirs) + offset)[:, None])
     pole_dir = axes[:1]
     vertices = np.vstack(rings + [centre + pole_dir * target(pole_dir)[:, None]])
@@ -269,6 +279,7 @@ def build_head_shell(skin_vertices, skin_faces, cranium_vertices):
         "lower_ellipsoid": {"centre_mm": c_lo.round(3).tolist(),
                             "semi_axes_mm": a_lo.round(3).tolist(),
                             "fit_rms_mm": round(rms_lo, 3)},
+        "neck": neck.report() if neck is not None else None,
         "rim_vertices": int(n),
         "rings": RINGS,
         "pole_direction": axes[0].round(4).tolist(),

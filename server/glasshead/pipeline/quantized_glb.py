@@ -11,7 +11,9 @@ indices), 1.14 MB gzipped: floats compress poorly. Quantised, as here, the same 
   shell, the lips' corners) lands on the same lattice point in both, exactly: a power of two
   times an integer below 2^24 is exact in float32 as in float64, so readers that apply the
   node's transform get the same number for it in every file. A mesh wider than 65535 steps
-  (256 mm) takes the next power of two that fits it (none of the head's do);
+  (256 mm) takes the next power of two that fits it (``lattice_step``): the head shell, whose
+  neck makes it 290 mm tall, takes 2^-7 mm, and the meshes that share points with it (the face
+  skin, and the lips with the skin) are written on that step too (``min_step_mm``);
 - normals: int8, normalized (the extension's form for them), about 0.5 degree;
 - indices: uint16 when the mesh has fewer than 65536 vertices (plain glTF), uint32 otherwise.
 
@@ -43,12 +45,26 @@ def _pad(data: bytes, fill: bytes) -> bytes:
     return data + fill * (-len(data) % 4)
 
 
-def quantized_glb(vertices, faces, normals) -> tuple[bytes, float]:
+def lattice_step(vertices, min_step_mm: float = STEP_MM) -> float:
+    """The lattice step of a mesh, mm: ``min_step_mm`` (at least ``STEP_MM``), doubled until
+    the mesh's extent fits in ``GRID_MAX`` steps."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    step = max(STEP_MM, float(min_step_mm))
+    while True:
+        low = np.floor(vertices.min(axis=0) / step) * step
+        if np.rint((vertices - low) / step).max() <= GRID_MAX:
+            return step
+        step *= 2.0
+
+
+def quantized_glb(vertices, faces, normals, min_step_mm: float = STEP_MM) -> tuple[bytes, float]:
     """(GLB bytes, largest position error in mm) of one mesh.
 
     vertices : (n, 3) float, mm
     faces : (m, 3) int, indices into vertices
     normals : (n, 3) float, unit vertex normals
+    min_step_mm : the lattice step at the least (a power of two times ``STEP_MM``), for meshes
+    that share points with a wider one
     """
     vertices = np.asarray(vertices, dtype=np.float64)
     faces = np.asarray(faces, dtype=np.int64)
@@ -61,12 +77,8 @@ def quantized_glb(vertices, faces, normals) -> tuple[bytes, float]:
         raise ValueError(f"normals must be {vertices.shape}, not {normals.shape}")
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise ValueError("faces index vertices that do not exist")
-    step = STEP_MM
-    while True:
-        low = np.floor(vertices.min(axis=0) / step) * step
-        if np.rint((vertices - low) / step).max() <= GRID_MAX:
-            break
-        step *= 2.0
+    step = lattice_step(vertices, min_step_mm)
+    low = np.floor(vertices.min(axis=0) / step) * step
     grid = np.rint((vertices - low) / step).astype(np.uint16)
     error = float(np.abs(grid * step + low - vertices).max())
     positions = np.zeros((len(vertices), 4), dtype=np.uint16)

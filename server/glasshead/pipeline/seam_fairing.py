@@ -50,10 +50,11 @@ PASSES = 3
 NORMAL_SMOOTHING = 5
 
 
-def close_head(skin, cranium_vertices):
-    """The head shell for a ``FaceSkin`` and the seam between them faired: returns (the skin
-    with its border band faired, the ``HeadShell``, its params holding ``seam_fairing``)."""
-    shell = build_head_shell(skin.vertices, skin.faces, cranium_vertices)
+def close_head(skin, cranium_vertices, neck=None):
+    """The head shell (with ``neck``, if given) for a ``FaceSkin`` and the seam between them
+    faired: returns (the skin with its border band faired, the ``HeadShell``, its params holding
+    ``seam_fairing``)."""
+    shell = build_head_shell(skin.vertices, skin.faces, cranium_vertices, neck)
     skin_vertices, shell_vertices, stats = fair_seam(skin.vertices, skin.faces, shell)
     return (replace(skin, vertices=skin_vertices),
             replace(shell, vertices=shell_vertices, params=shell.params | {"seam_fairing": stats}))
