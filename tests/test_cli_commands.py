@@ -36,3 +36,12 @@ def test_migrate_brings_a_new_database_to_the_newest_migration(tmp_path, monkeyp
         get_settings.cache_clear()
     assert "lessons" in inspect(engine_for(url)).get_table_names()
     assert capsys.readouterr().out.strip().endswith("is up to date")
+
+
+def test_palate_names_a_scan_that_is_not_a_mesh_and_writes_nothing(tmp_path, capsys):
+    scan = tmp_path / "jaw.stl"
+    scan.write_bytes(b"solid nothing\nendsolid nothing\n")
+    assert main(["palate", str(scan), "--out", str(tmp_path / "child")]) == 2
+    assert f"{scan}: the file" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["jaw.stl"]
+    assert main(["palate", str(tmp_path / "missing.ply"), "--out", str(tmp_path / "c")]) == 2

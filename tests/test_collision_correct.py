@@ -11,7 +11,7 @@ import pytest
 from collision_support import (
     ExactRays,
     badin_mesh,
-    random_poses,
+    check_exact_correction,
     scene_maxilla,
     scene_tables,
     tongue_rig,
@@ -142,28 +142,7 @@ def test_the_tables_were_built_from_the_maxilla_the_scene_shows(scene):
 
 def test_random_tongue_poses_end_no_deeper_than_a_tenth_of_a_millimetre_and_spare_the_innocent(
         scene):
-    tables, rays, rig = scene["tables"], scene["rays"], scene["rig"]
-    origin = np.array(tables.header["origin"])
-    tol = COLLISION_TOL
-    corrected_per_pose, worst = [], 0.0
-    for k, values in enumerate(random_poses(rig, POSES, SEED)):
-        points = rig.vertices(values)
-        out, flags, counts = correct_vertices(points, tables)
-        first = rays.radius(points)
-        r = np.linalg.norm(points - origin, axis=1)
-        outside = r < first - tol.surface
-        inside = r > first + tol.surface
-        moved = np.any(out != points, axis=1)
-        where = f"seed {SEED}, pose {k}"
-        assert not np.any(moved & outside), f"{where}: an innocent vertex was moved"
-        assert not np.any(inside & ~moved), f"{where}: a vertex inside was left there"
-        np.testing.assert_array_equal(moved, flags == FLAG_CORRECTED)
-        # Corrected vertices sit on the first surface along their own ray from O.
-        after = np.linalg.norm(out[moved] - origin, axis=1)
-        depth = after - rays.radius(out[moved])
-        worst = max(worst, float(depth.max(initial=0.0)))
-        # mm: the tables' float32 triangles against Embree's float32 ray hits on the float64 mesh.
-        np.testing.assert_allclose(after, first[moved], rtol=0, atol=1e-4, err_msg=where)
-        corrected_per_pose.append(counts["corrected"])
-    assert worst <= tol.depth
-    assert sum(corrected_per_pose) > POSES, "the poses must actually press into the palate"
+    worst, corrected = check_exact_correction(scene["tables"], scene["rays"], scene["rig"],
+                                              POSES, SEED)
+    assert worst <= COLLISION_TOL.depth
+    assert corrected > POSES, "the poses must actually press into the palate"

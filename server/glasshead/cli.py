@@ -217,6 +217,26 @@ def compare_ema(args):
     return 0
 
 
+def palate(args):
+    """A learner's palate from a scan of their upper jaw (docs/palate.md): registered on the
+    head, its collision tables and electrode layout rebuilt into a folder."""
+    from glasshead.pipeline.learner_palate import ScanError, build_learner_palate
+
+    path = Path(args.scan)
+    try:
+        data = path.read_bytes()
+        report = build_learner_palate(
+            data, path.suffix, get_settings().assets_dir, args.out,
+            progress=lambda step, share: print(f"  {share:4.0%} {step}", file=sys.stderr))
+    except (ScanError, OSError) as error:
+        print(f"glasshead palate: {path}: {error}", file=sys.stderr)
+        return 2
+    residual = report["registration"]["mouth_facing_residual"]
+    print(f"{args.out}: registered at {residual['rms_mm']} mm RMS on the palate and teeth "
+          f"(95 % within {residual['p95_mm']} mm), {report['seconds']} s")
+    return 0
+
+
 def vectors(args):
     """Regenerate the shared test vectors (docs/vectors.md)."""
     from glasshead.vectors import VECTOR_FILES
@@ -348,6 +368,13 @@ def main(argv=None):
                                      "recordings in the data directory)")
     compare_parser.add_argument("--json", action="store_true", help="print the report as JSON")
     compare_parser.set_defaults(handler=compare_ema)
+    palate_parser = commands.add_parser(
+        "palate", help="make a learner's palate from a scan of their upper jaw (STL, PLY or "
+                       "OBJ): registered on the head, collision tables and electrodes rebuilt")
+    palate_parser.add_argument("scan", metavar="SCAN", help="the scan file")
+    palate_parser.add_argument("--out", required=True, metavar="DIR",
+                               help="the folder to write (replaced only when all is written)")
+    palate_parser.set_defaults(handler=palate)
     vectors_parser = commands.add_parser(
         "vectors", help="regenerate the shared test vectors in tests/vectors (docs/vectors.md)")
     vectors_parser.add_argument("names", nargs="*", metavar="FILE",

@@ -55,14 +55,15 @@ def similarity(src, dst):
     return scale, rot, mu_d - scale * rot @ mu_s
 
 
-def icp(src, target_tree, target_points, iterations, start=None):
-    """Trimmed similarity ICP of src (k, 3) onto target points; returns (s, R, t, trimmed rms)."""
+def icp(src, target_tree, target_points, iterations, start=None, trim=TRIM):
+    """Trimmed similarity ICP of src (k, 3) onto target points, the worst ``trim`` fraction of
+    pairs left out each iteration; returns (s, R, t, trimmed rms)."""
     scale, rot, shift = start if start is not None else (1.0, np.eye(3), np.zeros(3))
     rms = np.inf
     for _ in range(iterations):
         moved = scale * src @ rot.T + shift
         dist, idx = target_tree.query(moved)
-        keep = dist <= np.quantile(dist, 1.0 - TRIM)
+        keep = dist <= np.quantile(dist, 1.0 - trim)
         rms = float(np.sqrt(np.mean(dist[keep] ** 2)))
         scale, rot, shift = similarity(src[keep], target_points[idx[keep]])
     return scale, rot, shift, rms
