@@ -107,8 +107,12 @@ def test_a_lower_jaw_is_refused_and_the_previous_palate_stays(dynjaw, built_asse
     out = tmp_path / "kept"
     out.mkdir()
     (out / "marker").write_text("the previous palate")
-    with pytest.raises(ScanError, match="does not fit this head's palate"):
+    with pytest.raises(ScanError, match="does not fit this head's palate") as refused:
         build_learner_palate(dynjaw["jaw"], "obj", built_assets, out)
+    # With a picture to look at: both cuts, and the figure.
+    picture = refused.value.picture
+    assert 'class="head"' in picture and 'class="scan"' in picture and "mm RMS" in picture
+    assert picture.count("<polyline") >= 2
     assert (out / "marker").read_text() == "the previous palate"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["kept"], "nothing half-built is kept"
 

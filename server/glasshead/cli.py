@@ -230,6 +230,12 @@ def palate(args):
             progress=lambda step, share: print(f"  {share:4.0%} {step}", file=sys.stderr))
     except (ScanError, OSError) as error:
         print(f"glasshead palate: {path}: {error}", file=sys.stderr)
+        picture = getattr(error, "picture", None)
+        if picture:
+            shown = Path(f"{args.out}.residual.svg")
+            shown.write_text(picture)
+            print(f"glasshead palate: the scan as placed on the head's palate: {shown}",
+                  file=sys.stderr)
         return 2
     residual = report["registration"]["mouth_facing_residual"]
     print(f"{args.out}: registered at {residual['rms_mm']} mm RMS on the palate and teeth "

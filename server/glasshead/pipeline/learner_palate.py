@@ -12,7 +12,8 @@ and EPG electrode layout, so that contact is computed on the palate that is thei
    vault, the ridge and the teeth's inner faces, what the tongue touches and the electrodes lie
    on) onto the scan, ``REFINE_TRIM`` of the worst pairs left out. The residual is measured on
    that surface, head to scan. A residual over ``MAX_RESIDUAL_RMS_MM`` is not a palate of this
-   head (a lower jaw, a scan of something else): it is refused with the figure.
+   head (a lower jaw, a scan of something else): it is refused with the figure and a picture
+   of the scan as placed over the head's palate, cut down the middle (``residual_picture``).
 3. Rebuilding (``build_learner_palate``): the placed scan's collision tables
    (``pipeline.collision_tables``) and electrode layout (``pipeline.epg_layout``, the Reading
    rules placed on that palate), written with the placed mesh and a report into a new folder
@@ -28,6 +29,7 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
+from xml.sax.saxutils import escape
 
 import numpy as np
 import trimesh
@@ -35,6 +37,7 @@ from scipy.spatial import cKDTree
 
 from glasshead.asset_store import read_glb_mesh
 from glasshead.constants import COLLISION_TABLES_FILE, EPG_LAYOUT_FILE
+from glasshead.geometry.midsagittal import midline_section
 from glasshead.geometry.register_cbct import icp, register_cbct
 from glasshead.geometry.surface_distance import SurfaceDistance, sample_surface, summarise
 from glasshead.pipeline.anatomy import write_glb
@@ -60,7 +63,53 @@ PALATE_MESH, REPORT_FILE = "palate.glb", "palate-report.json"
 
 
 class ScanError(ValueError):
-    """A scan that cannot become a palate; the message says why, in words."""
+    """A scan that cannot become a palate; the message says why, in words. ``picture``: an SVG
+    of the scan as placed over the head's palate, when it was placed but did not fit."""
+
+    def __init__(self, message: str, picture: str | None = None):
+        super().__init__(message)
+        self.picture = picture
+
+
+#: The residual picture's scale at most, px per mm, its width at most, px, and its margin round
+#: the head's palate, mm.
+PICTURE_PX_PER_MM, PICTURE_WIDTH_PX, PICTURE_MARGIN_MM = 8.0, 640.0, 15.0
+PICTURE_COLOURS = {"head": "#9a8a6e", "scan": "#1565c0"}
+
+
+def residual_picture(maxilla_vertices, maxilla_faces, placed_vertices, placed_faces,
+                     residual: dict) -> str:
+    """An SVG of the mid-sagittal cuts of the head's maxilla and of the scan as placed on it,
+    lips to the left, with the residual in its title: what a clinician looks at when a scan is
+    refused."""
+    cuts = {}
+    for name, (v, f) in (("head", (maxilla_vertices, maxilla_faces)),
+                         ("scan", (placed_vertices, placed_faces))):
+        try:
+            cuts[name] = midline_section(v, f)
+        except ValueError:  # a scan placed off the mid-sagittal plane: only the head is drawn
+            cuts[name] = []
+    # Framed on the head's palate: a scan placed far off runs out of the picture.
+    points = np.vstack(cuts["head"])
+    low, high = points.min(axis=0) - PICTURE_MARGIN_MM, points.max(axis=0) + PICTURE_MARGIN_MM
+    scale = min(PICTURE_PX_PER_MM, PICTURE_WIDTH_PX / (high[0] - low[0]))
+    width, height = (high - low) * scale
+
+    def path(line):
+        # Anterior (+x) on the left, as the head's profile is drawn; +y up.
+        xy = [f"{(high[0] - x) * scale:.1f},{(high[1] - y) * scale:.1f}" for x, y in line]
+        return f'<polyline points="{" ".join(xy)}" fill="none" />'
+
+    groups = [f'<g class="{name}" stroke="{PICTURE_COLOURS[name]}" stroke-width="1.5">'
+              + "".join(path(line) for line in lines) + "</g>" for name, lines in cuts.items()]
+    title = (f"The scan (blue) on the head's palate (brown), cut down the middle: "
+             f"{residual['rms_mm']:.1f} mm RMS on the palate and teeth")
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
+            f'height="{height + 24:.0f}" viewBox="0 -24 {width:.0f} {height + 24:.0f}" '
+            'overflow="hidden">'
+            f"<title>{escape(title)}</title>"
+            f'<text x="4" y="-8" font-size="11" font-family="sans-serif">{escape(title)}</text>'
+            + "".join(groups) + "</svg>")
 
 
 def read_scan(data: bytes, file_type: str) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -123,7 +172,8 @@ def register_scan(scan_vertices, scan_faces, maxilla_vertices, maxilla_faces
         raise ScanError(
             f"the scan does not fit this head's palate: {residual['rms_mm']:.1f} mm RMS on the "
             f"palate and teeth after registration (at most {MAX_RESIDUAL_RMS_MM} mm is taken). "
-            "Is it a scan of the upper jaw?")
+            "Is it a scan of the upper jaw?",
+            picture=residual_picture(maxilla_vertices, maxilla_faces, placed, faces, residual))
     return placed, faces, report
 
 
