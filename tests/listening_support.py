@@ -176,6 +176,17 @@ def measure_script() -> Path | None:
     return script if script.is_file() else None
 
 
+def measure_hops(path, group) -> list[dict]:
+    """The listening kernels' hops of one WAV file (``scripts/measure.mjs``), as printed: one
+    dict per 10 ms hop."""
+    script = measure_script()
+    assert script is not None, f"{MEASURE_SCRIPT} is missing: the listening kernels cannot be run"
+    out = subprocess.run(["node", str(script), str(path), "--group", group], cwd=REPO_ROOT,
+                         capture_output=True, text=True, check=True,
+                         timeout=MEASURE_TIMEOUT_S).stdout
+    return [json.loads(line) for line in out.splitlines() if line.startswith("{")]
+
+
 def start_ours(paths, group):
     """Start one node process measuring ``paths`` as ``group``; finish it with ``finish_ours``.
     Its output goes to temporary files, so that it runs on while the caller does other work."""

@@ -9,8 +9,6 @@ Listening is by the listening kernels (``scripts/measure.mjs``), as the browser 
 import csv
 import json
 import math
-import subprocess
-import wave
 
 import numpy as np
 import pytest
@@ -24,10 +22,11 @@ from glasshead.pipeline.inversion_codebook import (
     anchor_params,
     random_vowel_poses,
 )
-from glasshead.settings import REPO_ROOT, get_settings
+from glasshead.settings import get_settings
 from glasshead.speech import tract_voice
+from glasshead.speech.audio import write_wav
 from glasshead.vectors.inversion import build_document
-from listening_support import GROUP_OF_KIND, require
+from listening_support import GROUP_OF_KIND, measure_hops, require
 from vector_support import assert_generated, read_vectors
 
 #: Random vowel poses of the round trip (issue 31: 200), each held this many 10 ms frames.
@@ -60,22 +59,6 @@ def vowels(codebook):
 @pytest.fixture(scope="module")
 def anchors(built_store):
     return anchor_params(built_store.get("phoneme_targets")["targets"])
-
-
-def measure(path, group):
-    """The listening kernels' hops of a WAV file."""
-    out = subprocess.run(["node", str(REPO_ROOT / "scripts" / "measure.mjs"), str(path),
-                          "--group", group], capture_output=True, text=True, check=True,
-                         timeout=300).stdout
-    return [json.loads(line) for line in out.splitlines() if line.startswith("{")]
-
-
-def write_wav(path, samples, rate):
-    with wave.open(str(path), "wb") as f:
-        f.setnchannels(1)
-        f.setsampwidth(2)
-        f.setframerate(rate)
-        f.writeframes((np.clip(samples, -1, 1) * 32767).astype("<i2").tobytes())
 
 
 def test_the_vectors_are_what_the_generator_writes():
@@ -115,7 +98,7 @@ def test_random_vowel_poses_said_by_the_tract_voice_are_found_again(head_tract, 
         tract_voice.tubes_of_frames(frames), 100.0,
         [{"symbol": "AA", "stress": 1, "start_s": 0.0, "end_s": seconds}])
     write_wav(tmp_path / "vowels.wav", samples, rate)
-    hops = measure(tmp_path / "vowels.wav", "man")
+    hops = measure_hops(tmp_path / "vowels.wav", "man")
     times = np.array([h["t"] for h in hops])
     rig = head_tract.tongue
     errors, shuffled = [], []
@@ -204,7 +187,7 @@ def _hprc_dorsum_pairs(vowels, flesh):
     for csv_path in sorted(folder.glob("*_ema.csv")):
         recording = read_hprc(csv_path)
         group = "woman" if recording.name.startswith("F") else "man"
-        hops = measure(csv_path.with_name(f"{recording.name}.wav"), group)
+        hops = measure_hops(csv_path.with_name(f"{recording.name}.wav"), group)
         times = np.array([h["t"] for h in hops])
         path = inversion.invert_track([inversion.estimable_formants(h) for h in hops], vowels,
                                       vowels.scale(group))
@@ -256,7 +239,7 @@ def test_silence_noise_and_a_fricative_get_no_tongue(head_tract, built_store, vo
     for name, samples, at in (("silence", quiet, rate), ("noise", noise, rate),
                               ("/s/", hiss, hiss_rate)):
         write_wav(tmp_path / "sound.wav", samples, at)
-        hops = measure(tmp_path / "sound.wav", "man")
+        hops = measure_hops(tmp_path / "sound.wav", "man")
         frames = [inversion.estimable_formants(h) for h in hops]
         assert len(hops) >= 40, name
         assert inversion.invert_track(frames, vowels) == [None] * len(hops), name
@@ -266,5 +249,5 @@ def test_silence_noise_and_a_fricative_get_no_tongue(head_tract, built_store, vo
                                          [{"symbol": "AA", "stress": 1, "start_s": 0.0,
                                            "end_s": 0.5}])
     write_wav(tmp_path / "aa.wav", aa, aa_rate)
-    frames = [inversion.estimable_formants(h) for h in measure(tmp_path / "aa.wav", "man")]
+    frames = [inversion.estimable_formants(h) for h in measure_hops(tmp_path / "aa.wav", "man")]
     assert sum(e is not None for e in inversion.invert_track(frames, vowels)) >= 30

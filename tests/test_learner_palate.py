@@ -3,6 +3,7 @@ palate, ``artisynth-dynjaw``) uploaded as a scan is registered onto the head and
 exact collision tables and an electrode layout on which /t/ and /k/ still close their rows; bad
 scans get a clear answer and leave the previous palate in place."""
 
+import itertools
 import json
 import struct
 
@@ -74,19 +75,13 @@ def test_the_rebuilt_tables_stay_exact(palate, built_assets):
     assert corrected > POSES
 
 
-def _rows_in_order(grid):
-    """Each row's electrodes lie behind the row before's (x decreases from R1 to R8)."""
-    by_row: dict[int, list[float]] = {}
-    for electrode in grid["electrodes"]:
-        by_row.setdefault(electrode["row"], []).append(electrode["position"][0])
-    means = [np.mean(by_row[row]) for row in sorted(by_row)]
-    return all(a > b for a, b in zip(means[:-1], means[1:], strict=True))
-
-
 def test_the_electrodes_keep_their_rows_and_t_and_k_still_close_theirs(palate, built_store):
     layout = json.loads((palate["dir"] / EPG_LAYOUT_FILE).read_text())
     reading = layout["grids"]["reading62"]
-    assert len(reading["electrodes"]) == 62 and _rows_in_order(reading)
+    # Rows run front to back along the midline, as on the head's own palate.
+    front_to_back = [row["midline_point"][0] for row in reading["rows_detail"]]
+    assert len(reading["electrodes"]) == 62
+    assert all(a > b for a, b in itertools.pairwise(front_to_back)), front_to_back
     tables = decode_collision_tables((palate["dir"] / COLLISION_TABLES_FILE).read_bytes())
     probes = probes_from_layout(reading)
     rig = built_store.get("tongue_rig")

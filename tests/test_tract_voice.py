@@ -3,17 +3,15 @@ tube synthesis. Its vowels have the formants the tube computes, measured by the 
 kernels (scripts/measure.mjs) and by Praat; /m/ hums through the nose; /s/ hisses; a closed
 tract is carried, not NaN; and POST /utterances speaks with it."""
 
-import json
-import subprocess
-import wave
 
 import numpy as np
 import parselmouth
 import pytest
 
-from glasshead.settings import REPO_ROOT
 from glasshead.speech import tract_voice
+from glasshead.speech.audio import write_wav
 from glasshead.speech.coarticulation import coarticulate
+from listening_support import measure_hops
 
 #: How far the formants measured in the synthesised vowels may be from the tube's (issue 31;
 #: measured: within 8.1 % by both trackers, the largest F2 of /i/).
@@ -43,11 +41,7 @@ def spoken(shape, store, phones, path=None):
     tracks = coarticulate(phones, store.get("phoneme_targets"), rate_hz=RATE_HZ)["tracks"]
     samples, rate = tract_voice.speak(shape, tracks, RATE_HZ, phones)
     if path is not None:
-        with wave.open(str(path), "wb") as f:
-            f.setnchannels(1)
-            f.setsampwidth(2)
-            f.setframerate(rate)
-            f.writeframes((np.clip(samples, -1, 1) * 32767).astype("<i2").tobytes())
+        write_wav(path, samples, rate)
     return samples, rate
 
 
@@ -77,13 +71,6 @@ def test_the_source_voices_vowels_opens_for_voiceless_sounds_and_breathes_in_pau
     assert source[0, 0] > source[-1, 0]  # F0 falls
 
 
-def _ours(path):
-    script = REPO_ROOT / "scripts" / "measure.mjs"
-    out = subprocess.run(["node", str(script), str(path), "--group", "man"], capture_output=True,
-                         text=True, check=True, timeout=120).stdout
-    return [json.loads(line) for line in out.splitlines() if line.startswith("{")]
-
-
 @pytest.mark.parametrize(("word", "symbol", "ipa"), [("heed", "IY", "i"), ("hod", "AA", "ɑ"),
                                                      ("who'd", "UW", "u")])
 def test_the_vowels_of_heed_hod_and_whod_have_the_tubes_formants(shape, store, tmp_path, word,
@@ -94,7 +81,8 @@ def test_the_vowels_of_heed_hod_and_whod_have_the_tubes_formants(shape, store, t
     target = next(t for t in store.get("phoneme_targets")["targets"] if t["ipa"] == ipa)
     tube = shape.acoustics(target["params"])["formants"][:3]
     middle = (0.23, 0.43)  # the vowel's steady middle
-    hops = [h for h in _ours(path) if middle[0] <= h["t"] <= middle[1] and h["voiced"]]
+    hops = [h for h in measure_hops(path, "man")
+            if middle[0] <= h["t"] <= middle[1] and h["voiced"]]
     assert len(hops) >= 10, f"{word}: {len(hops)} voiced hops"
     ours = np.median([h["formants"][:3] for h in hops], axis=0)
     formant = parselmouth.Sound(str(path)).to_formant_burg(maximum_formant=5000.0)

@@ -29,11 +29,15 @@ test( 'live: each new hop is estimated once, and the estimate lapses after a gap
 	const first = estimator.live( said, options );
 	assert.ok( first && first.t === said.at( - 1 ).t );
 	assert.deepEqual( estimator.nearestAnchors( first.params ), [ 'i', 'ɪ' ] );
+	// More of the same vowel: the same estimate, so the page has nothing new to draw.
+	said.push( ...hops( estimator, 'i', 3, 0.2 ) );
+	assert.equal( estimator.live( said, options ), first );
+	assert.ok( Math.abs( first.t - 0.22 ) < 1e-9, 'its time is the newest voiced hop\'s' );
 	// The page's array grows and is trimmed at its start: only the new hops are inverted.
-	said.push( ...hops( estimator, 'i', 5, 0.2, false ) );
+	said.push( ...hops( estimator, 'i', 2, 0.23, false ) );
 	said.splice( 0, 10 );
 	assert.equal( estimator.live( said, options ), first, 'a short gap keeps the estimate' );
-	said.push( ...hops( estimator, 'i', Math.ceil( LIVE_HOLD_S * 100 ), 0.25, false ) );
+	said.push( ...hops( estimator, 'i', Math.ceil( LIVE_HOLD_S * 100 ) + 1, 0.25, false ) );
 	assert.equal( estimator.live( said, options ), null, 'a longer gap ends it' );
 
 } );

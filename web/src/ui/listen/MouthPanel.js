@@ -58,12 +58,16 @@ export class MouthPanel {
 		this.element = h( 'figure', { className: 'ls-mouth' }, h( 'figcaption', {}, 'The mouth' ),
 			h( 'div', { className: 'ls-mouth-views' }, h( 'div', { className: 'ls-mouth-head-box' }, this.stage, this.headLabel, this.headMessage ), this.drawing.element ),
 			this.note, this.blend );
-		this.input = { vowels: null, target: null, summary: null, hops: null, newest: null, group: null };
+		this.input = { vowels: null, target: null, summary: null, hops: null, group: null };
 		/** Phoneme target parameters by vowel code, as they arrive; `targetsSettled` once all have. */
 		this.targets = {};
 		this.targetsSettled = false;
 		this.profile = null;
 		this.estimator = null;
+		/** What the estimator last gave (findTongue), the estimate shown from it, and its curve. */
+		this.found = null;
+		this.attempt = null;
+		this.curveProfile = null;
 		this.estimate = null;
 		this.estimateCurve = null;
 		this.drawCount = 0;
@@ -113,14 +117,15 @@ export class MouthPanel {
 	 * What the page shows: the group's norms ({ code: entry }), the target vowel's code (null for
 	 * none), the group ('child', 'woman', 'man'), the attempt's hops so far (the listening
 	 * kernels', oldest first) and its summary (summariseAttempt; null until the attempt ends).
-	 * Cheap when nothing changed: the page calls it with every block of sound.
+	 * Cheap when nothing changed: the page calls it with every block of sound, and new hops that
+	 * leave the estimated tongue as it was draw nothing.
 	 */
 	update( { vowels, target, summary, hops = null, group = null } ) {
 
-		const input = { vowels: vowels ?? null, target: target || null, summary: summary ?? null, hops, newest: hops?.at( - 1 )?.t ?? null, group };
-		const same = [ 'vowels', 'target', 'summary', 'hops', 'newest', 'group' ].every( ( key ) => input[ key ] === this.input[ key ] );
-		if ( same ) return;
+		const input = { vowels: vowels ?? null, target: target || null, summary: summary ?? null, hops, group };
+		const same = [ 'vowels', 'target', 'summary', 'group' ].every( ( key ) => input[ key ] === this.input[ key ] );
 		this.input = input;
+		if ( same && this.findTongue() === this.found ) return;
 		if ( input.vowels && ! this.loadingTargets ) this.loadTargets( input.vowels );
 		this.refresh();
 
@@ -133,9 +138,17 @@ export class MouthPanel {
 		const { vowels, target, summary } = this.input;
 		const targetParams = ( target && this.targets[ target ] ) ?? null;
 		this.head.pose( targetParams ?? {} );
-		this.estimate = this.estimateTongue();
-		this.estimateCurve = this.profile && this.estimate ? this.profile.curve( this.estimate.params ) : null;
-		this.head.ghost( this.estimateCurve );
+		const found = this.findTongue();
+		if ( found !== this.found || this.profile !== this.curveProfile ) {
+
+			this.found = found;
+			this.curveProfile = this.profile;
+			this.estimate = found && { params: found.params, nearest: this.estimator.nearestAnchors( found.params ), live: ! summary, frames: found.frames ?? null };
+			this.estimateCurve = this.profile && found ? this.profile.curve( found.params ) : null;
+			this.head.ghost( this.estimateCurve );
+
+		}
+
 		this.headMessage.textContent = this.head.status === 'loading' ? 'Loading the head…' : this.head.message;
 		this.headMessage.hidden = this.head.status === 'ready';
 		this.headLabel.textContent = target ? `Target /${ vowels?.[ target ]?.ipa ?? target }/` : 'No target: the tongue at rest';
@@ -152,16 +165,19 @@ export class MouthPanel {
 	}
 
 	/**
-	 * The learner's tongue: the finished attempt's, else the live one while hops come, else none.
-	 * { params, nearest, live, frames? } or null.
+	 * The learner's tongue as the estimator gives it ({ params, frames? } or null): the finished
+	 * attempt's (made once per attempt, target and group), else the live one while hops come.
+	 * The same object while the tongue stays the same.
 	 */
-	estimateTongue() {
+	findTongue() {
 
 		const { summary, hops, group, target } = this.input;
 		if ( ! this.estimator || ! hops?.length || ! group ) return null;
 		const options = { group, target };
-		const found = summary ? this.estimator.attempt( hops, options ) : this.estimator.live( hops, options );
-		return found && { params: found.params, nearest: this.estimator.nearestAnchors( found.params ), live: ! summary, frames: found.frames ?? null };
+		if ( ! summary ) return this.estimator.live( hops, options );
+		const key = `${ group }|${ target }`;
+		if ( this.attempt?.summary !== summary || this.attempt.key !== key ) this.attempt = { summary, key, found: this.estimator.attempt( hops, options ) };
+		return this.attempt.found;
 
 	}
 

@@ -7,7 +7,7 @@
 // LIVE_HOLD_S after the last hop that gave one, so that silence, noise or a fricative show no
 // tongue.
 
-import { codebookPose, estimableFormants, groupScale, invertFrame, invertTrack, keepTo, readCodebook } from '../../core/listen/inversion.js';
+import { anchorEntry, codebookPose, estimableFormants, groupScale, invertFrame, invertTrack, keepTo, readCodebook } from '../../core/listen/inversion.js';
 
 /** Where the build puts the codebook (pipeline/inversion_codebook.py). */
 export const CODEBOOK_URL = '/assets/build/inversion-codebook.json';
@@ -47,7 +47,8 @@ export class TongueEstimator {
 	/**
 	 * The live estimate after the hops so far (the page's array of listening hops, oldest first,
 	 * growing at the end and trimmed at the start): { params, entry, t } of the newest hop that
-	 * gave one, null once LIVE_HOLD_S has passed without one.
+	 * gave one (the same object while the entry stays), null once LIVE_HOLD_S has passed without
+	 * one.
 	 */
 	live( hops, { group, target } ) {
 
@@ -71,7 +72,9 @@ export class TongueEstimator {
 			const entry = invertFrame( estimableFormants( hop ), codebook, scale, this.previous, this.scratch );
 			if ( entry === null ) continue;
 			this.previous = entry;
-			this.lastEstimate = { params: codebookPose( codebook, entry ), entry, t: hop.t };
+			// The same entry keeps its object, so the page sees nothing new to draw.
+			if ( this.lastEstimate?.entry === entry ) this.lastEstimate.t = hop.t;
+			else this.lastEstimate = { params: codebookPose( codebook, entry ), entry, t: hop.t };
 
 		}
 
@@ -104,10 +107,10 @@ export class TongueEstimator {
 	/** The anchors (IPA) nearest a pose, nearest first: its parameters in their spread. */
 	nearestAnchors( params, count = 2 ) {
 
-		const { anchors, parameters, size, scaled, spread, blends } = this.full;
-		return anchors.map( ( ipa, k ) => {
+		const { anchors, parameters, size, scaled, spread } = this.full;
+		return anchors.map( ( ipa ) => {
 
-			const entry = blends.findIndex( ( used ) => used.length === 1 && used[ 0 ] === k );
+			const entry = anchorEntry( this.full, ipa );
 			let sum = 0;
 			for ( let p = 0; p < size; p ++ ) {
 

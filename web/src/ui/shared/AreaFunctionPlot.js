@@ -84,7 +84,7 @@ export function drawAreaFunction( ctx, tube, { width, height }, nasal = null ) {
 	ctx.fillStyle = AREA_COLORS.shut;
 	for ( const step of steps ) if ( step.shut ) ctx.fillRect( step.x0, baseline - 6, Math.max( 2, step.x1 - step.x0 ), 6 );
 
-	if ( nasal ) drawNose( ctx, nasal, steps[ nasal.at ].x0, x, y );
+	if ( nasal ) drawNose( ctx, nasal, tube.lengths.slice( 0, nasal.at ).reduce( ( a, b ) => a + b, 0 ), x, y );
 
 	ctx.fillStyle = AREA_COLORS.ink;
 	ctx.textBaseline = 'alphabetic';
@@ -102,17 +102,16 @@ export function drawAreaFunction( ctx, tube, { width, height }, nasal = null ) {
 
 }
 
-/** The nose's sections as a dashed line of steps from the junction at x = `from` (CSS pixels). */
-function drawNose( ctx, nasal, from, x, y ) {
+/** The nose's sections as a dashed line of steps from the junction, `junctionMm` from the glottis. */
+function drawNose( ctx, nasal, junctionMm, x, y ) {
 
-	const mm = ( px ) => ( px - x( 0 ) ) / ( x( 1 ) - x( 0 ) );
-	let at = mm( from );
+	let at = junctionMm;
 	ctx.save();
 	ctx.setLineDash( [ 4, 3 ] );
 	ctx.strokeStyle = AREA_COLORS.nose;
 	ctx.lineWidth = 2;
 	ctx.beginPath();
-	ctx.moveTo( from, y( 0 ) );
+	ctx.moveTo( x( junctionMm ), y( 0 ) );
 	nasal.lengths.forEach( ( length, k ) => {
 
 		ctx.lineTo( x( at ), y( nasal.areas[ k ] ) );
